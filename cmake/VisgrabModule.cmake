@@ -1,0 +1,48 @@
+# visgrab_add_module(<name> SOURCES ... [PUBLIC_DEPS ...] [PRIVATE_DEPS ...] INCLUDE_ROOT <dir>)
+#
+# One library target per module. Sources are listed explicitly (no GLOB). A module without
+# sources becomes an INTERFACE library. INCLUDE_ROOT is the layer folder (RobWork/, RobWorkSim/,
+# VisGraB/) so that headers are included as "rw/math/rpy.hpp".
+function(visgrab_add_module name)
+  cmake_parse_arguments(ARG "" "INCLUDE_ROOT" "SOURCES;PUBLIC_DEPS;PRIVATE_DEPS" ${ARGN})
+  if(NOT ARG_INCLUDE_ROOT)
+    message(FATAL_ERROR "visgrab_add_module(${name}): INCLUDE_ROOT is required")
+  endif()
+  if(ARG_SOURCES)
+    add_library(${name} STATIC ${ARG_SOURCES})
+    target_include_directories(${name} PUBLIC ${ARG_INCLUDE_ROOT})
+    target_link_libraries(${name} PUBLIC ${ARG_PUBLIC_DEPS} PRIVATE ${ARG_PRIVATE_DEPS})
+    set_target_properties(${name} PROPERTIES POSITION_INDEPENDENT_CODE ON)
+    visgrab_set_warnings(${name})
+  else()
+    add_library(${name} INTERFACE)
+    target_include_directories(${name} INTERFACE ${ARG_INCLUDE_ROOT})
+    target_link_libraries(${name} INTERFACE ${ARG_PUBLIC_DEPS})
+  endif()
+endfunction()
+
+# visgrab_add_test(<name> SOURCES ... DEPS ... [LABELS ...]): one GoogleTest executable,
+# its tests registered individually with CTest.
+function(visgrab_add_test name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;DEPS;LABELS" ${ARGN})
+  add_executable(${name} ${ARG_SOURCES})
+  target_link_libraries(${name} PRIVATE ${ARG_DEPS} visgrab_test_support GTest::gtest GTest::gtest_main)
+  visgrab_set_warnings(${name})
+  include(GoogleTest)
+  gtest_discover_tests(${name}
+    PROPERTIES LABELS "${ARG_LABELS}"
+               ENVIRONMENT "VISGRAB_SOURCE_DIR=${PROJECT_SOURCE_DIR}"
+    DISCOVERY_TIMEOUT 60)
+endfunction()
+
+# visgrab_add_benchmark(<name> SOURCES ... DEPS ...): a Google Benchmark program, also registered
+# in CTest as a short smoke run (label "benchmark").
+function(visgrab_add_benchmark name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;DEPS" ${ARGN})
+  add_executable(${name} ${ARG_SOURCES})
+  target_link_libraries(${name} PRIVATE ${ARG_DEPS} benchmark::benchmark)
+  target_compile_definitions(${name} PRIVATE VISGRAB_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+  visgrab_set_warnings(${name})
+  add_test(NAME ${name}_smoke COMMAND ${name} --benchmark_min_time=0.01)
+  set_tests_properties(${name}_smoke PROPERTIES LABELS benchmark)
+endfunction()

@@ -1,0 +1,78 @@
+#include "support/test_support.hpp"
+
+#include <atomic>
+#include <cstdlib>
+#include <fstream>
+#include <random>
+#include <sstream>
+
+namespace visgrab::test {
+
+std::filesystem::path sourceDir() {
+  if (const char* env = std::getenv("VISGRAB_SOURCE_DIR"); env != nullptr && *env != '\0') {
+    return env;
+  }
+  return VISGRAB_SOURCE_DIR;
+}
+
+std::optional<std::filesystem::path> compatDataDir() {
+  const char* env = std::getenv("RW_COMPAT_DATA");
+  if (env == nullptr || *env == '\0') return std::nullopt;
+  std::filesystem::path dir(env);
+  if (!std::filesystem::is_directory(dir)) return std::nullopt;
+  return std::filesystem::absolute(dir);
+}
+
+::testing::AssertionResult transformNear(const char* aExpr, const char* bExpr, const char*,
+                                         const rw::math::Transform3D& a,
+                                         const rw::math::Transform3D& b, double tol) {
+  const double dp = (a.translation() - b.translation()).cwiseAbs().maxCoeff();
+  const double dr = (a.linear() - b.linear()).cwiseAbs().maxCoeff();
+  if (dp <= tol && dr <= tol) return ::testing::AssertionSuccess();
+  std::ostringstream os;
+  os << aExpr << " and " << bExpr << " differ by " << dp << " m in position and " << dr
+     << " in rotation (tolerance " << tol << ")\n"
+     << aExpr << " =\n"
+     << a.matrix() << "\n"
+     << bExpr << " =\n"
+     << b.matrix();
+  return ::testing::AssertionFailure() << os.str();
+}
+
+::testing::AssertionResult vectorNear(const char* aExpr, const char* bExpr, const char*,
+                                      const Eigen::VectorXd& a, const Eigen::VectorXd& b,
+                                      double tol) {
+  if (a.size() != b.size()) {
+    return ::testing::AssertionFailure()
+           << aExpr << " has " << a.size() << " entries, " << bExpr << " has " << b.size();
+  }
+  const double d = a.size() == 0 ? 0.0 : (a - b).cwiseAbs().maxCoeff();
+  if (d <= tol) return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure()
+         << aExpr << " = [" << a.transpose() << "] and " << bExpr << " = [" << b.transpose()
+         << "] differ by " << d << " (tolerance " << tol << ")";
+}
+
+TempDir::TempDir() {
+  static std::atomic<unsigned> counter{0};
+  std::random_device rd;
+  const auto base = std::filesystem::temp_directory_path();
+  for (;;) {
+    path_ = base / ("visgrab-test-" + std::to_string(rd()) + "-" + std::to_string(counter++));
+    if (std::filesystem::create_directories(path_)) break;
+  }
+}
+
+TempDir::~TempDir() {
+  std::error_code ec;
+  std::filesystem::remove_all(path_, ec);
+}
+
+std::filesystem::path writeFile(const std::filesystem::path& file, const std::string& text) {
+  if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path());
+  std::ofstream out(file, std::ios::binary);
+  out << text;
+  return file;
+}
+
+}  // namespace visgrab::test
