@@ -1,6 +1,6 @@
 # Warning flags shared by every project target (not by third-party code).
 set(VISGRAB_WARNING_FLAGS -Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor
-    -Wold-style-cast -Wcast-align -Woverloaded-virtual -Wnull-dereference
+    -Wold-style-cast -Wcast-align -Woverloaded-virtual
     -Wimplicit-fallthrough)
 if(VISGRAB_WERROR)
   list(APPEND VISGRAB_WARNING_FLAGS -Werror)

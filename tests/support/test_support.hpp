@@ -55,8 +55,9 @@ std::filesystem::path writeFile(const std::filesystem::path& file, const std::st
 
 /// Skips the current test with a reason unless RobWork's compatibility data is available;
 /// otherwise declares `var` as its path.
-#define REQUIRE_COMPAT_DATA(var)                                                   \
-  const auto var##_opt = ::visgrab::test::compatDataDir();                         \
-  if (!var##_opt) GTEST_SKIP() << "RW_COMPAT_DATA is not set: RobWork's files are " \
-                                  "needed for this compatibility test";            \
+#define REQUIRE_COMPAT_DATA(var)                                      \
+  const auto var##_opt = ::visgrab::test::compatDataDir();            \
+  if (!var##_opt)                                                     \
+    GTEST_SKIP() << "RW_COMPAT_DATA is not set: RobWork's files are " \
+                    "needed for this compatibility test";             \
   const std::filesystem::path& var = *var##_opt

@@ -94,7 +94,9 @@ class Frame {
   /// The constant part of the parent-to-frame transform (see FrameSpec::transform).
   const rw::math::Transform3D& fixedTransform() const { return spec_.transform; }
   /// True for revolute and prismatic joints (dependent ones included).
-  bool isJoint() const { return spec_.type == FrameType::kRevolute || spec_.type == FrameType::kPrismatic; }
+  bool isJoint() const {
+    return spec_.type == FrameType::kRevolute || spec_.type == FrameType::kPrismatic;
+  }
   /// True for joints coupled to another joint.
   bool isDependent() const { return spec_.dependency.has_value(); }
   /// The coupling of a dependent joint.

@@ -24,7 +24,8 @@ class FrameTree {
 
   /// Adds a frame and returns its id.
   /// @throws std::invalid_argument if the name is taken or empty, the parent is unknown, a
-  /// dependency names a non-joint or dependent owner, or a dependent joint is not revolute/prismatic.
+  /// dependency names a non-joint or dependent owner, or a dependent joint is not
+  /// revolute/prismatic.
   FrameId add(FrameSpec spec);
 
   /// All frames, parents before children.

@@ -22,6 +22,8 @@ class State {
   const std::vector<double>& values() const { return values_; }
   /// Current parent of a frame (differs from Frame::parent() only for attached DAFs).
   FrameId parentOf(FrameId frame) const { return parents_[static_cast<std::size_t>(frame.index)]; }
+  /// Number of frames the state was made for.
+  std::size_t parentCount() const { return parents_.size(); }
   /// Re-attaches a frame. Precondition: the frame is a DAF and `parent` is not below it.
   void setParent(FrameId frame, FrameId parent) {
     parents_[static_cast<std::size_t>(frame.index)] = parent;

@@ -11,7 +11,7 @@ Transform3D craigDH(double alpha, double a, double d, double theta);
 /// Schilling's (classic) DH: Rz(theta) Tz(d) Tx(a) Rx(alpha).
 Transform3D schillingDH(double alpha, double a, double d, double theta);
 
-/// Hayati-Roberts/"HGP" parallel-axis variant: Ry(beta) Tx(a) Rx(alpha) with an offset b along y.
+/// The "HGP" variant for parallel axes: Ty(b) Ry(beta) Tx(a) Rx(alpha).
 Transform3D hgpDH(double alpha, double a, double beta, double b);
 
 }  // namespace rw::math

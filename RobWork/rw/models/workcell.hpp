@@ -2,6 +2,7 @@
 
 #include <array>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -79,10 +80,11 @@ class WorkCell {
   /// Proximity setup, for building.
   ProximitySetup& proximitySetup() { return proximitySetup_; }
 
-  /// The default state: movable frames at their initial transforms, devices at "Home".
-  const rw::kinematics::State& defaultState() const { return defaultState_; }
-  /// Sets the default state. Precondition: made by frames().makeState() of this workcell.
-  void setDefaultState(rw::kinematics::State state) { defaultState_ = std::move(state); }
+  /// The default state: movable frames at their initial transforms, devices at "Home" (as set by
+  /// setDefaultState), or frames().makeState() when none was set for the current frames.
+  rw::kinematics::State defaultState() const;
+  /// Sets the default state. @throws std::invalid_argument unless it fits the current frames.
+  void setDefaultState(rw::kinematics::State state);
   /// Absolute path of the file the workcell was loaded from (empty if built in code).
   const std::string& fileName() const { return fileName_; }
   /// Sets the file name.
@@ -96,7 +98,7 @@ class WorkCell {
   rw::kinematics::PropertyMap properties_;
   CollisionSetup collisionSetup_;
   ProximitySetup proximitySetup_;
-  rw::kinematics::State defaultState_;
+  std::optional<rw::kinematics::State> defaultState_;
   std::string fileName_;
 };
 

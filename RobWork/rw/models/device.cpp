@@ -1,0 +1,107 @@
+#include "rw/models/device.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+#include <utility>
+
+namespace rw::models {
+
+using rw::kinematics::Frame;
+using rw::kinematics::FrameId;
+using rw::kinematics::FrameTree;
+using rw::kinematics::State;
+using rw::math::Q;
+
+namespace {
+
+// Frames from base (exclusive) down to end (inclusive), in order from the base.
+std::vector<FrameId> pathFromBase(const FrameTree& tree, FrameId base, FrameId end,
+                                  const std::string& deviceName) {
+  std::vector<FrameId> path;
+  FrameId f = end;
+  while (f != base) {
+    if (!f.valid() || f == FrameTree::kWorld) {
+      throw std::invalid_argument("device \"" + deviceName + "\": end frame \"" +
+                                  tree.frame(end).name() + "\" is not below its base \"" +
+                                  tree.frame(base).name() + "\"");
+    }
+    path.push_back(f);
+    f = tree.frame(f).parent();
+  }
+  std::reverse(path.begin(), path.end());
+  return path;
+}
+
+template <typename Get>
+Q collect(const FrameTree& tree, const std::vector<FrameId>& joints, Get get) {
+  Q q(static_cast<Eigen::Index>(joints.size()));
+  for (std::size_t i = 0; i < joints.size(); ++i) {
+    q[static_cast<Eigen::Index>(i)] = get(tree.frame(joints[i]).limits());
+  }
+  return q;
+}
+
+}  // namespace
+
+Device::Device(Spec spec, const FrameTree& tree) : spec_(std::move(spec)), tree_(&tree) {
+  if (!spec_.base.valid()) throw std::invalid_argument("device \"" + spec_.name + "\" has no base");
+  for (const FrameId end : spec_.ends) {
+    for (const FrameId f : pathFromBase(tree, spec_.base, end, spec_.name)) {
+      const Frame& frame = tree.frame(f);
+      if (!frame.isJoint() || std::find(joints_.begin(), joints_.end(), f) != joints_.end()) {
+        continue;
+      }
+      joints_.push_back(f);
+      if (frame.isActiveJoint()) active_.push_back(f);
+    }
+  }
+  // The device's frames: the base and everything below it that lives in the device's scope.
+  const std::string prefix = spec_.name + ".";
+  std::vector<FrameId> stack{spec_.base};
+  while (!stack.empty()) {
+    const FrameId f = stack.back();
+    stack.pop_back();
+    frames_.push_back(f);
+    for (const FrameId c : tree.children(f)) {
+      if (tree.frame(c).name().rfind(prefix, 0) == 0) stack.push_back(c);
+    }
+  }
+  std::sort(frames_.begin(), frames_.end());
+}
+
+Q Device::getQ(const State& state) const {
+  Q q(dof());
+  for (std::size_t i = 0; i < active_.size(); ++i) {
+    q[static_cast<Eigen::Index>(i)] = tree_->frame(active_[i]).jointValue(state);
+  }
+  return q;
+}
+
+void Device::setQ(const Q& q, State& state) const {
+  if (q.size() != dof()) {
+    throw std::invalid_argument("device \"" + spec_.name + "\" has " + std::to_string(dof()) +
+                                " DOF, got a configuration of " + std::to_string(q.size()));
+  }
+  for (std::size_t i = 0; i < active_.size(); ++i) {
+    tree_->frame(active_[i]).setJointValue(state, q[static_cast<Eigen::Index>(i)]);
+  }
+}
+
+Q Device::lowerLimits() const {
+  return collect(*tree_, active_, [](const auto& l) { return l.lower; });
+}
+Q Device::upperLimits() const {
+  return collect(*tree_, active_, [](const auto& l) { return l.upper; });
+}
+Q Device::velocityLimits() const {
+  return collect(*tree_, active_, [](const auto& l) { return l.velocity; });
+}
+Q Device::accelerationLimits() const {
+  return collect(*tree_, active_, [](const auto& l) { return l.acceleration; });
+}
+
+bool Device::contains(FrameId frame) const {
+  return std::binary_search(frames_.begin(), frames_.end(), frame);
+}
+
+}  // namespace rw::models
