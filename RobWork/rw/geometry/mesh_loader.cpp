@@ -1,0 +1,244 @@
+#include "rw/geometry/mesh_loader.hpp"
+
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+#include <assimp/Importer.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cstdint>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <system_error>
+#include <utility>
+#include <vector>
+
+namespace rw::geometry {
+namespace {
+
+namespace fs = std::filesystem;
+using rw::math::Vector3D;
+
+/// Extension orders of RobWork's GeometryFactory (collision) and Model3DFactory (visual), plus
+/// PLY, which assimp reads.
+constexpr std::array<std::string_view, 11> kCollisionExtensions = {
+    ".stl", ".stla", ".stlb", ".pcd", ".tri", ".dae", ".ac", ".ac3d", ".3ds", ".obj", ".ply"};
+constexpr std::array<std::string_view, 12> kVisualExtensions = {".tri",  ".ac",   ".ac3d", ".3ds",
+                                                                ".obj",  ".ivg",  ".dae",  ".stl",
+                                                                ".stla", ".stlb", ".pcd",  ".ply"};
+
+constexpr std::string_view kExpected = "expected an STL, OBJ, PLY or AC3D file";
+
+/// Size of a binary STL header: 80 bytes of text plus the little-endian triangle count.
+constexpr std::size_t kStlHeaderSize = 84;
+/// Bytes per triangle record of a binary STL.
+constexpr std::uint64_t kStlRecordSize = 50;
+
+[[noreturn]] void fail(const fs::path& file, const std::string& what) {
+  throw MeshLoadError(file.string() + ": error: " + what + "; " + std::string(kExpected));
+}
+
+bool isRegularFile(const fs::path& path) {
+  std::error_code ec;
+  return fs::is_regular_file(path, ec);
+}
+
+std::string lowerCase(std::string text) {
+  std::transform(text.begin(), text.end(), text.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return text;
+}
+
+std::string upperCase(std::string text) {
+  std::transform(text.begin(), text.end(), text.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
+  return text;
+}
+
+/// Checks that `file` is a non-empty regular file we may open.
+void checkReadable(const fs::path& file) {
+  std::error_code ec;
+  const fs::file_status status = fs::status(file, ec);
+  if (!fs::exists(status)) fail(file, "file not found");
+  if (!fs::is_regular_file(status)) fail(file, "not a regular file");
+  const std::uintmax_t size = fs::file_size(file, ec);
+  if (ec) fail(file, "cannot get the file size: " + ec.message());
+  if (size == 0) fail(file, "file is empty");
+  if (!std::ifstream(file, std::ios::binary)) fail(file, "cannot open the file for reading");
+}
+
+std::string readBytes(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) fail(file, "error while reading the file");
+  return bytes;
+}
+
+bool isStlName(const fs::path& file) {
+  const std::string ext = lowerCase(file.extension().string());
+  return ext == ".stl" || ext == ".stla" || ext == ".stlb";
+}
+
+/// True when `bytes` hold only printable text and ordinary whitespace (never true for a binary
+/// STL header, whose triangle count has a zero byte for fewer than 2^24 triangles).
+bool looksLikeText(std::string_view bytes) {
+  return std::all_of(bytes.begin(), bytes.end(), [](char c) {
+    const auto u = static_cast<unsigned char>(c);
+    return u >= 0x20 || u == '\t' || u == '\n' || u == '\r' || u == '\f' || u == '\v';
+  });
+}
+
+bool startsWithSolid(std::string_view bytes) {
+  const std::size_t start = bytes.find_first_not_of(" \t\r\n\f\v");
+  return start != std::string_view::npos && bytes.substr(start, 5) == "solid";
+}
+
+/// Decides binary versus ASCII STL ourselves (binary iff the size is 84 + 50 * count, so a binary
+/// header starting with "solid" is fine) and returns what is wrong, if anything.
+std::optional<std::string> stlProblem(std::string_view bytes) {
+  const std::uint64_t size = bytes.size();
+  const std::string_view head = bytes.substr(0, kStlHeaderSize);
+  if (size >= kStlHeaderSize) {
+    std::uint64_t count = 0;
+    for (int i = 3; i >= 0; --i) count = (count << 8U) | static_cast<unsigned char>(bytes[80 + i]);
+    const std::uint64_t expected = kStlHeaderSize + kStlRecordSize * count;
+    if (expected == size) return std::nullopt;
+    if (!looksLikeText(head)) {
+      return "binary STL is truncated or corrupt: its header announces " + std::to_string(count) +
+             " triangles (" + std::to_string(expected) + " bytes) but the file has " +
+             std::to_string(size) + " bytes";
+    }
+  }
+  if (startsWithSolid(bytes) && looksLikeText(head)) return std::nullopt;
+  return std::string(
+      "not an STL file: it neither starts with \"solid\" (ASCII STL) nor has the "
+      "size of a binary STL (84 bytes plus 50 per triangle)");
+}
+
+Eigen::Affine3d toEigen(const aiMatrix4x4& m) {
+  Eigen::Matrix4d matrix;
+  matrix << m.a1, m.a2, m.a3, m.a4, m.b1, m.b2, m.b3, m.b4, m.c1, m.c2, m.c3, m.c4, m.d1, m.d2,
+      m.d3, m.d4;
+  return Eigen::Affine3d(matrix);
+}
+
+/// Merges the triangles of assimp meshes into one TriMesh, joining vertices at equal positions.
+class TriangleCollector {
+ public:
+  explicit TriangleCollector(const fs::path& file) : file_(file) {}
+  /// Adds the triangles of `mesh` placed by `X` (points and lines are dropped).
+  void add(const aiMesh& mesh, const Eigen::Affine3d& X) {
+    const bool mirrored = X.linear().determinant() < 0.0;  // keep the winding outward
+    std::vector<std::optional<std::uint32_t>> joined(mesh.mNumVertices);
+    for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
+      const aiFace& face = mesh.mFaces[f];
+      if (face.mNumIndices != 3) continue;
+      std::array<std::uint32_t, 3> triangle{};
+      for (unsigned k = 0; k < 3; ++k) {
+        const unsigned index = face.mIndices[k];
+        if (index >= mesh.mNumVertices) return;  // ValidateDataStructure rules this out
+        if (!joined[index]) {
+          const aiVector3D& v = mesh.mVertices[index];
+          joined[index] = vertex(X * Vector3D(v.x, v.y, v.z));
+        }
+        triangle[k] = *joined[index];
+      }
+      if (mirrored) std::swap(triangle[1], triangle[2]);
+      mesh_.triangles.push_back(triangle);
+    }
+  }
+  TriMesh take() { return std::move(mesh_); }
+
+ private:
+  std::uint32_t vertex(const Vector3D& p) {
+    if (!p.allFinite()) {  // checked before the map, whose ordering NaN would break
+      fail(file_,
+           "vertex " + std::to_string(mesh_.vertices.size()) + " has a non-finite coordinate");
+    }
+    const auto [it, inserted] =
+        index_.try_emplace({p.x(), p.y(), p.z()}, static_cast<std::uint32_t>(index_.size()));
+    if (inserted) mesh_.vertices.push_back(p);
+    return it->second;
+  }
+
+  const fs::path& file_;
+  TriMesh mesh_;
+  std::map<std::array<double, 3>, std::uint32_t> index_;
+};
+
+/// Walks the node tree (depth first, without recursion) and merges every referenced mesh.
+TriMesh collectTriangles(const aiScene& scene, const fs::path& file) {
+  TriangleCollector collector(file);
+  std::vector<std::pair<const aiNode*, Eigen::Affine3d>> pending;
+  pending.emplace_back(scene.mRootNode, toEigen(scene.mRootNode->mTransformation));
+  while (!pending.empty()) {
+    const auto [node, X] = pending.back();
+    pending.pop_back();
+    for (unsigned i = 0; i < node->mNumMeshes; ++i) {
+      const unsigned m = node->mMeshes[i];
+      if (m < scene.mNumMeshes && scene.mMeshes[m] != nullptr) collector.add(*scene.mMeshes[m], X);
+    }
+    for (unsigned c = node->mNumChildren; c-- > 0;) {
+      const aiNode* child = node->mChildren[c];
+      if (child != nullptr) pending.emplace_back(child, X * toEigen(child->mTransformation));
+    }
+  }
+  return collector.take();
+}
+
+/// Runs assimp; STL files go through memory with an "stl" hint so that .stla/.stlb work too.
+const aiScene* import(Assimp::Importer& importer, const fs::path& file) {
+  // Normals etc. are removed so that JoinIdenticalVertices joins by position (STL gives every
+  // corner its face normal); ValidateDataStructure rejects broken scenes before we walk them.
+  importer.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS,
+                              aiComponent_NORMALS | aiComponent_TANGENTS_AND_BITANGENTS |
+                                  aiComponent_COLORS | aiComponent_TEXCOORDS);
+  const unsigned flags = aiProcess_ValidateDataStructure | aiProcess_RemoveComponent |
+                         aiProcess_Triangulate | aiProcess_JoinIdenticalVertices;
+  if (!isStlName(file)) return importer.ReadFile(file.string(), flags);
+  const std::string bytes = readBytes(file);
+  if (const auto problem = stlProblem(bytes)) fail(file, *problem);
+  return importer.ReadFileFromMemory(bytes.data(), bytes.size(), flags, "stl");
+}
+
+}  // namespace
+
+std::optional<fs::path> resolveMeshFile(const fs::path& baseDir, const std::string& name,
+                                        MeshUse use) {
+  if (name.empty()) return std::nullopt;
+  const fs::path given = baseDir / fs::path(name);  // an absolute name ignores baseDir
+  if (isRegularFile(given)) return given;
+  const std::span<const std::string_view> extensions =
+      use == MeshUse::kCollision ? std::span<const std::string_view>(kCollisionExtensions)
+                                 : std::span<const std::string_view>(kVisualExtensions);
+  for (const std::string_view extension : extensions) {
+    for (const std::string& spelling :
+         {std::string(extension), upperCase(std::string(extension))}) {
+      fs::path candidate = given;
+      candidate += spelling;
+      if (isRegularFile(candidate)) return candidate;
+    }
+  }
+  return std::nullopt;
+}
+
+std::shared_ptr<const TriMesh> loadMesh(const fs::path& file) {
+  checkReadable(file);
+  Assimp::Importer importer;  // one per call: loadMesh may run on several threads at once
+  const aiScene* scene = import(importer, file);
+  if (scene == nullptr) fail(file, "cannot read mesh: " + std::string(importer.GetErrorString()));
+  if ((scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) != 0U || scene->mRootNode == nullptr) {
+    fail(file, "cannot read mesh: the file holds no complete scene");
+  }
+  TriMesh mesh = collectTriangles(*scene, file);
+  if (mesh.triangles.empty()) fail(file, "the file holds no triangles (only points or lines)");
+  return std::make_shared<const TriMesh>(std::move(mesh));
+}
+
+}  // namespace rw::geometry
