@@ -1,0 +1,302 @@
+#include "rw/graspplanning/grasp_wrench_space.hpp"
+
+#include <libqhull_r/libqhull_r.h>
+#include <Eigen/SVD>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <limits>
+#include <memory>
+#include <numbers>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+
+namespace rw::graspplanning {
+namespace {
+
+using rw::math::Vector3D;
+
+constexpr std::array<std::string_view, 6> kStatusNames = {
+    "ForceClosure", "NotForceClosure", "TooFewPoints", "Flat", "InvalidInput", "QhullError"};
+static_assert(kStatusNames.size() == static_cast<std::size_t>(GwsStatus::kQhullError) + 1,
+              "kStatusNames must name every GwsStatus");
+
+// A 6-D hull needs at least 7 affinely independent points.
+constexpr int kMinHullPoints = 7;
+// Contacts closer than this (position in metres, unit normal, mu, force) count as one contact.
+constexpr double kDuplicateTolerance = 1e-9;
+// The origin counts as strictly inside only if every facet is farther than this, relative to the
+// largest wrench norm; it absorbs Qhull's rounding (qh.DISTround is ~4e-15 here). The same bound
+// decides flatness: all points lie within sigma_min (smallest singular value of the centred
+// points) of a hyperplane, so epsilon <= sigma_min, and a set with sigma_min below the bound could
+// only have an epsilon we would report as 0 anyway.
+constexpr double kInsideTolerance = 1e-12;
+
+// Qhull options, chosen deliberately. First try (exact):
+//  - no "QJ": joggling perturbs the input (by ~1e-10 here), so epsilon would no longer be exact to
+//    rounding, and it turns a flat wrench set into a sliver with a tiny, meaningless epsilon.
+//  - "Qx C-0" (Qhull's defaults in 5-D and up, spelled out): exact pre-merges and merging of
+//    facets whose hyperplanes agree within rounding, so facet offsets stay exact to rounding.
+//  - no "Qt": triangulating merged facets only splits them into pieces with the same
+//    hyperplane, so it cannot change epsilon, and costs time.
+//  - no output options: we read facet->normal/offset directly (unit outward normal, inside
+//    points have normal . x + offset < 0).
+// Flat sets never reach Qhull (see flatness()). Nearly flat ones (thickness ~1e-8) can still
+// make merging fail (QH6347 wide merge, QH6271 dupridge); Qhull's own remedy is joggle, so we
+// retry with "QJ QR-2": "QR-2" fixes the random seed at 2 without rotating the input, so the
+// retry is deterministic too. Such sets have epsilon <= their thickness, i.e. tiny.
+// With a fixed input order (we sort it) both runs are deterministic.
+constexpr char kExactOptions[] = "qhull Qx C-0";
+constexpr char kJoggleOptions[] = "qhull QJ QR-2";
+
+// RobWork's tangent choice for a unit normal (GWSMeasure3D): it fixes the cone's edge pattern.
+Vector3D tangentOf(const Vector3D& n) {
+  constexpr double kAxisTolerance = 1e-6;
+  if (std::abs(n.x()) < kAxisTolerance && std::abs(n.y()) < kAxisTolerance) {
+    return Vector3D(0.0, -n.z(), n.y()).normalized();
+  }
+  return Vector3D(-n.y(), n.x(), 0.0).normalized();
+}
+
+bool allFinite(const Contact3D& c, bool useForce) {
+  return c.position.allFinite() && c.normal.allFinite() && std::isfinite(c.mu) &&
+         (!useForce || std::isfinite(c.normalForce));
+}
+
+// Checks and normalises the contacts; drops contacts without measured force. nullopt if invalid.
+std::optional<std::vector<Contact3D>> validContacts(std::span<const Contact3D> contacts,
+                                                    const Vector3D& c, double r, bool useForce) {
+  if (!c.allFinite() || !std::isfinite(r) || r <= 0.0) return std::nullopt;
+  std::vector<Contact3D> out;
+  out.reserve(contacts.size());
+  for (const Contact3D& contact : contacts) {
+    if (!allFinite(contact, useForce) || contact.mu < 0.0) return std::nullopt;
+    if (useForce && contact.normalForce < 0.0) return std::nullopt;
+    const double length = contact.normal.norm();
+    if (!(length > 1e-12)) return std::nullopt;
+    if (useForce && contact.normalForce == 0.0) continue;
+    Contact3D normalised = contact;
+    normalised.normal /= length;
+    if (!useForce) normalised.normalForce = 1.0;
+    out.push_back(normalised);
+  }
+  return out;
+}
+
+std::array<double, 8> sortKey(const Contact3D& c) {
+  return {c.position.x(), c.position.y(), c.position.z(), c.normal.x(),
+          c.normal.y(),   c.normal.z(),   c.mu,           c.normalForce};
+}
+
+bool sameContact(const Contact3D& a, const Contact3D& b) {
+  return (a.position - b.position).norm() <= kDuplicateTolerance &&
+         (a.normal - b.normal).norm() <= kDuplicateTolerance &&
+         std::abs(a.mu - b.mu) <= kDuplicateTolerance &&
+         std::abs(a.normalForce - b.normalForce) <= kDuplicateTolerance;
+}
+
+// Sorts contacts lexicographically (a canonical order) and keeps the first of near-duplicates.
+std::vector<Contact3D> canonicalContacts(std::vector<Contact3D> contacts) {
+  std::sort(contacts.begin(), contacts.end(),
+            [](const Contact3D& a, const Contact3D& b) { return sortKey(a) < sortKey(b); });
+  std::vector<Contact3D> kept;
+  for (const Contact3D& c : contacts) {
+    const bool duplicate = std::any_of(kept.begin(), kept.end(),
+                                       [&](const Contact3D& k) { return sameContact(k, c); });
+    if (!duplicate) kept.push_back(c);
+  }
+  return kept;
+}
+
+bool lexLess(const Wrench6D& a, const Wrench6D& b) {
+  return std::lexicographical_compare(a.data(), a.data() + 6, b.data(), b.data() + 6);
+}
+
+// Sorted, exactly deduplicated points with -0.0 turned into +0.0: Qhull's canonical input.
+std::vector<Wrench6D> canonicalPoints(std::span<const Wrench6D> wrenches) {
+  std::vector<Wrench6D> points(wrenches.begin(), wrenches.end());
+  for (Wrench6D& w : points) w.array() += 0.0;
+  std::sort(points.begin(), points.end(), lexLess);
+  points.erase(std::unique(points.begin(), points.end()), points.end());
+  return points;
+}
+
+// Smallest singular value of the centred points: their largest distance from a hyperplane is at
+// most this. JacobiSVD resolves it to ~1e-16 of the largest (a 6x6 scatter matrix would not).
+double flatness(const std::vector<Wrench6D>& points) {
+  Eigen::Matrix<double, Eigen::Dynamic, 6> centred(static_cast<Eigen::Index>(points.size()), 6);
+  Wrench6D mean = Wrench6D::Zero();
+  for (const Wrench6D& w : points) mean += w;
+  mean /= static_cast<double>(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    centred.row(static_cast<Eigen::Index>(i)) = (points[i] - mean).transpose();
+  }
+  return Eigen::JacobiSVD<Eigen::Matrix<double, Eigen::Dynamic, 6>>(centred).singularValues()(5);
+}
+
+struct HullOutcome {
+  int exitCode = 0;
+  int facets = 0;
+  double minFacetDistance = 0.0;  // min over facets of -offset (signed distance of the origin)
+  std::string message;
+};
+
+// Collects what Qhull writes to its error stream; falls back to stderr if that fails.
+class ErrorCapture {
+ public:
+  ErrorCapture() : file_(open_memstream(&buffer_, &size_)) {}
+  ~ErrorCapture() {
+    if (file_ != nullptr) fclose(file_);
+    std::free(buffer_);  // open_memstream allocates with malloc
+  }
+  ErrorCapture(const ErrorCapture&) = delete;
+  ErrorCapture& operator=(const ErrorCapture&) = delete;
+  FILE* file() const { return file_ != nullptr ? file_ : stderr; }
+  std::string text() {
+    if (file_ == nullptr) return {};
+    fflush(file_);
+    return {buffer_, size_};
+  }
+
+ private:
+  char* buffer_ = nullptr;
+  std::size_t size_ = 0;
+  FILE* file_ = nullptr;
+};
+
+// Builds the 6-D hull of `points` on a private qhT (reentrant Qhull) and reads facet offsets.
+HullOutcome runQhull(const std::vector<Wrench6D>& points, std::string_view qhullOptions) {
+  std::vector<double> coordinates;
+  coordinates.reserve(points.size() * 6);
+  for (const Wrench6D& w : points) coordinates.insert(coordinates.end(), w.data(), w.data() + 6);
+  std::string options(qhullOptions);  // qh_new_qhull takes a mutable C string
+  HullOutcome out;
+  ErrorCapture errors;
+  auto qh = std::make_unique<qhT>();
+  qh_zero(qh.get(), errors.file());
+  out.exitCode = qh_new_qhull(qh.get(), 6, static_cast<int>(points.size()), coordinates.data(),
+                              False, options.data(), nullptr, errors.file());
+  if (out.exitCode == qh_ERRnone) {
+    double minDistance = std::numeric_limits<double>::infinity();
+    for (facetT* f = qh->facet_list; f != nullptr && f->next != nullptr; f = f->next) {
+      minDistance = std::min(minDistance, -f->offset);
+      ++out.facets;
+    }
+    out.minFacetDistance = minDistance;
+  } else {
+    out.message = errors.text();
+  }
+  qh_freeqhull(qh.get(), !qh_ALL);
+  int curLong = 0;
+  int totLong = 0;
+  qh_memfreeshort(qh.get(), &curLong, &totLong);
+  return out;
+}
+
+// Epsilon of a canonical point set with at least kMinHullPoints points.
+GwsResult hullEpsilon(const std::vector<Wrench6D>& points) {
+  GwsResult result;
+  result.points = static_cast<int>(points.size());
+  double maxNorm = 0.0;
+  for (const Wrench6D& w : points) maxNorm = std::max(maxNorm, w.norm());
+  const double thickness = flatness(points);
+  if (thickness <= kInsideTolerance * maxNorm) {
+    std::ostringstream detail;
+    detail << "wrench points span fewer than 6 dimensions (smallest singular value " << thickness
+           << ")";
+    result.status = GwsStatus::kFlat;
+    result.detail = detail.str();
+    return result;
+  }
+  HullOutcome hull = runQhull(points, kExactOptions);
+  if (hull.exitCode != qh_ERRnone) {
+    result.joggled = true;
+    hull = runQhull(points, kJoggleOptions);
+  }
+  if (hull.exitCode != qh_ERRnone) {
+    result.status = hull.exitCode == qh_ERRsingular ? GwsStatus::kFlat : GwsStatus::kQhullError;
+    result.detail = std::move(hull.message);
+    return result;
+  }
+  result.facets = hull.facets;
+  if (hull.minFacetDistance > kInsideTolerance * maxNorm) {
+    result.epsilon = hull.minFacetDistance;
+    result.forceClosure = true;
+    result.status = GwsStatus::kForceClosure;
+  } else {
+    result.status = GwsStatus::kNotForceClosure;
+  }
+  return result;
+}
+
+}  // namespace
+
+std::string_view toString(GwsStatus status) {
+  return kStatusNames.at(static_cast<std::size_t>(status));
+}
+
+std::vector<Wrench6D> contactWrenches(std::span<const Contact3D> contacts,
+                                      const Vector3D& centerOfMass, double maxRadius,
+                                      const GwsOptions& options) {
+  const int m = options.coneEdges;
+  if (m < 3) throw std::invalid_argument("GwsOptions::coneEdges must be at least 3");
+  std::vector<Wrench6D> wrenches;
+  wrenches.reserve(contacts.size() * static_cast<std::size_t>(m));
+  for (const Contact3D& c : contacts) {
+    const double scale = options.useMeasuredNormalForce ? c.normalForce : 1.0;
+    const Vector3D n = c.normal;
+    const Vector3D t = tangentOf(n);
+    const Vector3D b = n.cross(t);
+    const Vector3D arm = c.position - centerOfMass;
+    for (int k = 0; k < m; ++k) {
+      const double angle = 2.0 * std::numbers::pi * k / m;
+      const Vector3D f = scale * (n + c.mu * (std::cos(angle) * t + std::sin(angle) * b));
+      Wrench6D w;
+      w.head<3>() = f;
+      w.tail<3>() = arm.cross(f) / maxRadius;
+      wrenches.push_back(w);
+    }
+  }
+  return wrenches;
+}
+
+GwsResult gwsEpsilon(std::span<const Contact3D> contacts, const Vector3D& centerOfMass,
+                     double maxRadius, const GwsOptions& options) {
+  if (options.coneEdges < 3) {
+    throw std::invalid_argument("GwsOptions::coneEdges must be at least 3");
+  }
+  const auto valid =
+      validContacts(contacts, centerOfMass, maxRadius, options.useMeasuredNormalForce);
+  if (!valid) {
+    GwsResult result;
+    result.status = GwsStatus::kInvalidInput;
+    return result;
+  }
+  const std::vector<Contact3D> canonical = canonicalContacts(*valid);
+  const std::vector<Wrench6D> wrenches =
+      contactWrenches(canonical, centerOfMass, maxRadius, options);
+  return gwsEpsilonOfWrenches(wrenches);
+}
+
+GwsResult gwsEpsilonOfWrenches(std::span<const Wrench6D> wrenches) {
+  const bool finite = std::all_of(wrenches.begin(), wrenches.end(),
+                                  [](const Wrench6D& w) { return w.allFinite(); });
+  GwsResult result;
+  if (!finite) {
+    result.status = GwsStatus::kInvalidInput;
+    return result;
+  }
+  const std::vector<Wrench6D> points = canonicalPoints(wrenches);
+  if (points.size() < static_cast<std::size_t>(kMinHullPoints)) {
+    result.points = static_cast<int>(points.size());
+    result.status = GwsStatus::kTooFewPoints;
+    return result;
+  }
+  return hullEpsilon(points);
+}
+
+}  // namespace rw::graspplanning
