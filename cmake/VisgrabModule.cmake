@@ -22,7 +22,8 @@ function(visgrab_add_module name)
 endfunction()
 
 # visgrab_add_test(<name> SOURCES ... DEPS ... [LABELS ...]): one GoogleTest executable,
-# its tests registered individually with CTest.
+# its tests registered individually with CTest. Label "sanitize" marks suites that CI runs again
+# under AddressSanitizer+UBSan (target sanitize_tests builds just those).
 function(visgrab_add_test name)
   cmake_parse_arguments(ARG "" "" "SOURCES;DEPS;LABELS" ${ARGN})
   add_executable(${name} ${ARG_SOURCES})
@@ -30,9 +31,21 @@ function(visgrab_add_test name)
   visgrab_set_warnings(${name})
   include(GoogleTest)
   gtest_discover_tests(${name}
-    PROPERTIES LABELS "${ARG_LABELS}"
-               ENVIRONMENT "VISGRAB_SOURCE_DIR=${PROJECT_SOURCE_DIR}"
+    PROPERTIES ENVIRONMENT "VISGRAB_SOURCE_DIR=${PROJECT_SOURCE_DIR}"
     DISCOVERY_TIMEOUT 60)
+  # gtest_discover_tests flattens a list-valued LABELS property, so the labels are set after
+  # discovery from a CTest include file instead.
+  if(ARG_LABELS)
+    set(_labels_file ${CMAKE_CURRENT_BINARY_DIR}/${name}_labels.cmake)
+    file(WRITE ${_labels_file}
+      "if(${name}_TESTS)\n"
+      "  set_tests_properties(\${${name}_TESTS} PROPERTIES LABELS \"${ARG_LABELS}\")\n"
+      "endif()\n")
+    set_property(DIRECTORY APPEND PROPERTY TEST_INCLUDE_FILES ${_labels_file})
+  endif()
+  if("sanitize" IN_LIST ARG_LABELS)
+    add_dependencies(sanitize_tests ${name})
+  endif()
 endfunction()
 
 # visgrab_add_benchmark(<name> SOURCES ... DEPS ...): a Google Benchmark program, also registered

@@ -1,0 +1,207 @@
+#include "rw/loaders/detail/preprocess.hpp"
+
+#include <algorithm>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <system_error>
+#include <utility>
+
+namespace rw::loaders::detail {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr std::size_t kMaxFileBytes = std::size_t{64} << 20;
+constexpr std::size_t kMaxExpandedElements = 250'000;
+constexpr std::size_t kMaxFilesRead = 10'000;
+
+// What identifies a file for cycle detection: its canonical path if it can be found.
+std::string identityOf(const fs::path& file) {
+  std::error_code ec;
+  fs::path canonical = fs::weakly_canonical(file, ec);
+  if (ec) canonical = fs::absolute(file, ec).lexically_normal();
+  return canonical.string();
+}
+
+std::size_t totalSize(const std::vector<XmlElement>& elements) {
+  std::size_t n = 0;
+  for (const XmlElement& e : elements) n += e.subtreeSize();
+  return n;
+}
+
+}  // namespace
+
+std::string readTextFile(const fs::path& file, std::string& text) {
+  std::error_code ec;
+  if (fs::is_directory(file, ec)) return "it is a folder, not a file";
+  if (!fs::exists(file, ec)) return "no such file";
+  std::ifstream in(file, std::ios::binary);
+  if (!in) return "it cannot be opened (permissions?)";
+  text.clear();
+  char buffer[1 << 16];
+  while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
+    text.append(buffer, static_cast<std::size_t>(in.gcount()));
+    if (text.size() > kMaxFileBytes) return "it is larger than 64 MiB";
+  }
+  if (in.bad()) return "reading it failed";
+  return {};
+}
+
+std::string displayPathOf(const fs::path& file) { return file.lexically_normal().string(); }
+
+struct Preprocessor::FileScope {
+  struct Definition {
+    std::vector<XmlElement> elements;
+    SourceLocation location;
+  };
+  std::shared_ptr<const SourceFile> file;
+  fs::path dir;
+  std::map<std::string, Definition> defines;
+  std::vector<std::string> identities;
+  std::vector<std::string> displays;
+  int depth = 0;
+};
+
+std::optional<std::vector<XmlElement>> Preprocessor::expandFile(const fs::path& file) {
+  std::string text;
+  const std::string problem = readTextFile(file, text);
+  if (!problem.empty()) {
+    auto source = std::make_shared<SourceFile>(SourceFile{displayPathOf(file), {}});
+    sink_.error(SourceLocation{source, 0, 0}, "cannot read the file: " + problem);
+    return std::nullopt;
+  }
+  return expandTopLevel(text, file);
+}
+
+std::optional<std::vector<XmlElement>> Preprocessor::expandText(std::string_view text,
+                                                                const fs::path& virtualFile) {
+  return expandTopLevel(text, virtualFile);
+}
+
+std::optional<std::vector<XmlElement>> Preprocessor::expandTopLevel(std::string_view text,
+                                                                    const fs::path& file) {
+  FileScope scope;
+  scope.file = std::make_shared<SourceFile>(SourceFile{displayPathOf(file), {}});
+  scope.dir = fs::path(scope.file->displayPath).parent_path();
+  scope.identities.push_back(identityOf(file));
+  scope.displays.push_back(scope.file->displayPath);
+  auto parsed = reader_.parse(text, scope.file, sink_);
+  if (!parsed) return std::nullopt;
+  if (!spendBudget(totalSize(*parsed), SourceLocation{scope.file, 0, 0})) return std::nullopt;
+  std::vector<XmlElement> expanded = expandList(std::move(*parsed), scope);
+  if (sink_.hasErrors()) return std::nullopt;
+  return expanded;
+}
+
+bool Preprocessor::spendBudget(std::size_t elements, const SourceLocation& where) {
+  if (overBudget_) return false;
+  elementBudgetUsed_ += elements;
+  if (elementBudgetUsed_ <= kMaxExpandedElements) return true;
+  overBudget_ = true;
+  sink_.error(where, "the workcell grows beyond " + std::to_string(kMaxExpandedElements) +
+                         " elements when Include and Use are expanded");
+  return false;
+}
+
+std::vector<XmlElement> Preprocessor::expandList(std::vector<XmlElement> elements,
+                                                 FileScope& scope) {
+  std::vector<XmlElement> out;
+  out.reserve(elements.size());
+  for (XmlElement& e : elements) {
+    if (overBudget_) break;
+    if (e.name == "Define") {
+      const std::string id = e.attributeOr("id", "");
+      std::vector<XmlElement> content = expandList(std::move(e.children), scope);
+      const auto previous = scope.defines.find(id);
+      if (previous != scope.defines.end()) {
+        sink_.warning(e.location, e.describe() + " replaces the Define of the same id at line " +
+                                      std::to_string(previous->second.location.line));
+      }
+      scope.defines[id] = FileScope::Definition{std::move(content), e.location};
+    } else if (e.name == "Use") {
+      expandUse(e, scope, out);
+    } else if (e.name == "Include") {
+      expandInclude(e, scope, out);
+    } else {
+      e.children = expandList(std::move(e.children), scope);
+      out.push_back(std::move(e));
+    }
+  }
+  return out;
+}
+
+void Preprocessor::expandUse(const XmlElement& use, FileScope& scope,
+                             std::vector<XmlElement>& out) {
+  const std::string id = use.attributeOr("id", "");
+  const auto it = scope.defines.find(id);
+  if (it == scope.defines.end()) {
+    sink_.error(use.location, use.describe() + ": no <Define id=\"" + id +
+                                  "\"> before it in this file (a Define is visible only in its "
+                                  "own file, after it)");
+    return;
+  }
+  if (!spendBudget(totalSize(it->second.elements), use.location)) return;
+  out.insert(out.end(), it->second.elements.begin(), it->second.elements.end());
+}
+
+void Preprocessor::expandInclude(const XmlElement& include, FileScope& scope,
+                                 std::vector<XmlElement>& out) {
+  const fs::path name(include.attributeOr("file", ""));
+  const fs::path path = (name.is_absolute() ? name : scope.dir / name).lexically_normal();
+  const std::string display = path.string();
+  if (scope.depth + 1 > kMaxIncludeDepth) {
+    sink_.error(include.location, include.describe() + ": includes are nested deeper than " +
+                                      std::to_string(kMaxIncludeDepth) + " levels");
+    return;
+  }
+  const std::string identity = identityOf(path);
+  const auto seen = std::find(scope.identities.begin(), scope.identities.end(), identity);
+  if (seen != scope.identities.end()) {
+    std::string chain;
+    for (auto i = static_cast<std::size_t>(seen - scope.identities.begin());
+         i < scope.displays.size(); ++i) {
+      chain += scope.displays[i] + " -> ";
+    }
+    sink_.error(include.location, include.describe() + ": include cycle: " + chain + display);
+    return;
+  }
+  if (++filesRead_ > kMaxFilesRead) {
+    sink_.error(include.location, include.describe() + ": more than " +
+                                      std::to_string(kMaxFilesRead) + " files are included");
+    overBudget_ = true;
+    return;
+  }
+  std::string text;
+  const std::string problem = readTextFile(path, text);
+  if (!problem.empty()) {
+    sink_.error(include.location,
+                include.describe() + ": cannot read \"" + display + "\": " + problem);
+    return;
+  }
+  auto source = std::make_shared<SourceFile>();
+  source->displayPath = display;
+  source->includedFrom.push_back(scope.file->displayPath + ":" +
+                                 std::to_string(include.location.line));
+  source->includedFrom.insert(source->includedFrom.end(), scope.file->includedFrom.begin(),
+                              scope.file->includedFrom.end());
+  auto parsed = reader_.parse(text, source, sink_);
+  if (!parsed) return;
+  if (parsed->empty()) {
+    sink_.warning(include.location, include.describe() + ": the included file holds no elements");
+  }
+  if (!spendBudget(totalSize(*parsed), include.location)) return;
+  FileScope child;
+  child.file = source;
+  child.dir = path.parent_path();
+  child.identities = scope.identities;
+  child.identities.push_back(identity);
+  child.displays = scope.displays;
+  child.displays.push_back(display);
+  child.depth = scope.depth + 1;
+  std::vector<XmlElement> expanded = expandList(std::move(*parsed), child);
+  for (XmlElement& e : expanded) out.push_back(std::move(e));
+}
+
+}  // namespace rw::loaders::detail

@@ -1,0 +1,434 @@
+#include "rw/loaders/detail/wc_elements.hpp"
+
+#include <Eigen/SVD>
+
+#include <array>
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <sstream>
+#include <utility>
+#include <vector>
+
+#include "rw/loaders/detail/numbers.hpp"
+#include "rw/math/dh.hpp"
+#include "rw/math/rpy.hpp"
+
+namespace rw::loaders::detail {
+
+using rw::geometry::GeometryType;
+using rw::kinematics::FrameType;
+using rw::math::kDeg2Rad;
+using rw::math::Transform3D;
+
+namespace {
+
+// A rotation part further than this from orthonormal is reported (it is made orthonormal).
+constexpr double kRotationTolerance = 1e-4;
+
+std::string formatNumber(double value) {
+  std::ostringstream os;
+  os << std::setprecision(10) << value;
+  return os.str();
+}
+
+// Reads the number list of RPY/Pos/Transform/Q text; `count` < 0 accepts any count.
+std::optional<std::vector<double>> readNumberText(const XmlElement& element, int count,
+                                                  DiagnosticSink& sink) {
+  std::vector<double> values;
+  const std::string problem = parseNumberList(element.text, values);
+  if (!problem.empty()) {
+    sink.error(element.location, element.describe() + ": " + problem);
+    return std::nullopt;
+  }
+  if (count >= 0 && static_cast<int>(values.size()) != count) {
+    sink.error(element.location, element.describe() + ": expected " + std::to_string(count) +
+                                     " numbers, got " + std::to_string(values.size()));
+    return std::nullopt;
+  }
+  return values;
+}
+
+// The nearest rotation to R (by SVD), with the largest entry-wise correction made.
+std::pair<rw::math::Rotation3D, double> nearestRotation(const rw::math::Rotation3D& R) {
+  const Eigen::JacobiSVD<rw::math::Rotation3D> svd(R, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  const rw::math::Rotation3D nearest = svd.matrixU() * svd.matrixV().transpose();
+  return {nearest, (nearest - R).cwiseAbs().maxCoeff()};
+}
+
+std::optional<Transform3D> matrixTransform(const XmlElement& matrix, DiagnosticSink& sink) {
+  const auto v = readNumberText(matrix, 12, sink);
+  if (!v) return std::nullopt;
+  rw::math::Rotation3D R;
+  R << (*v)[0], (*v)[1], (*v)[2], (*v)[4], (*v)[5], (*v)[6], (*v)[8], (*v)[9], (*v)[10];
+  if (!(R.determinant() > 0.0)) {
+    sink.error(matrix.location, matrix.describe() +
+                                    ": the 3x3 part is not a rotation (its determinant is " +
+                                    formatNumber(R.determinant()) + ")");
+    return std::nullopt;
+  }
+  const auto [nearest, correction] = nearestRotation(R);
+  if (correction > kRotationTolerance) {
+    sink.warning(matrix.location, matrix.describe() +
+                                      ": the 3x3 part is not orthonormal (off by up to " +
+                                      formatNumber(correction) + "); the nearest rotation is used");
+  }
+  return rw::math::makeTransform(nearest, rw::math::Vector3D((*v)[3], (*v)[7], (*v)[11]));
+}
+
+// Reads the named attributes as numbers, in order; nullopt if any is bad (each reported).
+std::optional<std::vector<double>> readNumbers(const XmlElement& element,
+                                               std::initializer_list<std::string_view> names,
+                                               DiagnosticSink& sink) {
+  std::vector<double> values;
+  bool ok = true;
+  for (std::string_view name : names) {
+    const auto v = readNumberAttribute(element, name, sink);
+    ok = ok && v.has_value();
+    values.push_back(v.value_or(0.0));
+  }
+  if (!ok) return std::nullopt;
+  return values;
+}
+
+// Checks a primitive size: > 0 (or >= 0 when zero is allowed).
+bool checkSize(const XmlElement& element, std::string_view name, double value, bool allowZero,
+               DiagnosticSink& sink) {
+  if (value > 0.0 || (allowZero && value == 0.0)) return true;
+  sink.error(element.location, element.describe() + ": " + std::string(name) + " must be " +
+                                   (allowZero ? ">= 0" : "> 0") + " (got " + formatNumber(value) +
+                                   ")");
+  return false;
+}
+
+struct PrimitiveRule {
+  std::string_view element;
+  GeometryType type;
+  std::array<std::string_view, 3> attributes;
+  int count;
+  int zeroAllowedIndex;  // parameter that may be 0 (Tube radius), -1 for none
+};
+
+constexpr std::array<PrimitiveRule, 6> kPrimitives{{
+    {"Box", GeometryType::kBox, {"x", "y", "z"}, 3, -1},
+    {"Sphere", GeometryType::kSphere, {"radius", "", ""}, 1, -1},
+    {"Cylinder", GeometryType::kCylinder, {"radius", "z", ""}, 2, -1},
+    {"Tube", GeometryType::kTube, {"radius", "thickness", "z"}, 3, 0},
+    {"Cone", GeometryType::kCone, {"radius", "z", ""}, 2, -1},
+    {"Plane", GeometryType::kPlane, {"", "", ""}, 0, -1},
+}};
+
+// Number attributes of each element, for explainWorkCellValueError.
+struct NumberAttributes {
+  std::string_view element;
+  std::array<std::string_view, 7> attributes;
+};
+
+constexpr std::array<NumberAttributes, 10> kNumberAttributes{{
+    {"Box", {"x", "y", "z"}},
+    {"Sphere", {"radius"}},
+    {"Cylinder", {"radius", "z"}},
+    {"Tube", {"radius", "thickness", "z"}},
+    {"Cone", {"radius", "z"}},
+    {"PosLimit", {"min", "max"}},
+    {"VelLimit", {"max"}},
+    {"AccLimit", {"max"}},
+    {"Depend", {"gain", "offset"}},
+    {"DHJoint", {"alpha", "a", "d", "theta", "b", "beta", "offset"}},
+}};
+
+}  // namespace
+
+Origin originOf(const XmlElement& element) { return Origin{element.location, element.describe()}; }
+
+std::optional<double> readNumberAttribute(const XmlElement& element, std::string_view name,
+                                          DiagnosticSink& sink) {
+  const std::string* value = element.attribute(name);
+  if (value == nullptr) {
+    sink.error(element.location,
+               element.describe() + ": missing required attribute \"" + std::string(name) + "\"");
+    return std::nullopt;
+  }
+  const ParsedNumber n = parseFiniteNumber(*value);
+  if (!n.error.empty()) {
+    sink.error(element.location,
+               element.describe() + ": attribute " + std::string(name) + ": " + n.error);
+    return std::nullopt;
+  }
+  return n.value;
+}
+
+bool TransformReader::take(const XmlElement& owner, const XmlElement& child, DiagnosticSink& sink) {
+  const XmlElement** slot = nullptr;
+  if (child.name == "RPY") slot = &rpy_;
+  if (child.name == "Pos") slot = &pos_;
+  if (child.name == "Transform") slot = &matrix_;
+  if (slot == nullptr) return false;
+  if (*slot != nullptr) {
+    sink.error(child.location, owner.describe() + ": more than one <" + child.name + ">");
+  } else if (child.name == "Transform" ? (rpy_ != nullptr || pos_ != nullptr)
+                                       : matrix_ != nullptr) {
+    sink.error(child.location, owner.describe() +
+                                   ": give either <Transform> or <RPY> and <Pos>, "
+                                   "not both");
+  } else {
+    *slot = &child;
+  }
+  return true;
+}
+
+std::optional<Transform3D> TransformReader::finish(const XmlElement& owner,
+                                                   DiagnosticSink& sink) const {
+  if (matrix_ != nullptr) return matrixTransform(*matrix_, sink);
+  if (rpy_ == nullptr && pos_ == nullptr) return Transform3D::Identity();
+  if (rpy_ == nullptr || pos_ == nullptr) {
+    const XmlElement& lone = rpy_ != nullptr ? *rpy_ : *pos_;
+    const char* other = rpy_ != nullptr ? "<Pos>" : "<RPY>";
+    sink.error(lone.location, owner.describe() + ": <" + lone.name + "> without " + other +
+                                  " (RobWork reads RPY and Pos only as a pair)");
+    return std::nullopt;
+  }
+  const auto rpy = readNumberText(*rpy_, 3, sink);
+  const auto pos = readNumberText(*pos_, 3, sink);
+  if (!rpy || !pos) return std::nullopt;
+  const rw::math::Vector3D angles((*rpy)[0] * kDeg2Rad, (*rpy)[1] * kDeg2Rad, (*rpy)[2] * kDeg2Rad);
+  return rw::math::rpyTransform(angles, rw::math::Vector3D((*pos)[0], (*pos)[1], (*pos)[2]));
+}
+
+bool isGeometryElement(std::string_view name) {
+  for (const PrimitiveRule& r : kPrimitives) {
+    if (r.element == name) return true;
+  }
+  return name == "Custom" || name == "Polytope";
+}
+
+std::optional<GeometryDesc> readGeometry(const XmlElement& element, DiagnosticSink& sink) {
+  GeometryDesc g;
+  g.origin = originOf(element);
+  if (element.name == "Polytope") {
+    g.type = GeometryType::kMesh;
+    g.meshName = element.attributeOr("file", "");
+    g.baseDir = std::filesystem::path(element.location.file ? element.location.file->displayPath
+                                                            : std::string())
+                    .parent_path()
+                    .string();
+    return g;
+  }
+  if (element.name == "Custom") {
+    sink.error(element.location, element.describe() + ": Custom geometry (type \"" +
+                                     element.attributeOr("type", "") +
+                                     "\") is not supported by this project; use a primitive or "
+                                     "a Polytope");
+    return std::nullopt;
+  }
+  for (const PrimitiveRule& rule : kPrimitives) {
+    if (rule.element != element.name) continue;
+    g.type = rule.type;
+    bool ok = true;
+    for (int i = 0; i < rule.count; ++i) {
+      const auto name = rule.attributes[static_cast<std::size_t>(i)];
+      const auto v = readNumberAttribute(element, name, sink);
+      ok = ok && v && checkSize(element, name, *v, i == rule.zeroAllowedIndex, sink);
+      g.parameters.push_back(v.value_or(0.0));
+    }
+    if (!ok) return std::nullopt;
+    return g;
+  }
+  sink.error(element.location, "unknown geometry element <" + element.name + ">");
+  return std::nullopt;
+}
+
+std::optional<PropertyDesc> readProperty(const XmlElement& element, DiagnosticSink& sink) {
+  PropertyDesc p;
+  p.origin = originOf(element);
+  p.name = element.attributeOr("name", "");
+  p.property.description = element.attributeOr("desc", "");
+  const std::string type = element.attributeOr("type", "string");
+  if (type == "string") {
+    p.property.value = element.text;
+  } else if (type == "double") {
+    const ParsedNumber n = parseFiniteNumber(element.text);
+    if (!n.error.empty()) {
+      sink.error(element.location, element.describe() + ": type double: " + n.error);
+      return std::nullopt;
+    }
+    p.property.value = n.value;
+  } else if (type == "Q") {
+    std::vector<double> values;
+    const std::string problem = parseNumberList(element.text, values);
+    if (!problem.empty()) {
+      sink.error(element.location, element.describe() + ": type Q: " + problem);
+      return std::nullopt;
+    }
+    p.property.value =
+        Eigen::Map<const Eigen::VectorXd>(values.data(), static_cast<Eigen::Index>(values.size()));
+  } else {
+    sink.warning(element.location, element.describe() + ": type \"" + type +
+                                       "\" is not supported (string, double or Q); the property "
+                                       "is dropped, as RobWork drops it");
+    return std::nullopt;
+  }
+  return p;
+}
+
+std::optional<LimitDesc> readLimit(const XmlElement& element, const std::string& owner,
+                                   DiagnosticSink& sink) {
+  LimitDesc limit;
+  limit.origin = originOf(element);
+  const std::string prefix =
+      owner.empty() ? element.describe() : owner + ": <" + element.name + ">";
+  if (element.name == "PosLimit") {
+    limit.kind = LimitKind::kPosition;
+    const auto v = readNumbers(element, {"min", "max"}, sink);
+    if (!v) return std::nullopt;
+    limit.min = (*v)[0];
+    limit.max = (*v)[1];
+    if (limit.min > limit.max) {
+      sink.error(element.location,
+                 prefix + " min " + formatNumber(limit.min) + " > max " + formatNumber(limit.max));
+      return std::nullopt;
+    }
+    return limit;
+  }
+  limit.kind = element.name == "VelLimit" ? LimitKind::kVelocity : LimitKind::kAcceleration;
+  const auto v = readNumberAttribute(element, "max", sink);
+  if (!v) return std::nullopt;
+  limit.max = *v;
+  if (limit.max < 0.0) {
+    sink.error(element.location,
+               prefix + " max must be >= 0 (got " + formatNumber(limit.max) + ")");
+    return std::nullopt;
+  }
+  return limit;
+}
+
+std::optional<DependDesc> readDepend(const XmlElement& element, DiagnosticSink& sink) {
+  DependDesc d;
+  d.origin = originOf(element);
+  d.on = element.attributeOr("on", "");
+  const auto v = readNumbers(element, {"gain", "offset"}, sink);
+  if (!v) return std::nullopt;
+  d.gain = (*v)[0];
+  d.offset = (*v)[1];
+  return d;
+}
+
+std::optional<QDesc> readQ(const XmlElement& element, DiagnosticSink& sink) {
+  QDesc q;
+  q.origin = originOf(element);
+  q.name = element.attributeOr("name", "");
+  auto values = readNumberText(element, -1, sink);
+  if (!values) return std::nullopt;
+  q.values = std::move(*values);
+  return q;
+}
+
+std::optional<FrameKind> readFrameType(const XmlElement& element, const std::string& value,
+                                       DiagnosticSink& sink) {
+  if (value == "Fixed") return FrameKind{FrameType::kFixed, false};
+  if (value == "Movable") return FrameKind{FrameType::kMovable, false};
+  if (value == "EndEffector") return FrameKind{FrameType::kFixed, true};
+  if (value == "Revolute") return FrameKind{FrameType::kRevolute, false};
+  if (value == "Prismatic") return FrameKind{FrameType::kPrismatic, false};
+  if (value == "Spherical" || value == "Universal" || value == "PrismaticSpherical" ||
+      value == "PrismaticUniversal") {
+    sink.error(element.location, element.describe() + ": joint type \"" + value +
+                                     "\" is not supported by this project (supported: Revolute, "
+                                     "Prismatic)");
+    return std::nullopt;
+  }
+  sink.error(element.location, element.describe() + ": unknown type \"" + value +
+                                   "\"; expected one of Fixed, Movable, EndEffector, Revolute, "
+                                   "Prismatic");
+  return std::nullopt;
+}
+
+// RobWork keeps the DH parameters in a parser member that is never reset, so an omitted `type`
+// (or the HGP "parallel" flag of a b/beta joint) carries over to the next DHJoint (reference
+// Appendix A.16). That is a bug, not a format rule: here every DHJoint stands on its own, with
+// craig as the default type.
+std::optional<DhPlacement> readDhJoint(const XmlElement& element, DiagnosticSink& sink) {
+  int forms = 0;
+  std::string form;
+  for (const char* name : {"d", "theta", "b", "beta"}) {
+    if (element.has(name)) {
+      ++forms;
+      form = name;
+    }
+  }
+  if (forms != 1) {
+    sink.error(element.location, element.describe() +
+                                     ": needs exactly one of the attributes d "
+                                     "(revolute), theta (prismatic), b or beta "
+                                     "(HGP parallel)");
+    return std::nullopt;
+  }
+  const bool hgpForm = form == "b" || form == "beta";
+  const std::string type = element.attributeOr("type", hgpForm ? "HGP" : "craig");
+  if (type != "craig" && type != "schilling" && type != "HGP") {
+    sink.error(element.location, element.describe() + ": unknown DH type \"" + type +
+                                     "\"; expected craig, schilling or HGP");
+    return std::nullopt;
+  }
+  if (hgpForm && type != "HGP") {
+    sink.error(element.location, element.describe() + ": the " + form +
+                                     " parameter belongs to the HGP parallel convention, but "
+                                     "type is \"" +
+                                     type + "\"");
+    return std::nullopt;
+  }
+  const auto v = readNumbers(element, {"alpha", "a", form, "offset"}, sink);
+  if (!v) return std::nullopt;
+  const double alpha = (*v)[0] * kDeg2Rad;
+  const double a = (*v)[1];
+  const double p = (*v)[2];
+  const double offset = (*v)[3];
+  DhPlacement dh;
+  if (form == "d") {
+    dh.type = FrameType::kRevolute;
+    dh.transform = type == "craig" ? rw::math::craigDH(alpha, a, p, offset * kDeg2Rad)
+                                   : rw::math::schillingDH(alpha, a, p, offset * kDeg2Rad);
+  } else if (form == "theta") {
+    dh.type = FrameType::kPrismatic;
+    dh.transform = type == "craig" ? rw::math::craigDH(alpha, a, offset, p * kDeg2Rad)
+                                   : rw::math::schillingDH(alpha, a, offset, p * kDeg2Rad);
+  } else if (form == "b") {
+    dh.type = FrameType::kRevolute;
+    dh.transform = rw::math::hgpDH(alpha, a, offset * kDeg2Rad, p);
+  } else {
+    dh.type = FrameType::kPrismatic;
+    dh.transform = rw::math::hgpDH(alpha, a, p * kDeg2Rad, offset);
+  }
+  return dh;
+}
+
+std::string explainWorkCellValueError(const XmlElement& element) {
+  for (const NumberAttributes& rule : kNumberAttributes) {
+    if (rule.element != element.name) continue;
+    for (std::string_view name : rule.attributes) {
+      if (name.empty()) continue;
+      const std::string* value = element.attribute(name);
+      if (value == nullptr) continue;
+      const ParsedNumber n = parseFiniteNumber(*value);
+      if (!n.error.empty()) return "attribute " + std::string(name) + ": " + n.error;
+    }
+  }
+  if (element.name == "RPY" || element.name == "Pos" || element.name == "Transform" ||
+      element.name == "Q") {
+    std::vector<double> values;
+    return parseNumberList(element.text, values);
+  }
+  if (const std::string* daf = element.attribute("daf")) {
+    if (*daf != "true" && *daf != "false" && *daf != "1" && *daf != "0") {
+      return "attribute daf=\"" + *daf + "\" must be true or false";
+    }
+  }
+  if (const std::string* colmodel = element.attribute("colmodel")) {
+    if (*colmodel != "Enabled" && *colmodel != "Disabled") {
+      return "attribute colmodel=\"" + *colmodel + "\" must be Enabled or Disabled";
+    }
+  }
+  return {};
+}
+
+}  // namespace rw::loaders::detail
