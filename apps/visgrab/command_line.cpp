@@ -1,0 +1,99 @@
+#include "command_line.hpp"
+
+#include <algorithm>
+#include <iostream>
+
+namespace visgrab::app {
+
+Arguments::Arguments(const std::vector<std::string>& args, const std::vector<std::string>& flags) {
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    if (a.rfind("--", 0) != 0 || a.size() == 2) {
+      positionals_.push_back(a);
+      continue;
+    }
+    std::string name = a.substr(2);
+    if (const auto eq = name.find('='); eq != std::string::npos) {
+      options_.emplace_back(name.substr(0, eq), name.substr(eq + 1));
+    } else if (std::find(flags.begin(), flags.end(), name) != flags.end()) {
+      options_.emplace_back(name, std::nullopt);
+    } else if (i + 1 < args.size()) {
+      options_.emplace_back(name, args[++i]);
+    } else {
+      throw UsageError("option --" + name + " needs a value");
+    }
+  }
+}
+
+bool Arguments::flag(const std::string& name) const {
+  return std::any_of(options_.begin(), options_.end(),
+                     [&](const auto& o) { return o.first == name; });
+}
+
+std::optional<std::string> Arguments::option(const std::string& name) const {
+  for (auto it = options_.rbegin(); it != options_.rend(); ++it) {
+    if (it->first == name) return it->second;
+  }
+  return std::nullopt;
+}
+
+void Arguments::rejectUnknown(const std::vector<std::string>& known) const {
+  for (const auto& [name, value] : options_) {
+    if (std::find(known.begin(), known.end(), name) == known.end()) {
+      throw UsageError("unknown option --" + name);
+    }
+  }
+}
+
+void Arguments::requirePositionals(std::size_t n, const std::string& what) const {
+  if (positionals_.size() < n) throw UsageError("missing " + what);
+  if (positionals_.size() > n) throw UsageError("unexpected argument '" + positionals_[n] + "'");
+}
+
+namespace {
+
+void printHelp(const std::vector<Command>& commands) {
+  std::cout << "visgrab: the VisGraB benchmark for vision-based grasping\n\nUsage:\n";
+  for (const Command& c : commands) {
+    std::cout << "  visgrab " << c.group << " " << c.name << " " << c.usage << "\n      "
+              << c.summary << "\n";
+  }
+  std::cout << "\n  visgrab --help | --version\n";
+}
+
+}  // namespace
+
+int dispatch(const std::vector<Command>& commands, const std::vector<std::string>& argv) {
+  if (argv.empty() || argv[0] == "--help" || argv[0] == "-h" || argv[0] == "help") {
+    printHelp(commands);
+    return argv.empty() ? 2 : 0;
+  }
+  if (argv[0] == "--version") {
+    std::cout << "visgrab " << VISGRAB_VERSION << "\n";
+    return 0;
+  }
+  const bool groupKnown = std::any_of(commands.begin(), commands.end(),
+                                      [&](const Command& c) { return c.group == argv[0]; });
+  for (const Command& c : commands) {
+    if (c.group != argv[0] || argv.size() < 2 || c.name != argv[1]) continue;
+    const std::vector<std::string> rest(argv.begin() + 2, argv.end());
+    if (std::find(rest.begin(), rest.end(), "--help") != rest.end()) {
+      std::cout << "usage: visgrab " << c.group << " " << c.name << " " << c.usage << "\n"
+                << c.summary << "\n";
+      return 0;
+    }
+    try {
+      return c.run(rest);
+    } catch (const UsageError& e) {
+      std::cerr << "visgrab " << c.group << " " << c.name << ": " << e.what() << "\nusage: visgrab "
+                << c.group << " " << c.name << " " << c.usage << "\n";
+      return 2;
+    }
+  }
+  std::cerr << "visgrab: unknown command '" << argv[0]
+            << (argv.size() > 1 && groupKnown ? " " + argv[1] : "")
+            << "'; run 'visgrab --help' for the list\n";
+  return 2;
+}
+
+}  // namespace visgrab::app

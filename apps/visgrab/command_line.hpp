@@ -1,0 +1,58 @@
+#pragma once
+
+#include <functional>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace visgrab::app {
+
+/// A command-line mistake; main prints it with the usage line and exits with code 2.
+class UsageError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// The arguments of one subcommand: positionals and `--name value` / `--flag` options.
+class Arguments {
+ public:
+  /// Splits `args`; names listed in `flags` take no value, every other `--name` takes one.
+  /// @throws UsageError for an option missing its value.
+  Arguments(const std::vector<std::string>& args, const std::vector<std::string>& flags);
+
+  /// The positional arguments in order.
+  const std::vector<std::string>& positionals() const { return positionals_; }
+  /// True if the flag was given.
+  bool flag(const std::string& name) const;
+  /// The value of an option, if given.
+  std::optional<std::string> option(const std::string& name) const;
+  /// @throws UsageError if an option or flag not in `known` was given.
+  void rejectUnknown(const std::vector<std::string>& known) const;
+  /// @throws UsageError unless exactly `n` positionals were given (`what` names them).
+  void requirePositionals(std::size_t n, const std::string& what) const;
+
+ private:
+  std::vector<std::string> positionals_;
+  std::vector<std::pair<std::string, std::optional<std::string>>> options_;
+};
+
+/// One subcommand: `visgrab <group> <name> ...`.
+struct Command {
+  /// Group ("wc").
+  std::string group;
+  /// Name ("info").
+  std::string name;
+  /// Usage after "visgrab group name".
+  std::string usage;
+  /// One-line description.
+  std::string summary;
+  /// Runs the command; returns the process exit code.
+  std::function<int(const std::vector<std::string>& args)> run;
+};
+
+/// Runs the command line (argv without the program name) against `commands`.
+/// Exit codes: the command's own, 2 for usage errors.
+int dispatch(const std::vector<Command>& commands, const std::vector<std::string>& argv);
+
+}  // namespace visgrab::app

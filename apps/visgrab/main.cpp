@@ -1,0 +1,18 @@
+#include <exception>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "command_line.hpp"
+#include "wc_commands.hpp"
+
+int main(int argc, char** argv) {
+  try {
+    std::vector<visgrab::app::Command> commands = visgrab::app::workcellCommands();
+    const std::vector<std::string> args(argv + 1, argv + argc);
+    return visgrab::app::dispatch(commands, args);
+  } catch (const std::exception& e) {
+    std::cerr << "visgrab: error: " << e.what() << "\n";
+    return 1;
+  }
+}

@@ -1,0 +1,12 @@
+#pragma once
+
+#include <vector>
+
+#include "command_line.hpp"
+
+namespace visgrab::app {
+
+/// `visgrab wc info FILE` and `visgrab wc check FILE`.
+std::vector<Command> workcellCommands();
+
+}  // namespace visgrab::app

@@ -1,0 +1,74 @@
+#!/usr/bin/env bash
+# VisGraB set-up on Debian 12: install the Debian packages, build, then either run the main job
+# or run all tests.
+#
+#   scripts/bootstrap.sh run     install, build (Release) and run the main job
+#   scripts/bootstrap.sh test    install, build (warnings as errors) and run every test, plus the
+#                                malformed-input suites again under AddressSanitizer+UBSan
+#
+# Environment: BUILD_DIR (default build), JOBS (default: number of cores),
+# RW_COMPAT_DATA (RobWork's own files for the compatibility tests; they are skipped without it).
+set -euo pipefail
+
+mode=${1:-}
+if [[ "$mode" != run && "$mode" != test ]]; then
+  echo "usage: $0 run|test" >&2
+  exit 2
+fi
+
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+cd "$here"
+build=${BUILD_DIR:-build}
+jobs=${JOBS:-$(nproc)}
+
+packages=(build-essential cmake ninja-build pkg-config
+  libode-dev libeigen3-dev libboost-dev libxerces-c-dev libassimp-dev libopencv-dev
+  qtbase5-dev libqhull-dev libgtest-dev libgmock-dev libbenchmark-dev
+  libegl-dev libegl1-mesa-dev libgl-dev libgles-dev libgbm-dev xvfb xauth clang-format)
+
+install_packages() {
+  local missing=()
+  for p in "${packages[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+  done
+  if ((${#missing[@]} == 0)); then
+    echo "== all Debian packages present"
+    return
+  fi
+  echo "== installing Debian packages: ${missing[*]}"
+  local sudo=()
+  [[ $(id -u) -eq 0 ]] || sudo=(sudo)
+  "${sudo[@]}" apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive "${sudo[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
+}
+
+configure_and_build() {
+  local dir=$1
+  shift
+  echo "== configuring $dir"
+  cmake -S . -B "$dir" -G Ninja "$@"
+  echo "== building $dir with $jobs jobs"
+  cmake --build "$dir" --parallel "$jobs"
+}
+
+install_packages
+
+if [[ "$mode" == run ]]; then
+  configure_and_build "$build" -DCMAKE_BUILD_TYPE=Release
+  echo "== main job: visgrab wc info scenes/hands/sdh/sdh.wc.xml"
+  "$build/apps/visgrab/visgrab" wc info scenes/hands/sdh/sdh.wc.xml
+  exit 0
+fi
+
+scripts/check-format.sh
+configure_and_build "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DVISGRAB_WERROR=ON
+echo "== running all tests"
+(cd "$build" && ctest --output-on-failure --parallel "$jobs")
+
+echo "== malformed-input suites under AddressSanitizer+UBSan"
+asan="${build}-asan"
+cmake -S . -B "$asan" -G Ninja -DCMAKE_BUILD_TYPE=Debug -DVISGRAB_SANITIZE=ON -DVISGRAB_WERROR=ON \
+  -DVISGRAB_BUILD_BENCHMARKS=OFF
+cmake --build "$asan" --parallel "$jobs" --target sanitize_tests
+(cd "$asan" && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
+  ctest --output-on-failure --parallel "$jobs" -L sanitize)

@@ -1,0 +1,90 @@
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <string>
+
+#include "support/test_support.hpp"
+
+namespace {
+
+struct RunResult {
+  int exitCode = -1;
+  std::string output;  // stdout and stderr together
+};
+
+// Runs the visgrab binary with `args` (already shell-quoted) and captures its output.
+RunResult runVisgrab(const std::string& args) {
+  const std::string command = std::string("'") + VISGRAB_BINARY + "' " + args + " 2>&1";
+  RunResult result;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (pipe == nullptr) return result;
+  std::array<char, 4096> buffer{};
+  std::size_t n = 0;
+  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0)
+    result.output.append(buffer.data(), n);
+  const int status = pclose(pipe);
+  result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return result;
+}
+
+std::string quoted(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
+
+TEST(VisgrabCli, WcInfoPrintsTheSdhJointOrder) {
+  const auto sdh = visgrab::test::sourceDir() / "scenes/hands/sdh/sdh.wc.xml";
+  const RunResult r = runVisgrab("wc info " + quoted(sdh));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("7 DOF"), std::string::npos) << r.output;
+  // Joint order is RobWork's: thumb, spread, finger 2, (coupled spread), finger 3.
+  const auto f1 = r.output.find("0  SchunkHand.f1.Joint2");
+  const auto spread = r.output.find("2  SchunkHand.F2Joint1");
+  const auto coupled = r.output.find("-  SchunkHand.F3Joint1");
+  const auto f3 = r.output.find("6  SchunkHand.f3.Joint3");
+  ASSERT_NE(f1, std::string::npos) << r.output;
+  ASSERT_NE(spread, std::string::npos) << r.output;
+  ASSERT_NE(coupled, std::string::npos) << r.output;
+  ASSERT_NE(f3, std::string::npos) << r.output;
+  EXPECT_LT(f1, spread);
+  EXPECT_LT(spread, coupled);
+  EXPECT_LT(coupled, f3);
+}
+
+TEST(VisgrabCli, WcCheckIsCleanOnTheBundledHands) {
+  for (const char* hand : {"scenes/hands/sdh/sdh.wc.xml", "scenes/hands/pg70/pg70.wc.xml"}) {
+    const RunResult r = runVisgrab("wc check " + quoted(visgrab::test::sourceDir() / hand));
+    EXPECT_EQ(r.exitCode, 0) << hand << "\n" << r.output;
+    EXPECT_NE(r.output.find("0 error(s)"), std::string::npos) << r.output;
+  }
+}
+
+TEST(VisgrabCli, WcCheckReportsFileAndLineAndExitsOne) {
+  visgrab::test::TempDir dir;
+  const auto file = visgrab::test::writeFile(dir.path() / "bad.wc.xml",
+                                             "<WorkCell name=\"w\">\n"
+                                             "  <Frame name=\"a\" refframe=\"WORLD\"/>\n"
+                                             "  <Frame name=\"b\" refframe=\"nowhere\"/>\n"
+                                             "</WorkCell>\n");
+  const RunResult r = runVisgrab("wc check " + quoted(file));
+  EXPECT_EQ(r.exitCode, 1) << r.output;
+  EXPECT_NE(r.output.find("bad.wc.xml:3:"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("nowhere"), std::string::npos) << r.output;
+}
+
+TEST(VisgrabCli, WcInfoOnAMissingFileExitsOne) {
+  const RunResult r = runVisgrab("wc info /nonexistent/x.wc.xml");
+  EXPECT_EQ(r.exitCode, 1) << r.output;
+  EXPECT_NE(r.output.find("/nonexistent/x.wc.xml"), std::string::npos) << r.output;
+}
+
+TEST(VisgrabCli, UsageMistakesExitTwo) {
+  EXPECT_EQ(runVisgrab("").exitCode, 2);
+  EXPECT_EQ(runVisgrab("wc").exitCode, 2);
+  EXPECT_EQ(runVisgrab("wc info").exitCode, 2);
+  EXPECT_EQ(runVisgrab("wc info a b").exitCode, 2);
+  EXPECT_EQ(runVisgrab("wc info --bogus x").exitCode, 2);
+  EXPECT_EQ(runVisgrab("frobnicate").exitCode, 2);
+  EXPECT_EQ(runVisgrab("--help").exitCode, 0);
+}
+
+}  // namespace
