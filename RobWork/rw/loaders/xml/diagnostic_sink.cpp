@@ -1,9 +1,9 @@
-#include "rw/loaders/detail/diagnostic_sink.hpp"
+#include "rw/loaders/xml/diagnostic_sink.hpp"
 
 #include <cstdio>
 #include <utility>
 
-namespace rw::loaders::detail {
+namespace rw::loaders::xml {
 
 namespace {
 
@@ -78,4 +78,4 @@ void DiagnosticSink::add(Diagnostic::Severity severity, const SourceLocation& wh
   diagnostics_.push_back(std::move(d));
 }
 
-}  // namespace rw::loaders::detail
+}  // namespace rw::loaders::xml

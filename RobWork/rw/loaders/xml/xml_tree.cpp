@@ -1,6 +1,6 @@
-#include "rw/loaders/detail/xml_tree.hpp"
+#include "rw/loaders/xml/xml_tree.hpp"
 
-namespace rw::loaders::detail {
+namespace rw::loaders::xml {
 
 const std::string* XmlElement::attribute(std::string_view attributeName) const {
   for (const XmlAttribute& a : attributes) {
@@ -38,4 +38,4 @@ std::string_view trimXmlSpace(std::string_view text) {
   return text.substr(first, last - first + 1);
 }
 
-}  // namespace rw::loaders::detail
+}  // namespace rw::loaders::xml

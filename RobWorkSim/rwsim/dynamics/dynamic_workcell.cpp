@@ -1,0 +1,218 @@
+#include "rwsim/dynamics/dynamic_workcell.hpp"
+
+#include <Eigen/Cholesky>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <ranges>
+#include <stdexcept>
+#include <utility>
+
+namespace rwsim::dynamics {
+
+namespace {
+
+using rw::kinematics::FrameId;
+using rw::kinematics::FrameTree;
+using rw::kinematics::FrameType;
+
+/// Controller types RobWork's PDDeviceController knows.
+constexpr std::array<std::string_view, 5> kControllerTypes = {"Position", "CntPosition", "Velocity",
+                                                              "Force", "Current"};
+
+/// Relative tolerance of the symmetry check of an inertia tensor.
+constexpr double kSymmetryTolerance = 1e-9;
+
+[[noreturn]] void fail(const std::string& message) { throw std::invalid_argument(message); }
+
+bool contains(const std::vector<FrameId>& frames, FrameId id) {
+  return std::find(frames.begin(), frames.end(), id) != frames.end();
+}
+
+bool validFrame(const FrameTree& tree, FrameId id) {
+  return id.valid() && static_cast<std::size_t>(id.index) < tree.size();
+}
+
+void checkMassProperties(const Body& body) {
+  const MassProperties& m = body.mass;
+  const std::string what = "body \"" + body.name + "\": ";
+  if (!std::isfinite(m.mass) || !(m.mass > 0.0)) fail(what + "mass must be finite and > 0");
+  if (!m.cog.allFinite()) fail(what + "the centre of mass is not finite");
+  if (!m.inertia.allFinite()) fail(what + "the inertia is not finite");
+  const double scale = m.inertia.cwiseAbs().maxCoeff();
+  if ((m.inertia - m.inertia.transpose()).cwiseAbs().maxCoeff() > kSymmetryTolerance * scale) {
+    fail(what + "the inertia is not symmetric");
+  }
+  if (!(scale > 0.0) || Eigen::LLT<Eigen::Matrix3d>(m.inertia).info() != Eigen::Success) {
+    fail(what + "the inertia is not positive definite");
+  }
+}
+
+}  // namespace
+
+std::vector<FrameId> rigidlyAttachedFrames(const FrameTree& tree, FrameId frame,
+                                           const std::vector<FrameId>& stopAt) {
+  std::vector<FrameId> result;
+  std::vector<FrameId> pending{frame};
+  while (!pending.empty()) {
+    const FrameId id = pending.back();
+    pending.pop_back();
+    result.push_back(id);
+    for (const FrameId c : std::views::reverse(tree.children(id))) {
+      const rw::kinematics::Frame& child = tree.frame(c);
+      if (child.type() != FrameType::kFixed || child.isDaf() || contains(stopAt, c)) continue;
+      pending.push_back(c);
+    }
+  }
+  return result;
+}
+
+DynamicWorkCell::DynamicWorkCell(std::unique_ptr<rw::models::WorkCell> workcell)
+    : workcell_(std::move(workcell)) {
+  if (!workcell_) fail("DynamicWorkCell: the workcell is null");
+  bodyOfFrame_.assign(workcell_->frames().size(), -1);
+}
+
+int DynamicWorkCell::findBody(std::string_view name) const {
+  for (std::size_t i = 0; i < bodies_.size(); ++i) {
+    if (bodies_[i].name == name) return static_cast<int>(i);
+  }
+  return -1;
+}
+
+int DynamicWorkCell::bodyOfFrame(FrameId frame) const {
+  if (!frame.valid() || static_cast<std::size_t>(frame.index) >= bodyOfFrame_.size()) return -1;
+  return bodyOfFrame_[static_cast<std::size_t>(frame.index)];
+}
+
+int DynamicWorkCell::findDevice(std::string_view name) const {
+  for (std::size_t i = 0; i < devices_.size(); ++i) {
+    if (devices_[i].device->name() == name) return static_cast<int>(i);
+  }
+  return -1;
+}
+
+const PDController* DynamicWorkCell::findController(std::string_view name) const {
+  for (const PDController& c : controllers_) {
+    if (c.name == name) return &c;
+  }
+  return nullptr;
+}
+
+int DynamicWorkCell::addBody(Body body) {
+  const FrameTree& tree = workcell_->frames();
+  const std::string what = "body \"" + body.name + "\": ";
+  if (body.name.empty()) fail("a body needs a name");
+  if (findBody(body.name) >= 0) fail(what + "a body of this name exists");
+  if (!validFrame(tree, body.frame)) fail(what + "unknown frame");
+  if (body.device != -1) fail(what + "Body::device is set by addDevice and must be -1");
+  const rw::kinematics::Frame& frame = tree.frame(body.frame);
+  if (body.kind == BodyKind::kRigid) {
+    if (frame.type() != FrameType::kMovable && !frame.isJoint()) {
+      fail(what + "a rigid body needs a Movable frame or a joint, \"" + frame.name() + "\" is not");
+    }
+    checkMassProperties(body);
+  } else if (body.kind == BodyKind::kKinematic && frame.type() != FrameType::kMovable) {
+    fail(what + "a kinematic body needs a Movable frame, \"" + frame.name() + "\" is not");
+  }
+  if (body.material.empty() || !materials_.hasMaterial(body.material)) {
+    fail(what + "undeclared material \"" + body.material + "\"");
+  }
+  if (!body.objectType.empty() && !materials_.hasObjectType(body.objectType)) {
+    fail(what + "undeclared object type \"" + body.objectType + "\"");
+  }
+  if (body.geometryFrames.empty()) {
+    std::vector<FrameId> stopAt;
+    for (const Body& b : bodies_) stopAt.push_back(b.frame);
+    body.geometryFrames = rigidlyAttachedFrames(tree, body.frame, stopAt);
+  } else if (!contains(body.geometryFrames, body.frame)) {
+    fail(what + "geometryFrames must contain the body frame");
+  }
+  for (const FrameId id : body.geometryFrames) {
+    if (!validFrame(tree, id)) fail(what + "unknown geometry frame");
+    const int owner = bodyOfFrame(id);
+    if (owner >= 0 || std::count(body.geometryFrames.begin(), body.geometryFrames.end(), id) > 1) {
+      fail(what + "frame \"" + tree.frame(id).name() + "\" already belongs to body \"" +
+           (owner >= 0 ? bodies_[static_cast<std::size_t>(owner)].name : body.name) + "\"");
+    }
+  }
+  const int index = static_cast<int>(bodies_.size());
+  for (const FrameId id : body.geometryFrames) {
+    bodyOfFrame_[static_cast<std::size_t>(id.index)] = index;
+  }
+  bodies_.push_back(std::move(body));
+  return index;
+}
+
+int DynamicWorkCell::addDevice(RigidDevice device) {
+  const auto& known = workcell_->devices();
+  if (device.device == nullptr || std::none_of(known.begin(), known.end(), [&](const auto& d) {
+        return d.get() == device.device;
+      })) {
+    fail("rigid device: the device is not one of this workcell's devices");
+  }
+  const std::string what = "rigid device \"" + device.device->name() + "\": ";
+  if (findDevice(device.device->name()) >= 0) fail(what + "already added");
+  const auto& joints = device.device->joints();
+  if (device.forceLimits.size() != joints.size()) {
+    fail(what + "expected " + std::to_string(joints.size()) +
+         " force limits (one per joint), got " + std::to_string(device.forceLimits.size()));
+  }
+  for (const double limit : device.forceLimits) {
+    if (!std::isfinite(limit) || limit < 0.0) fail(what + "force limits must be finite and >= 0");
+  }
+  if (device.linkBodies.size() != joints.size()) {
+    fail(what + "expected " + std::to_string(joints.size()) + " link bodies (one per joint, -1 " +
+         "for none), got " + std::to_string(device.linkBodies.size()));
+  }
+  const auto bodyCount = static_cast<int>(bodies_.size());
+  if (device.baseBody < 0 || device.baseBody >= bodyCount) fail(what + "invalid base body");
+  for (std::size_t j = 0; j < joints.size(); ++j) {
+    const int link = device.linkBodies[j];
+    if (link == -1) continue;
+    if (link < 0 || link >= bodyCount) fail(what + "invalid link body index");
+    const Body& body = bodies_[static_cast<std::size_t>(link)];
+    if (body.kind != BodyKind::kRigid || body.frame != joints[j] || body.device != -1 ||
+        link == device.baseBody ||
+        std::count(device.linkBodies.begin(), device.linkBodies.end(), link) > 1) {
+      fail(what + "body \"" + body.name + "\" cannot be the link of joint \"" +
+           workcell_->frames().frame(joints[j]).name() +
+           "\" (it must be an unused rigid body on that joint's frame)");
+    }
+  }
+  const int index = static_cast<int>(devices_.size());
+  Body& base = bodies_[static_cast<std::size_t>(device.baseBody)];
+  if (base.device == -1) base.device = index;
+  for (const int link : device.linkBodies) {
+    if (link >= 0) bodies_[static_cast<std::size_t>(link)].device = index;
+  }
+  devices_.push_back(std::move(device));
+  return index;
+}
+
+void DynamicWorkCell::addController(PDController controller) {
+  const std::string what = "controller \"" + controller.name + "\": ";
+  if (controller.name.empty()) fail("a controller needs a name");
+  if (findController(controller.name) != nullptr) fail(what + "a controller of this name exists");
+  if (controller.device < 0 || controller.device >= static_cast<int>(devices_.size())) {
+    fail(what + "invalid device index");
+  }
+  const int dof = devices_[static_cast<std::size_t>(controller.device)].device->dof();
+  if (controller.p.size() != dof || controller.d.size() != dof) {
+    fail(what + "expected " + std::to_string(dof) + " P and D gains (one per DOF), got " +
+         std::to_string(controller.p.size()) + " and " + std::to_string(controller.d.size()));
+  }
+  if (!controller.p.allFinite() || !controller.d.allFinite()) fail(what + "gains must be finite");
+  if (std::find(kControllerTypes.begin(), kControllerTypes.end(), controller.type) ==
+      kControllerTypes.end()) {
+    fail(what + "unknown type \"" + controller.type +
+         "\" (expected Position, CntPosition, Velocity, Force or Current)");
+  }
+  if (!std::isfinite(controller.timeStep) || !(controller.timeStep > 0.0)) {
+    fail(what + "the time step must be > 0");
+  }
+  controllers_.push_back(std::move(controller));
+}
+
+}  // namespace rwsim::dynamics

@@ -1,0 +1,166 @@
+#pragma once
+
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "rw/models/workcell.hpp"
+#include "rwsim/dynamics/material_map.hpp"
+
+namespace rwsim::dynamics {
+
+/// How a body moves.
+enum class BodyKind {
+  kRigid,      ///< free body under gravity and contacts (RigidBody, device links)
+  kKinematic,  ///< moved by a commanded trajectory, unaffected by forces (KinematicBody/Base)
+  kFixed,      ///< never moves (FixedBody/FixedBase)
+};
+
+/// Mass properties of a body in its body frame.
+struct MassProperties {
+  /// Mass in kg.
+  double mass = 0.0;
+  /// Centre of mass in the body frame.
+  rw::math::Vector3D cog = rw::math::Vector3D::Zero();
+  /// Inertia tensor about the centre of mass, body-frame axes, kg m^2.
+  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();
+};
+
+/// One body of the dynamic workcell.
+struct Body {
+  /// Name: the full name of the body frame.
+  std::string name;
+  /// The body frame (Movable for rigid and kinematic bodies, a joint frame for device links).
+  rw::kinematics::FrameId frame;
+  /// How it moves.
+  BodyKind kind = BodyKind::kRigid;
+  /// Mass properties (rigid bodies; kinematic and fixed bodies keep zeros).
+  MassProperties mass;
+  /// Material id (declared in materials()).
+  std::string material;
+  /// Object type id (for restitution).
+  std::string objectType;
+  /// Frames whose collision geometry belongs to this body: the body frame, the frames rigidly
+  /// attached below it that are no body of their own, and `Associate`d frames.
+  std::vector<rw::kinematics::FrameId> geometryFrames;
+  /// Index into DynamicWorkCell::devices() for device bases and links; -1 otherwise.
+  int device = -1;
+  /// Body properties (e.g. LinearDamping, AngularDamping).
+  rw::kinematics::PropertyMap properties;
+};
+
+/// A device simulated with rigid links driven by joint motors (RobWork's RigidDevice).
+struct RigidDevice {
+  /// The kinematic device in the workcell.
+  const rw::models::Device* device = nullptr;
+  /// Index of the base body in DynamicWorkCell::bodies().
+  int baseBody = -1;
+  /// For each joint of device->joints() (dependent ones included), the link body or -1.
+  std::vector<int> linkBodies;
+  /// Motor force/torque limit of each joint of device->joints() (N m or N).
+  std::vector<double> forceLimits;
+};
+
+/// A PD joint controller (RobWork's PDDeviceController).
+struct PDController {
+  /// Controller name (e.g. "GraspController").
+  std::string name;
+  /// Index into DynamicWorkCell::devices().
+  int device = -1;
+  /// Position, CntPosition, Velocity, Force or Current (only Position is simulated).
+  std::string type = "Position";
+  /// Proportional gain per DOF (1/s for RobWork's velocity-output law).
+  Eigen::VectorXd p;
+  /// Derivative gain per DOF (s).
+  Eigen::VectorXd d;
+  /// Controller period from the file (RobWork stores it but does not use it).
+  double timeStep = 0.01;
+};
+
+/// A workcell plus everything the simulator needs: bodies, devices, materials, controllers,
+/// gravity and engine settings. Built once by the loader (or in code), then used const.
+class DynamicWorkCell {
+ public:
+  /// Takes the kinematic workcell. @throws std::invalid_argument if it is null.
+  explicit DynamicWorkCell(std::unique_ptr<rw::models::WorkCell> workcell);
+
+  /// The kinematic workcell.
+  const rw::models::WorkCell& workcell() const { return *workcell_; }
+  /// All bodies.
+  const std::vector<Body>& bodies() const { return bodies_; }
+  /// Index of the body with this name (frame name), or -1.
+  int findBody(std::string_view name) const;
+  /// Index of the body whose geometry frames include `frame`, or -1.
+  int bodyOfFrame(rw::kinematics::FrameId frame) const;
+  /// Rigid devices.
+  const std::vector<RigidDevice>& devices() const { return devices_; }
+  /// Index of the rigid device over the kinematic device with this name, or -1.
+  int findDevice(std::string_view name) const;
+  /// PD controllers.
+  const std::vector<PDController>& controllers() const { return controllers_; }
+  /// The controller with this name, or nullptr.
+  const PDController* findController(std::string_view name) const;
+  /// Materials, friction and restitution.
+  const MaterialMap& materials() const { return materials_; }
+  /// Gravity in world coordinates, m/s^2.
+  const rw::math::Vector3D& gravity() const { return gravity_; }
+  /// Physics-engine properties from the file (name -> value text), e.g. "StepMethod".
+  const std::map<std::string, std::string>& engineProperties() const { return engineProperties_; }
+  /// File the dynamic workcell was loaded from (empty when built in code).
+  const std::string& fileName() const { return fileName_; }
+
+  /// Adds a body and returns its index. An empty `geometryFrames` is filled with
+  /// rigidlyAttachedFrames(frame, stopAt = the frames of the bodies added so far), so bodies on
+  /// Fixed frames below another body's frame must be added first (or their frames listed).
+  /// `device` must be -1: addDevice sets it.
+  /// @throws std::invalid_argument on an empty or duplicate name, an unknown frame, a frame (or
+  /// geometry frame) that belongs to another body, a rigid body that is not on a Movable frame
+  /// or a joint, a kinematic body not on a Movable frame, a rigid body whose mass is not > 0 or
+  /// whose inertia is not symmetric positive definite, or an undeclared material or object type.
+  int addBody(Body body);
+  /// Adds a rigid device and returns its index; sets Body::device of its base (unless the base
+  /// already belongs to another device) and of its links.
+  /// @throws std::invalid_argument unless the device is one of workcell().devices() and not yet
+  /// added, forceLimits and linkBodies have one entry per device->joints() (limits finite and
+  /// >= 0), the base is a valid body index and each link is -1 or an unused rigid body on its
+  /// joint's frame.
+  int addDevice(RigidDevice device);
+  /// Adds a controller.
+  /// @throws std::invalid_argument on an empty or duplicate name, an invalid device index, gains
+  /// whose sizes differ from the device's DOF or that are not finite, an unknown type, or a time
+  /// step that is not > 0.
+  void addController(PDController controller);
+  /// Materials, for building.
+  MaterialMap& materials() { return materials_; }
+  /// Sets gravity.
+  void setGravity(const rw::math::Vector3D& g) { gravity_ = g; }
+  /// Sets an engine property.
+  void setEngineProperty(const std::string& name, const std::string& value) {
+    engineProperties_[name] = value;
+  }
+  /// Sets the file name.
+  void setFileName(std::string fileName) { fileName_ = std::move(fileName); }
+
+ private:
+  std::unique_ptr<rw::models::WorkCell> workcell_;
+  std::vector<Body> bodies_;
+  std::vector<int> bodyOfFrame_;
+  std::vector<RigidDevice> devices_;
+  std::vector<PDController> controllers_;
+  MaterialMap materials_;
+  rw::math::Vector3D gravity_ = rw::math::Vector3D::Zero();
+  std::map<std::string, std::string> engineProperties_;
+  std::string fileName_;
+};
+
+/// Frames whose geometry a body on `frame` carries: `frame` and the frames below it reached
+/// through Fixed frames only (stopping at joints, movable frames, dynamically attachable frames
+/// and `stopAt` frames), in depth-first order with `frame` first.
+std::vector<rw::kinematics::FrameId> rigidlyAttachedFrames(
+    const rw::kinematics::FrameTree& tree, rw::kinematics::FrameId frame,
+    const std::vector<rw::kinematics::FrameId>& stopAt);
+
+}  // namespace rwsim::dynamics

@@ -1,0 +1,66 @@
+#pragma once
+
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "rw/loaders/xml/diagnostic_sink.hpp"
+#include "rw/loaders/xml/xml_reader.hpp"
+#include "rw/loaders/xml/xml_tree.hpp"
+
+namespace rwsim::loaders::detail {
+
+/// Deepest Include nesting accepted.
+inline constexpr int kMaxIncludeDepth = 32;
+
+/// Reads a whole file into `text`; returns an empty string on success, else why it failed.
+std::string readTextFile(const std::filesystem::path& file, std::string& text);
+
+/// A dynamic workcell file and its includes, read into one list of top-level elements.
+struct DynamicWorkCellDocument {
+  /// The <DynamicWorkcell> root (its children are not used; see `topLevel`).
+  rw::loaders::xml::XmlElement root;
+  /// The root's children with every Include replaced by the included file's children, in
+  /// document order; each element keeps the file and line it was written at.
+  std::vector<rw::loaders::xml::XmlElement> topLevel;
+};
+
+/// Reads dynamic workcell files: repairs mismatched closing tags (with a warning each, as
+/// RobWork reads them), validates against the schema and expands <Include file> elements:
+/// the file must have the root <IncludeData>; its path is relative to the top-level file's
+/// folder (RobWork's rule, reference §2.1), or, if not found there, relative to the including
+/// file (with a warning); cycles and nesting deeper than kMaxIncludeDepth are errors.
+class DocumentReader {
+ public:
+  /// Uses `reader` (with the dynamic workcell schema) and reports to `sink`.
+  DocumentReader(rw::loaders::xml::XmlReader& reader, rw::loaders::xml::DiagnosticSink& sink)
+      : reader_(reader), sink_(sink) {}
+
+  /// Reads the top-level file `file` whose content is `text`; nullopt after an error.
+  std::optional<DynamicWorkCellDocument> read(std::string_view text,
+                                              const std::filesystem::path& file);
+
+ private:
+  struct Context;
+
+  std::optional<rw::loaders::xml::XmlElement> parseRoot(
+      std::string_view text, const std::shared_ptr<const rw::loaders::xml::SourceFile>& source,
+      std::string_view expectedRoot);
+  void expand(const std::vector<rw::loaders::xml::XmlElement>& elements, const Context& context,
+              std::vector<rw::loaders::xml::XmlElement>& out);
+  void include(const rw::loaders::xml::XmlElement& element, const Context& context,
+               std::vector<rw::loaders::xml::XmlElement>& out);
+  std::optional<std::filesystem::path> resolveInclude(const rw::loaders::xml::XmlElement& element,
+                                                      const std::string& file,
+                                                      const Context& context);
+
+  rw::loaders::xml::XmlReader& reader_;
+  rw::loaders::xml::DiagnosticSink& sink_;
+  std::filesystem::path topDir_;
+  std::size_t filesRead_ = 0;
+};
+
+}  // namespace rwsim::loaders::detail

@@ -1,0 +1,264 @@
+// The dynamic workcell loader on small scenes written inline (reference §2).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include "rwsim/loaders/dwc_test_scene.hpp"
+#include "rwsim/loaders/dynamic_workcell_loader.hpp"
+#include "support/test_support.hpp"
+
+namespace {
+
+using rw::loaders::Diagnostic;
+using rw::math::Vector3D;
+using rwsim::dynamics::Body;
+using rwsim::dynamics::BodyKind;
+using rwsim::dynamics::DynamicWorkCell;
+using visgrab::test::writeFile;
+using visgrab::test::dwc::SceneDir;
+using visgrab::test::dwc::sdhController;
+using visgrab::test::dwc::sdhDevice;
+
+class DynamicWorkCellLoader : public ::testing::Test {
+ protected:
+  std::unique_ptr<DynamicWorkCell> load(const std::string& text) {
+    warnings_.clear();
+    try {
+      return rwsim::loaders::loadDynamicWorkCell(scene_.writeTop(text), &warnings_);
+    } catch (const rw::loaders::LoadError& e) {
+      ADD_FAILURE() << e.what();
+      return nullptr;
+    }
+  }
+
+  /// Warnings whose message contains `text`.
+  std::vector<Diagnostic> warningsWith(const std::string& text) const {
+    std::vector<Diagnostic> out;
+    std::copy_if(warnings_.begin(), warnings_.end(), std::back_inserter(out),
+                 [&](const Diagnostic& d) { return d.message.find(text) != std::string::npos; });
+    return out;
+  }
+
+  const Body& body(const DynamicWorkCell& dwc, const std::string& name) const {
+    const int index = dwc.findBody(name);
+    EXPECT_GE(index, 0) << name;
+    return dwc.bodies().at(static_cast<std::size_t>(std::max(index, 0)));
+  }
+
+  SceneDir scene_;
+  std::vector<Diagnostic> warnings_;
+};
+
+TEST_F(DynamicWorkCellLoader, LoadsBodiesDevicesAndControllers) {
+  const auto dwc = load(SceneDir::dwc(R"(<Gravity>0 0 -9.81</Gravity>
+<FixedBody frame="Table"><MaterialID>Rubber</MaterialID></FixedBody>
+<RigidBody frame="Object">
+  <Mass>0.7</Mass><EstimateInertia/><Integrator>Euler</Integrator><ObjectID>soft</ObjectID>
+  <Property name="LinearDamping" type="float">0.1</Property>
+</RigidBody>
+<KinematicBody frame="Ghost"><MaterialID>Plastic</MaterialID></KinematicBody>
+)" + sdhDevice() + sdhController()));
+  ASSERT_TRUE(dwc);
+  EXPECT_TRUE(warnings_.empty()) << warnings_.front().format();
+  EXPECT_VECTOR_NEAR(dwc->gravity(), Vector3D(0, 0, -9.81), 0.0);
+  EXPECT_EQ(body(*dwc, "Table").kind, BodyKind::kFixed);
+  EXPECT_EQ(body(*dwc, "Table").material, "Rubber");
+  EXPECT_EQ(body(*dwc, "Table").objectType, "hard");
+  EXPECT_EQ(body(*dwc, "Ghost").kind, BodyKind::kKinematic);
+
+  const Body& object = body(*dwc, "Object");
+  EXPECT_EQ(object.kind, BodyKind::kRigid);
+  EXPECT_EQ(object.material, "Plastic");  // the default
+  EXPECT_EQ(object.objectType, "soft");
+  const auto& tree = dwc->workcell().frames();
+  ASSERT_EQ(object.geometryFrames.size(), 2u);
+  EXPECT_EQ(tree.frame(object.geometryFrames[1]).name(), "Handle");
+  // Box 0.1 x 0.2 x 0.3 (0.006 m^3) at (0.01, 0, 0) and cube 0.1 (0.001 m^3) at (0, 0, 0.2).
+  EXPECT_VECTOR_NEAR(object.mass.cog, Vector3D(0.006 * 0.01, 0, 0.001 * 0.2) / 0.007, 1e-15);
+  const double rho = 0.7 / 0.007;
+  const double zBody = object.mass.cog.z();
+  const double zKnob = 0.2 - object.mass.cog.z();
+  const double dxBody = 0.01 - object.mass.cog.x();
+  const double dxKnob = object.mass.cog.x();
+  const double iyy = rho * 0.006 * (0.01 + 0.09) / 12 +
+                     rho * 0.006 * (dxBody * dxBody + zBody * zBody) + rho * 0.001 * 0.02 / 12 +
+                     rho * 0.001 * (dxKnob * dxKnob + zKnob * zKnob);
+  EXPECT_NEAR(object.mass.inertia(1, 1), iyy, 1e-14);
+  EXPECT_DOUBLE_EQ(std::get<double>(object.properties.at("LinearDamping").value), 0.1);
+
+  const int device = dwc->findDevice("SchunkHand");
+  ASSERT_GE(device, 0);
+  const auto& hand = dwc->devices()[static_cast<std::size_t>(device)];
+  EXPECT_EQ(hand.forceLimits, std::vector<double>(8, 2.0));
+  EXPECT_EQ(dwc->bodies()[static_cast<std::size_t>(hand.baseBody)].name, "SchunkHand.Base");
+  for (std::size_t j = 0; j < 8; ++j) {
+    const Body& link = dwc->bodies()[static_cast<std::size_t>(hand.linkBodies[j])];
+    EXPECT_EQ(link.frame, hand.device->joints()[j]);
+    EXPECT_EQ(link.device, device);
+    EXPECT_GT(link.mass.inertia.determinant(), 0.0);
+  }
+  ASSERT_NE(dwc->findController("GraspController"), nullptr);
+  EXPECT_EQ(dwc->findController("GraspController")->p.size(), 7);
+  EXPECT_EQ(dwc->fileName(), (scene_.path() / "top.dwc.xml").lexically_normal().string());
+}
+
+TEST_F(DynamicWorkCellLoader, GivenCogAndInertiaAreTakenAsWritten) {
+  const auto dwc = load(SceneDir::dwc(R"(<RigidBody frame="Object">
+  <Mass>2</Mass><Integrator>Euler</Integrator>
+  <COG>0.1 0 0</COG><Inertia>2 0.1 0  0.1 3 0  0 0 4</Inertia>
+</RigidBody>
+<RigidBody frame="Ghost"><Mass>1</Mass><Integrator>Euler</Integrator><COG>0 0 0</COG><Inertia>1 2 3</Inertia></RigidBody>
+)"));
+  ASSERT_TRUE(dwc);
+  const Body& object = body(*dwc, "Object");
+  EXPECT_VECTOR_NEAR(object.mass.cog, Vector3D(0.1, 0, 0), 0.0);
+  EXPECT_DOUBLE_EQ(object.mass.inertia(0, 1), 0.1);
+  EXPECT_DOUBLE_EQ(object.mass.inertia(2, 2), 4.0);
+  EXPECT_VECTOR_NEAR(Eigen::VectorXd(body(*dwc, "Ghost").mass.inertia.diagonal()),
+                     Eigen::VectorXd(Vector3D(1, 2, 3)), 0.0);
+}
+
+TEST_F(DynamicWorkCellLoader, AGivenCogMovesTheEstimatedInertiaByTheParallelAxisTheorem) {
+  const auto dwc = load(SceneDir::dwc(R"(<RigidBody frame="Object">
+  <Mass>0.7</Mass><Integrator>Euler</Integrator><EstimateInertia/>
+</RigidBody>
+)"));
+  const auto moved = load(SceneDir::dwc(R"(<RigidBody frame="Object">
+  <Mass>0.7</Mass><Integrator>Euler</Integrator><EstimateInertia/><COG>0 0 0</COG>
+</RigidBody>
+)"));
+  ASSERT_TRUE(dwc && moved);
+  const auto& a = body(*dwc, "Object").mass;
+  const auto& b = body(*moved, "Object").mass;
+  EXPECT_VECTOR_NEAR(b.cog, Vector3D::Zero(), 0.0);
+  const Vector3D d = -a.cog;
+  const Eigen::Matrix3d shift =
+      0.7 * (d.squaredNorm() * Eigen::Matrix3d::Identity() - d * d.transpose());
+  EXPECT_TRUE(b.inertia.isApprox(a.inertia + shift, 1e-12));
+}
+
+TEST_F(DynamicWorkCellLoader, RobWorksLeniencyIsReportedAsWarnings) {
+  const auto dwc = load(SceneDir::dwc(R"(<PhysicsEngine>
+  <Property name="MaxIter" type="int">20</Property>
+  <Property name="Eps" type="double">0.001</Property>
+  <Property name="Gains" type="Q">1 2 3</Property>
+  <Property name="StepMethod">WorldQuickStep</Property>
+  <CollisionMargin>0.01</CollisionMargin><AutoDisable>False</AutoDisable>
+</PhysicsEngine>
+<MaterialData><Material id="Rubber"/></MaterialData>
+<FrictionMap>
+  <Pair first="Plastic" second="Steel"><FrictionData type="Coulomb"><Mu>0.1</Mu></FrictionData></Pair>
+  <Pair first="Rubber" second="Plastic"><FrictionData type="Coulomb"><Mu>0.2</Mu></FrictionData></Pair>
+</FrictionMap>
+<RigidBody frame="Object"><Mass>1</Mass><EstimateInertia/></RigidBody>
+<KinematicBody frame="Ghost"/>
+<TactileArraySensor frame="Object"><Name>S</Sensor></TactileArraySensor>
+<ContactModel type="Newton"/>
+)"));
+  ASSERT_TRUE(dwc);
+  const auto& engine = dwc->engineProperties();
+  EXPECT_EQ(engine.at("MaxIter"), "20");
+  EXPECT_EQ(engine.at("Eps"), "0.001");
+  EXPECT_EQ(engine.at("Gains"), "1 2 3");
+  EXPECT_EQ(engine.at("StepMethod"), "WorldQuickStep");
+  EXPECT_EQ(warningsWith("type \"double\" is rejected by RobWork").size(), 1u);
+  EXPECT_EQ(warningsWith("declared twice").size(), 1u);
+  EXPECT_EQ(warningsWith("unknown material \"Steel\"").size(), 1u);
+  EXPECT_EQ(warningsWith("RobWork keeps the first").size(), 1u);
+  EXPECT_DOUBLE_EQ(dwc->materials().mu("Plastic", "Rubber"), 0.7);
+  EXPECT_EQ(warningsWith("missing <Integrator>").size(), 1u);
+  EXPECT_EQ(warningsWith("requires a <MaterialID> in a KinematicBody").size(), 1u);
+  EXPECT_EQ(warningsWith("not simulated by this project").size(), 1u);
+  EXPECT_EQ(warningsWith("</Sensor> closes <Name>").size(), 1u);
+  EXPECT_EQ(warningsWith("<ContactModel type=").size(), 0u);
+  EXPECT_EQ(warningsWith("ignored (RobWork ignores it too)").size(), 1u);
+  for (const Diagnostic& w : warnings_) {
+    EXPECT_EQ(w.file, (scene_.path() / "top.dwc.xml").string());
+    EXPECT_GT(w.line, 2);
+  }
+}
+
+TEST_F(DynamicWorkCellLoader, ABodyWithoutVolumeGetsASmallSphereWithAWarning) {
+  const auto dwc =
+      load(SceneDir::dwc("<RigidBody frame=\"Ghost\"><Mass>2</Mass><Integrator>Euler</Integrator>"
+                         "<EstimateInertia/></RigidBody>\n"));
+  ASSERT_TRUE(dwc);
+  ASSERT_EQ(warningsWith("radius 0.0001 m").size(), 1u);
+  EXPECT_EQ(warningsWith("radius 0.0001 m")[0].line, 3);
+  const double i = 0.4 * 2 * 1e-8;
+  EXPECT_NEAR(body(*dwc, "Ghost").mass.inertia(0, 0), i, 1e-20);
+}
+
+TEST_F(DynamicWorkCellLoader, AssociatedFramesAddTheirGeometry) {
+  const auto dwc =
+      load(SceneDir::dwc("<RigidBody frame=\"Ghost\"><Mass>1</Mass><Integrator>Euler</Integrator>"
+                         "<EstimateInertia/><Associate object=\"Table\"/></RigidBody>\n"));
+  ASSERT_TRUE(dwc);
+  const Body& ghost = body(*dwc, "Ghost");
+  EXPECT_EQ(dwc->bodyOfFrame(dwc->workcell().findFrame("Table")), dwc->findBody("Ghost"));
+  // The table top (1 x 1 x 0.1 at z -0.05) seen from Ghost at (1, 0, 0).
+  EXPECT_VECTOR_NEAR(ghost.mass.cog, Vector3D(-1, 0, -0.05), 1e-12);
+  EXPECT_TRUE(warningsWith("radius").empty());
+}
+
+TEST_F(DynamicWorkCellLoader, IncludesAreRelativeToTheTopLevelFileWithAFallback) {
+  // sub/a.xml includes "sub/b.xml" (RobWork's rule: relative to the top-level folder) and
+  // "c.xml", which exists only next to a.xml (found with a warning).
+  writeFile(scene_.path() / "sub/a.xml", R"(<IncludeData>
+  <Include file="sub/b.xml"/>
+  <Include file="c.xml"/>
+</IncludeData>)");
+  writeFile(scene_.path() / "sub/b.xml", "<IncludeData><Gravity>0 0 -9.8</Gravity></IncludeData>");
+  writeFile(scene_.path() / "sub/c.xml", "<IncludeData><FixedBody frame=\"Table\"/></IncludeData>");
+  const auto dwc = load(SceneDir::dwc("<Include file=\"sub/a.xml\"/>\n"));
+  ASSERT_TRUE(dwc);
+  EXPECT_DOUBLE_EQ(dwc->gravity().z(), -9.8);
+  EXPECT_GE(dwc->findBody("Table"), 0);
+  const auto fallback = warningsWith("relative to the including file");
+  ASSERT_EQ(fallback.size(), 1u);
+  EXPECT_EQ(fallback[0].line, 3);
+  EXPECT_EQ(fallback[0].file, (scene_.path() / "sub/a.xml").string());
+  ASSERT_EQ(fallback[0].includedFrom.size(), 1u);
+  EXPECT_EQ(fallback[0].includedFrom[0], (scene_.path() / "top.dwc.xml").string() + ":3");
+  EXPECT_EQ(warnings_.size(), 1u);
+}
+
+TEST_F(DynamicWorkCellLoader, LoadsFromAString) {
+  std::vector<Diagnostic> warnings;
+  const auto dwc =
+      rwsim::loaders::loadDynamicWorkCellFromString(SceneDir::dwc("<FixedBody frame=\"Floor\"/>\n"),
+                                                    scene_.path() / "virtual.dwc.xml", &warnings);
+  ASSERT_TRUE(dwc);
+  EXPECT_EQ(dwc->bodies().size(), 1u);
+  EXPECT_TRUE(warnings.empty());
+}
+
+TEST_F(DynamicWorkCellLoader, RefBaseReusesABody) {
+  const std::string device = sdhDevice("", "");
+  std::string refDevice = device;
+  const std::string kinematic =
+      "<KinematicBase frame=\"Base\"><MaterialID>Plastic</MaterialID></KinematicBase>";
+  refDevice.replace(refDevice.find(kinematic), kinematic.size(),
+                    "<RefBase body=\"SchunkHand.Base\"/>");
+  const auto dwc = load(SceneDir::dwc(
+      "<KinematicBody frame=\"SchunkHand.Base\"><MaterialID>Rubber</MaterialID></KinematicBody>\n" +
+      refDevice));
+  ASSERT_TRUE(dwc);
+  const auto& hand = dwc->devices().at(0);
+  EXPECT_EQ(hand.baseBody, dwc->findBody("SchunkHand.Base"));
+  EXPECT_EQ(dwc->bodies()[static_cast<std::size_t>(hand.baseBody)].material, "Rubber");
+}
+
+TEST_F(DynamicWorkCellLoader, CheckReportsWithoutThrowing) {
+  const auto diagnostics = rwsim::loaders::checkDynamicWorkCell(
+      scene_.writeTop(SceneDir::dwc("<RigidBody frame=\"Object\"><Mass>-1</Mass></RigidBody>\n")));
+  ASSERT_FALSE(diagnostics.empty());
+  EXPECT_TRUE(std::any_of(diagnostics.begin(), diagnostics.end(), [](const Diagnostic& d) {
+    return d.severity == Diagnostic::Severity::kError;
+  }));
+  EXPECT_FALSE(rwsim::loaders::checkDynamicWorkCell(scene_.path() / "none.dwc.xml").empty());
+}
+
+}  // namespace
