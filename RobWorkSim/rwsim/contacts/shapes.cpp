@@ -1,0 +1,252 @@
+#include "rwsim/contacts/shapes.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+namespace rwsim::contacts {
+namespace detail {
+namespace {
+
+using rw::geometry::Aabb;
+using rw::geometry::TriMesh;
+using rw::math::Vector3D;
+using Index = std::int32_t;
+
+/// Vertices within this fraction of the bounding-box diagonal of a plane lie on it.
+constexpr double kFlatRelTolerance = 1e-6;
+/// A flat mesh is its convex hull when their areas agree within this fraction.
+constexpr double kAreaRelTolerance = 1e-6;
+/// A closed mesh's edge is convex when the neighbour's far vertex lies this far (m) below the
+/// triangle's plane and their normals differ.
+constexpr double kConvexEdgeDepth = 1e-12;
+constexpr double kSameNormalDot = 1.0 - 1e-9;
+
+double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  return a.x() * b.y() - a.y() * b.x();
+}
+
+/// Counter-clockwise convex hull (monotone chain, collinear points dropped) of planar points.
+std::vector<Index> planarHull(const std::vector<Eigen::Vector2d>& q) {
+  std::vector<Index> order(q.size());
+  for (std::size_t i = 0; i < q.size(); ++i) order[i] = static_cast<Index>(i);
+  std::sort(order.begin(), order.end(), [&](Index a, Index b) {
+    const auto& pa = q[static_cast<std::size_t>(a)];
+    const auto& pb = q[static_cast<std::size_t>(b)];
+    return pa.x() < pb.x() ||
+           (pa.x() == pb.x() && (pa.y() < pb.y() || (pa.y() == pb.y() && a < b)));
+  });
+  std::vector<Index> hull;
+  for (int pass = 0; pass < 2; ++pass) {
+    const std::size_t base = hull.size();
+    for (std::size_t k = 0; k < order.size(); ++k) {
+      const Index p = pass == 0 ? order[k] : order[order.size() - 1 - k];
+      while (hull.size() >= base + 2) {
+        const auto& o = q[static_cast<std::size_t>(hull[hull.size() - 2])];
+        const auto& a = q[static_cast<std::size_t>(hull.back())];
+        if (cross2(a - o, q[static_cast<std::size_t>(p)] - o) > 0.0) break;
+        hull.pop_back();
+      }
+      hull.push_back(p);
+    }
+    hull.pop_back();
+  }
+  return hull;
+}
+
+void addQuad(TriMesh& m, std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t d) {
+  m.triangles.push_back({a, b, c});
+  m.triangles.push_back({a, c, d});
+}
+
+}  // namespace
+
+Aabb SphereShape::localBounds() const {
+  Aabb box;
+  box.min = Vector3D::Constant(-radius_);
+  box.max = Vector3D::Constant(radius_);
+  return box;
+}
+
+Aabb HalfSpaceShape::localBounds() const {
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  Aabb box;
+  box.min = Vector3D::Constant(-kInf);
+  box.max = Vector3D(kInf, kInf, 0.0);
+  return box;
+}
+
+PolytopeShape::PolytopeShape(std::vector<Polytope> pieces)
+    : ContactShape(Kind::kConvex), pieces_(std::move(pieces)) {
+  for (const Polytope& p : pieces_) {
+    bounds_.extend(p.bounds().min);
+    bounds_.extend(p.bounds().max);
+  }
+}
+
+MeshShape::MeshShape(const TriMesh& mesh) : ContactShape(Kind::kMesh), bvh_(mesh) {
+  const auto& triangles = bvh_.triangles();
+  info_.resize(triangles.size());
+  std::map<std::array<double, 3>, Index> ids;
+  std::vector<std::array<Index, 3>> corners(triangles.size());
+  std::map<std::pair<Index, Index>, Index> halfEdges;
+  bool closed = true;
+  for (std::size_t i = 0; i < triangles.size(); ++i) {
+    const auto& v = triangles[i].v;
+    for (const Vector3D& p : v) bounds_.extend(p);
+    const Vector3D cross = (v[1] - v[0]).cross(v[2] - v[0]);
+    if (cross.norm() > 0.0) info_[i].normal = cross.normalized();
+    for (int k = 0; k < 3; ++k) {
+      const Vector3D& p = v[static_cast<std::size_t>(k)];
+      corners[i][static_cast<std::size_t>(k)] =
+          ids.try_emplace({p.x(), p.y(), p.z()}, static_cast<Index>(ids.size())).first->second;
+    }
+    for (int k = 0; k < 3; ++k) {
+      const std::pair<Index, Index> key{corners[i][static_cast<std::size_t>(k)],
+                                        corners[i][static_cast<std::size_t>((k + 1) % 3)]};
+      closed = closed && halfEdges.try_emplace(key, static_cast<Index>(i)).second;
+    }
+  }
+  for (std::size_t i = 0; closed && i < triangles.size(); ++i) {
+    for (int k = 0; k < 3; ++k) {
+      const auto twin = halfEdges.find({corners[i][static_cast<std::size_t>((k + 1) % 3)],
+                                        corners[i][static_cast<std::size_t>(k)]});
+      if (twin == halfEdges.end()) {
+        closed = false;
+        break;
+      }
+      const auto j = static_cast<std::size_t>(twin->second);
+      const Vector3D& n = info_[i].normal;
+      const Vector3D& n2 = info_[j].normal;
+      const Vector3D& a = triangles[i].v[static_cast<std::size_t>(k)];
+      double below = 0.0;
+      for (const Vector3D& w : triangles[j].v) below = std::min(below, n.dot(w - a));
+      if (below < -kConvexEdgeDepth && n2.squaredNorm() > 0.0 && n.dot(n2) < kSameNormalDot) {
+        info_[i].neighbour[static_cast<std::size_t>(k)] = n2;
+      }
+    }
+  }
+  oneSided_ = closed;
+  if (!closed) {
+    for (TriangleInfo& t : info_) t.neighbour = {};
+  }
+}
+
+std::optional<Polytope> flatConvexPatch(const TriMesh& mesh) {
+  Aabb box;
+  Vector3D sum = Vector3D::Zero();
+  Vector3D largest = Vector3D::Zero();
+  double area = 0.0;
+  for (const auto& t : mesh.triangles) {
+    const Vector3D& a = mesh.vertices[t[0]];
+    const Vector3D cross = (mesh.vertices[t[1]] - a).cross(mesh.vertices[t[2]] - a);
+    sum += cross;
+    area += 0.5 * cross.norm();
+    if (cross.squaredNorm() > largest.squaredNorm()) largest = cross;
+    for (const auto i : t) box.extend(mesh.vertices[i]);
+  }
+  if (!(area > 0.0)) return std::nullopt;
+  Vector3D n = largest.normalized();
+  if (n.dot(sum) < 0.0) n = -n;
+  const Vector3D& origin = mesh.vertices[mesh.triangles[0][0]];
+  const double tolerance = kFlatRelTolerance * (box.max - box.min).norm();
+  std::vector<Vector3D> points;
+  for (const auto& t : mesh.triangles) {
+    for (const auto i : t) {
+      if (std::abs(n.dot(mesh.vertices[i] - origin)) > tolerance) return std::nullopt;
+      points.emplace_back(mesh.vertices[i] - n.dot(mesh.vertices[i] - origin) * n);
+    }
+  }
+  int axis = 0;
+  n.cwiseAbs().minCoeff(&axis);
+  const Vector3D t1 = n.cross(Vector3D::Unit(axis)).normalized();
+  const Vector3D t2 = n.cross(t1);
+  std::vector<Eigen::Vector2d> planar;
+  planar.reserve(points.size());
+  for (const Vector3D& p : points) planar.emplace_back(p.dot(t1), p.dot(t2));
+  const std::vector<Index> hull = planarHull(planar);
+  if (hull.size() < 3) return std::nullopt;
+  double hullArea = 0.0;
+  for (std::size_t k = 1; k + 1 < hull.size(); ++k) {
+    const auto& o = planar[static_cast<std::size_t>(hull[0])];
+    hullArea += 0.5 * cross2(planar[static_cast<std::size_t>(hull[k])] - o,
+                             planar[static_cast<std::size_t>(hull[k + 1])] - o);
+  }
+  if (std::abs(hullArea - area) > kAreaRelTolerance * hullArea) return std::nullopt;
+  std::vector<Vector3D> loop;
+  loop.reserve(hull.size());
+  for (const Index i : hull) loop.push_back(points[static_cast<std::size_t>(i)]);
+  return Polytope::flatPolygon(std::move(loop), n);
+}
+
+std::vector<Polytope> tubePieces(double inner, double outer, double height, int segments) {
+  std::vector<Polytope> pieces;
+  for (int i = 0; i < segments; ++i) {
+    TriMesh m;
+    for (const double z : {-height / 2, height / 2}) {
+      for (const double r : {inner, outer}) {
+        for (const int k : {i, i + 1}) {
+          const double angle = 2.0 * std::numbers::pi * (k % segments) / segments;
+          m.vertices.emplace_back(r * std::cos(angle), r * std::sin(angle), z);
+        }
+      }
+    }
+    // Corners: bit 0 second angle, bit 1 outer ring, bit 2 top.
+    addQuad(m, 2, 3, 7, 6);  // outer wall
+    addQuad(m, 0, 4, 5, 1);  // inner wall
+    addQuad(m, 4, 6, 7, 5);  // top
+    addQuad(m, 0, 1, 3, 2);  // bottom
+    addQuad(m, 0, 2, 6, 4);  // side at the first angle
+    addQuad(m, 1, 5, 7, 3);  // side at the second angle
+    if (auto piece = Polytope::fromConvexMesh(m)) pieces.push_back(std::move(*piece));
+  }
+  return pieces;
+}
+
+}  // namespace detail
+
+std::shared_ptr<const ContactShape> ContactShape::build(const rw::geometry::Geometry& geometry) {
+  using rw::geometry::GeometryType;
+  const rw::geometry::TriMesh& mesh = geometry.triangles();
+  const auto& p = geometry.parameters();
+  switch (geometry.type()) {
+    case GeometryType::kSphere:
+      return std::make_shared<detail::SphereShape>(p[0]);
+    case GeometryType::kPlane:
+      return std::make_shared<detail::HalfSpaceShape>();
+    case GeometryType::kTube: {
+      const int segments =
+          mesh.vertices.size() % 4 == 0 ? static_cast<int>(mesh.vertices.size() / 4) : 32;
+      return std::make_shared<detail::PolytopeShape>(
+          detail::tubePieces(p[0], p[0] + p[1], p[2], segments));
+    }
+    case GeometryType::kBox:
+    case GeometryType::kCylinder:
+    case GeometryType::kCone:
+    case GeometryType::kMesh:
+      break;
+  }
+  if (mesh.triangles.empty()) {
+    throw std::invalid_argument("ContactShape: mesh '" + geometry.sourceFile() +
+                                "' has no triangles");
+  }
+  if (geometry.type() == GeometryType::kMesh) {
+    if (auto patch = detail::flatConvexPatch(mesh)) {
+      return std::make_shared<detail::PolytopeShape>(std::vector<detail::Polytope>{*patch});
+    }
+  }
+  if (geometry.isConvex()) {
+    if (auto polytope = detail::Polytope::fromConvexMesh(mesh)) {
+      return std::make_shared<detail::PolytopeShape>(
+          std::vector<detail::Polytope>{std::move(*polytope)});
+    }
+  }
+  return std::make_shared<detail::MeshShape>(mesh);
+}
+
+}  // namespace rwsim::contacts
