@@ -9,14 +9,14 @@
 #include "rw/loaders/detail/diagnostic_sink.hpp"
 #include "rw/loaders/detail/xml_reader.hpp"
 #include "rw/loaders/detail/xml_tree.hpp"
+#include "rw/loaders/xml/text_file.hpp"
 
 namespace rw::loaders::detail {
 
 /// Deepest Include nesting accepted.
 inline constexpr int kMaxIncludeDepth = 32;
 
-/// Reads a whole file into `text`; returns an empty string on success, else why it failed.
-std::string readTextFile(const std::filesystem::path& file, std::string& text);
+using rw::loaders::xml::readTextFile;
 
 /// How a file is named in messages: the path as given, lexically normalised.
 std::string displayPathOf(const std::filesystem::path& file);

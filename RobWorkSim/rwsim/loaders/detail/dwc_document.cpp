@@ -17,7 +17,6 @@ using rw::loaders::xml::XmlElement;
 
 namespace {
 
-constexpr std::size_t kMaxFileBytes = std::size_t{64} << 20;
 constexpr std::size_t kMaxFilesRead = 10'000;
 
 std::string displayPathOf(const fs::path& file) { return file.lexically_normal().string(); }
@@ -36,22 +35,6 @@ bool isFile(const fs::path& file) {
 }
 
 }  // namespace
-
-std::string readTextFile(const fs::path& file, std::string& text) {
-  std::error_code ec;
-  if (fs::is_directory(file, ec)) return "it is a folder, not a file";
-  if (!fs::exists(file, ec)) return "no such file";
-  std::ifstream in(file, std::ios::binary);
-  if (!in) return "it cannot be opened (permissions?)";
-  text.clear();
-  char buffer[1 << 16];
-  while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
-    text.append(buffer, static_cast<std::size_t>(in.gcount()));
-    if (text.size() > kMaxFileBytes) return "it is larger than 64 MiB";
-  }
-  if (in.bad()) return "reading it failed";
-  return {};
-}
 
 /// The file being expanded: its source, folder and the chain of files that include it.
 struct DocumentReader::Context {

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "rw/loaders/xml/diagnostic_sink.hpp"
+#include "rw/loaders/xml/text_file.hpp"
 #include "rw/loaders/xml/xml_reader.hpp"
 #include "rw/loaders/xml/xml_tree.hpp"
 
@@ -16,8 +17,7 @@ namespace rwsim::loaders::detail {
 /// Deepest Include nesting accepted.
 inline constexpr int kMaxIncludeDepth = 32;
 
-/// Reads a whole file into `text`; returns an empty string on success, else why it failed.
-std::string readTextFile(const std::filesystem::path& file, std::string& text);
+using rw::loaders::xml::readTextFile;
 
 /// A dynamic workcell file and its includes, read into one list of top-level elements.
 struct DynamicWorkCellDocument {

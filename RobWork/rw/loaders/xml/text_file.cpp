@@ -1,0 +1,26 @@
+#include "rw/loaders/xml/text_file.hpp"
+
+#include <fstream>
+#include <system_error>
+
+namespace rw::loaders::xml {
+
+namespace fs = std::filesystem;
+
+std::string readTextFile(const fs::path& file, std::string& text) {
+  std::error_code ec;
+  if (fs::is_directory(file, ec)) return "it is a folder, not a file";
+  if (!fs::exists(file, ec)) return "no such file";
+  std::ifstream in(file, std::ios::binary);
+  if (!in) return "it cannot be opened (permissions?)";
+  text.clear();
+  char buffer[1 << 16];
+  while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
+    text.append(buffer, static_cast<std::size_t>(in.gcount()));
+    if (text.size() > kMaxFileBytes) return "it is larger than 64 MiB";
+  }
+  if (in.bad()) return "reading it failed";
+  return {};
+}
+
+}  // namespace rw::loaders::xml
