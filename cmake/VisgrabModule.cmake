@@ -59,3 +59,12 @@ function(visgrab_add_benchmark name)
   add_test(NAME ${name}_smoke COMMAND ${name} --benchmark_min_time=0.01)
   set_tests_properties(${name}_smoke PROPERTIES LABELS benchmark)
 endfunction()
+
+# visgrab_embed_file(<template.in> <output> <VARIABLE> <file>): configures <template.in> into
+# <output> with @VARIABLE@ replaced by the text of <file>, re-run whenever <file> changes. Used to
+# compile the XSD schemas into the loaders, so no schema file is needed at run time.
+function(visgrab_embed_file template output variable file)
+  file(READ ${file} ${variable})
+  set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${file})
+  configure_file(${template} ${output} @ONLY)
+endfunction()
