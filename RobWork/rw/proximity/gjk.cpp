@@ -139,7 +139,7 @@ SubSimplex closestOnTetrahedron(const Simplex& s) {
   static constexpr std::array<std::array<int, 4>, 4> kFaces{
       {{0, 1, 2, 3}, {0, 2, 3, 1}, {0, 3, 1, 2}, {1, 3, 2, 0}}};
   bool found = false;
-  SubSimplex best;
+  SubSimplex best{};
   for (const auto& f : kFaces) {
     const Vector3D& a = s.v[static_cast<std::size_t>(f[0])].w;
     const Vector3D n = (s.v[static_cast<std::size_t>(f[1])].w - a)
@@ -156,7 +156,7 @@ SubSimplex closestOnTetrahedron(const Simplex& s) {
 
 // Replaces the simplex by its sub-simplex closest to the origin and returns that point.
 Vector3D reduce(Simplex& s) {
-  SubSimplex sub;
+  SubSimplex sub{};
   switch (s.size) {
     case 1:
       sub = vertexOf(s, 0);
