@@ -86,6 +86,17 @@ int DynamicWorkCell::bodyOfFrame(FrameId frame) const {
   return bodyOfFrame_[static_cast<std::size_t>(frame.index)];
 }
 
+int DynamicWorkCell::bodyAbove(FrameId frame) const {
+  const auto& tree = workcell_->frames();
+  if (!frame.valid() || static_cast<std::size_t>(frame.index) >= tree.size()) return -1;
+  for (FrameId f = tree.frame(frame).parent(); f.valid(); f = tree.frame(f).parent()) {
+    const int b = bodyOfFrame(f);
+    if (b >= 0) return b;
+    if (f == rw::kinematics::FrameTree::kWorld) break;
+  }
+  return -1;
+}
+
 int DynamicWorkCell::findDevice(std::string_view name) const {
   for (std::size_t i = 0; i < devices_.size(); ++i) {
     if (devices_[i].device->name() == name) return static_cast<int>(i);
@@ -213,6 +224,22 @@ void DynamicWorkCell::addController(PDController controller) {
     fail(what + "the time step must be > 0");
   }
   controllers_.push_back(std::move(controller));
+}
+
+std::vector<std::pair<int, int>> jointConnectedBodyPairs(const DynamicWorkCell& dwc) {
+  std::vector<std::pair<int, int>> pairs;
+  for (const RigidDevice& rd : dwc.devices()) {
+    const auto& joints = rd.device->joints();
+    for (std::size_t j = 0; j < joints.size() && j < rd.linkBodies.size(); ++j) {
+      const int link = rd.linkBodies[j];
+      const int above = link >= 0 ? dwc.bodyAbove(joints[j]) : -1;
+      if (above >= 0 && above != link)
+        pairs.emplace_back(std::min(link, above), std::max(link, above));
+    }
+  }
+  std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  return pairs;
 }
 
 }  // namespace rwsim::dynamics

@@ -5,6 +5,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "rw/models/workcell.hpp"
@@ -95,6 +96,9 @@ class DynamicWorkCell {
   int findBody(std::string_view name) const;
   /// Index of the body whose geometry frames include `frame`, or -1.
   int bodyOfFrame(rw::kinematics::FrameId frame) const;
+  /// Index of the body nearest above `frame`: the first frame on the path from its parent to the
+  /// world that belongs to a body; -1 if there is none.
+  int bodyAbove(rw::kinematics::FrameId frame) const;
   /// Rigid devices.
   const std::vector<RigidDevice>& devices() const { return devices_; }
   /// Index of the rigid device over the kinematic device with this name, or -1.
@@ -162,5 +166,10 @@ class DynamicWorkCell {
 std::vector<rw::kinematics::FrameId> rigidlyAttachedFrames(
     const rw::kinematics::FrameTree& tree, rw::kinematics::FrameId frame,
     const std::vector<rw::kinematics::FrameId>& stopAt);
+
+/// The body pairs a device joint connects: each joint's link body with the body nearest above
+/// the joint. Each pair once as (smaller, larger) index, sorted. Their model geometry usually
+/// overlaps at the joint, so contact detection skips them (as MuJoCo skips parent-child pairs).
+std::vector<std::pair<int, int>> jointConnectedBodyPairs(const DynamicWorkCell& dwc);
 
 }  // namespace rwsim::dynamics
