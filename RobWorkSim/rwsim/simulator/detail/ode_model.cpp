@@ -1,0 +1,314 @@
+#include "rwsim/simulator/detail/ode_model.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+
+#include "rw/kinematics/frame_tree.hpp"
+
+namespace rwsim::simulator::detail {
+
+namespace {
+
+using rw::kinematics::FrameId;
+using rw::kinematics::FrameType;
+using rw::math::Transform3D;
+using rw::math::Vector3D;
+
+constexpr double kPi = std::numbers::pi;
+// How far past a stop (rad or m) a joint may be for the stop to be released when its motor
+// drives it back.
+constexpr double kStopRelease = 1e-3;
+
+void checkMass(const dynamics::Body& body) {
+  const auto& m = body.mass;
+  if (!std::isfinite(m.mass) || m.mass <= 0.0) {
+    throw std::invalid_argument("body " + body.name + ": mass must be > 0 to simulate it");
+  }
+  const Eigen::Matrix3d& I = m.inertia;
+  const bool finite = I.allFinite() && m.cog.allFinite();
+  const bool symmetric = finite && (I - I.transpose()).cwiseAbs().maxCoeff() <= 1e-9 * I.norm();
+  bool valid = symmetric;
+  if (valid) {
+    const Eigen::Vector3d e = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(I).eigenvalues();
+    const double tol = 1e-9 * e.cwiseAbs().maxCoeff();
+    valid = e.minCoeff() > 0.0 && e[0] + e[1] >= e[2] - tol;
+  }
+  if (!valid) {
+    throw std::invalid_argument("body " + body.name +
+                                ": inertia must be symmetric and positive definite with "
+                                "principal moments obeying the triangle inequality");
+  }
+}
+
+void setOdePose(dBodyID id, const Transform3D& X_W_cog) {
+  const Vector3D& p = X_W_cog.translation();
+  dBodySetPosition(id, p.x(), p.y(), p.z());
+  const Eigen::Quaterniond q(X_W_cog.linear());
+  const dQuaternion dq = {q.w(), q.x(), q.y(), q.z()};
+  dBodySetQuaternion(id, dq);
+  dBodySetLinearVel(id, 0, 0, 0);
+  dBodySetAngularVel(id, 0, 0, 0);
+}
+
+void setDamping(dBodyID id, const dynamics::Body& body) {
+  const auto read = [&](const char* key) -> double {
+    const auto it = body.properties.find(key);
+    if (it == body.properties.end()) return -1.0;
+    if (const auto* v = std::get_if<double>(&it->second.value)) return *v;
+    if (const auto* s = std::get_if<std::string>(&it->second.value)) {
+      try {
+        return std::stod(*s);
+      } catch (const std::exception&) {
+      }
+    }
+    throw std::invalid_argument("body " + body.name + ": property " + key + " is not a number");
+  };
+  const double linear = read("LinearDamping");
+  const double angular = read("AngularDamping");
+  if (linear >= 0.0) dBodySetLinearDamping(id, linear);
+  if (angular >= 0.0) dBodySetAngularDamping(id, angular);
+}
+
+// The body whose frame is the nearest proper ancestor of `frame`, or -1 (the static world).
+// Stop of a hinge measured from q0: ODE stops work within (-pi, pi); beyond that, no stop.
+double hingeStop(double limit, double q0, bool lower) {
+  const double s = limit - q0;
+  if (!std::isfinite(s)) return lower ? -dInfinity : dInfinity;
+  if (lower) return s > -kPi ? s : -dInfinity;
+  return s < kPi ? s : dInfinity;
+}
+
+double sliderStop(double limit, double q0, bool lower) {
+  const double s = limit - q0;
+  if (!std::isfinite(s)) return lower ? -dInfinity : dInfinity;
+  return s;
+}
+
+// A device joint's description: its DOF index or coupling, force limit, value and stops.
+SimJoint describeJoint(const rw::kinematics::FrameTree& tree, const dynamics::RigidDevice& rd,
+                       std::size_t j, const rw::kinematics::State& state) {
+  const auto& joints = rd.device->joints();
+  const auto& frame = tree.frame(joints[j]);
+  SimJoint sj;
+  sj.frame = joints[j];
+  sj.revolute = frame.type() == FrameType::kRevolute;
+  sj.q0 = frame.jointValue(state);
+  sj.forceLimit = rd.forceLimits[j];
+  if (frame.isActiveJoint()) {
+    const auto& active = rd.device->activeJoints();
+    sj.activeIndex =
+        static_cast<int>(std::find(active.begin(), active.end(), joints[j]) - active.begin());
+  }
+  if (frame.isDependent()) {
+    const auto& dep = *frame.dependency();
+    sj.gain = dep.gain;
+    sj.offset = dep.offset;
+    const auto owner = std::find(joints.begin(), joints.end(), dep.owner);
+    if (owner == joints.end()) {
+      throw std::invalid_argument("joint " + frame.name() + " depends on a joint outside " +
+                                  rd.device->name());
+    }
+    sj.owner = static_cast<int>(owner - joints.begin());
+  } else {
+    const auto& limits = frame.limits();
+    sj.loStop =
+        sj.revolute ? hingeStop(limits.lower, sj.q0, true) : sliderStop(limits.lower, sj.q0, true);
+    sj.hiStop = sj.revolute ? hingeStop(limits.upper, sj.q0, false)
+                            : sliderStop(limits.upper, sj.q0, false);
+  }
+  return sj;
+}
+
+}  // namespace
+
+Transform3D odePose(dBodyID body) {
+  const dReal* p = dBodyGetPosition(body);
+  const dReal* q = dBodyGetQuaternion(body);
+  Transform3D X = Transform3D::Identity();
+  X.linear() = Eigen::Quaterniond(q[0], q[1], q[2], q[3]).normalized().toRotationMatrix();
+  X.translation() = Vector3D(p[0], p[1], p[2]);
+  return X;
+}
+
+OdeWorld::OdeWorld(const dynamics::DynamicWorkCell& dwc, const rw::kinematics::State& state,
+                   const SimulatorOptions& options) {
+  world_ = dWorldCreate();
+  // ODE's default threading implementation is one global object; worlds stepped in parallel
+  // threads must each have their own, or their islands get mixed up.
+  threading_ = dThreadingAllocateSelfThreadedImplementation();
+  dWorldSetStepThreadingImplementation(world_, dThreadingImplementationGetFunctions(threading_),
+                                       threading_);
+  contactGroup_ = dJointGroupCreate(0);
+  const Vector3D& g = dwc.gravity();
+  dWorldSetGravity(world_, g.x(), g.y(), g.z());
+  dWorldSetCFM(world_, options.worldCfm);
+  dWorldSetERP(world_, options.worldErp);
+  dWorldSetContactSurfaceLayer(world_, options.contactSurfaceLayer);
+  dWorldSetContactMaxCorrectingVel(world_, options.maxCorrectingVelocity);
+  dWorldSetAutoDisableFlag(world_, 0);
+  try {
+    createBodies(dwc, state);
+    createDevices(dwc, state);
+    std::sort(connected_.begin(), connected_.end());
+  } catch (...) {
+    destroy();
+    throw;
+  }
+}
+
+OdeWorld::~OdeWorld() { destroy(); }
+
+void OdeWorld::destroy() {
+  if (poisoned_) return;
+  dJointGroupDestroy(contactGroup_);
+  dWorldSetStepThreadingImplementation(world_, nullptr, nullptr);
+  dWorldDestroy(world_);  // also destroys the bodies and the device joints
+  dThreadingFreeImplementation(threading_);
+}
+
+void OdeWorld::createBodies(const dynamics::DynamicWorkCell& dwc,
+                            const rw::kinematics::State& state) {
+  const auto& tree = dwc.workcell().frames();
+  const rw::kinematics::FKTable fk(tree, state);
+  bodies_.resize(dwc.bodies().size());
+  for (std::size_t i = 0; i < dwc.bodies().size(); ++i) {
+    const dynamics::Body& body = dwc.bodies()[i];
+    SimBody& sim = bodies_[i];
+    sim.index = static_cast<int>(i);
+    sim.kind = body.kind;
+    sim.movableFrame = tree.frame(body.frame).type() == FrameType::kMovable;
+    const Transform3D& X_W_frame = fk.worldTransform(body.frame);
+    sim.startPosition = X_W_frame.translation();
+    if (body.kind == dynamics::BodyKind::kFixed) {
+      sim.X_W_fixed = X_W_frame;
+      continue;
+    }
+    sim.id = dBodyCreate(world_);
+    if (body.kind == dynamics::BodyKind::kRigid) {
+      checkMass(body);
+      sim.cog = body.mass.cog;
+      const Eigen::Matrix3d& I = body.mass.inertia;
+      dMass m;
+      dMassSetParameters(&m, body.mass.mass, 0, 0, 0, I(0, 0), I(1, 1), I(2, 2), I(0, 1), I(0, 2),
+                         I(1, 2));
+      dBodySetMass(sim.id, &m);
+      setDamping(sim.id, body);
+    } else {
+      dBodySetKinematic(sim.id);
+    }
+    setOdePose(sim.id, X_W_frame * Eigen::Translation3d(sim.cog));
+  }
+}
+
+void OdeWorld::createDevices(const dynamics::DynamicWorkCell& dwc,
+                             const rw::kinematics::State& state) {
+  const auto& tree = dwc.workcell().frames();
+  const rw::kinematics::FKTable fk(tree, state);
+  devices_.resize(dwc.devices().size());
+  for (std::size_t d = 0; d < dwc.devices().size(); ++d) {
+    const dynamics::RigidDevice& rd = dwc.devices()[d];
+    const auto& joints = rd.device->joints();
+    if (rd.linkBodies.size() != joints.size() || rd.forceLimits.size() != joints.size()) {
+      throw std::invalid_argument("rigid device " + rd.device->name() +
+                                  ": link bodies or force limits do not match its joints");
+    }
+    SimDevice& sim = devices_[d];
+    sim.active.assign(static_cast<std::size_t>(rd.device->dof()), -1);
+    for (std::size_t j = 0; j < joints.size(); ++j) {
+      sim.joints.push_back(describeJoint(tree, rd, j, state));
+      const SimJoint& sj = sim.joints.back();
+      if (sj.activeIndex >= 0)
+        sim.active[static_cast<std::size_t>(sj.activeIndex)] = static_cast<int>(j);
+      const int link = rd.linkBodies[j];
+      if (link < 0) continue;  // no link body: the joint is held at its current value
+      if (bodies_[static_cast<std::size_t>(link)].kind != dynamics::BodyKind::kRigid) {
+        throw std::invalid_argument("joint " + tree.frame(joints[j]).name() +
+                                    ": its link body must be rigid");
+      }
+      const int parent = dwc.bodyAbove(joints[j]);
+      if (parent >= 0) connected_.emplace_back(std::min(link, parent), std::max(link, parent));
+      attachJoint(sim.joints.back(), link, parent, fk.worldTransform(joints[j]),
+                  tree.frame(joints[j]).isPassive());
+    }
+  }
+}
+
+void OdeWorld::attachJoint(SimJoint& sj, int link, int parent, const Transform3D& X_W_joint,
+                           bool passive) {
+  const dBodyID linkId = bodies_[static_cast<std::size_t>(link)].id;
+  const dBodyID parentId = parent >= 0 ? bodies_[static_cast<std::size_t>(parent)].id : nullptr;
+  const Vector3D p = X_W_joint.translation();
+  const Vector3D z = X_W_joint.linear().col(2);
+  if (sj.revolute) {
+    sj.id = dJointCreateHinge(world_, nullptr);
+    dJointAttach(sj.id, linkId, parentId);
+    dJointSetHingeAnchor(sj.id, p.x(), p.y(), p.z());
+    dJointSetHingeAxis(sj.id, z.x(), z.y(), z.z());
+  } else {
+    sj.id = dJointCreateSlider(world_, nullptr);
+    dJointAttach(sj.id, linkId, parentId);
+    dJointSetSliderAxis(sj.id, z.x(), z.y(), z.z());
+  }
+  setMotor(sj, 0.0, passive ? 0.0 : sj.forceLimit);
+}
+
+bool OdeWorld::jointConnected(int a, int b) const {
+  const std::pair<int, int> key(std::min(a, b), std::max(a, b));
+  return std::binary_search(connected_.begin(), connected_.end(), key);
+}
+
+Transform3D OdeWorld::framePose(const SimBody& body) const {
+  if (body.id == nullptr) return body.X_W_fixed;
+  return odePose(body.id) * Eigen::Translation3d(-body.cog);
+}
+
+double OdeWorld::jointPosition(const SimJoint& joint) const {
+  if (joint.id == nullptr) return joint.q0;
+  if (!joint.revolute) return joint.q0 + dJointGetSliderPosition(joint.id);
+  const double raw = dJointGetHingeAngle(joint.id);
+  const double turns = std::round((joint.lastRelative - raw) / (2.0 * kPi));
+  return joint.q0 + raw + 2.0 * kPi * turns;
+}
+
+void OdeWorld::trackJoints() {
+  for (auto& device : devices_) {
+    for (auto& joint : device.joints) joint.lastRelative = jointPosition(joint) - joint.q0;
+  }
+}
+
+double OdeWorld::jointVelocity(const SimJoint& joint) const {
+  if (joint.id == nullptr) return 0.0;
+  return joint.revolute ? dJointGetHingeAngleRate(joint.id) : dJointGetSliderPositionRate(joint.id);
+}
+
+void OdeWorld::setMotor(const SimJoint& joint, double velocity, double forceLimit) const {
+  if (joint.id == nullptr) return;
+  // ODE's own (wrapped) joint coordinate, which its stops refer to.
+  const double pos =
+      joint.revolute ? dJointGetHingeAngle(joint.id) : dJointGetSliderPosition(joint.id);
+  // Release a stop for this step when the motor drives the joint away from it (unless the
+  // joint has sunk clearly past the stop, which the stop must then correct).
+  const bool leaveLow = velocity > 0.0 && forceLimit > 0.0 && pos <= joint.loStop &&
+                        pos >= joint.loStop - kStopRelease;
+  const bool leaveHigh = velocity < 0.0 && forceLimit > 0.0 && pos >= joint.hiStop &&
+                         pos <= joint.hiStop + kStopRelease;
+  const double lo = leaveLow ? -dInfinity : joint.loStop;
+  const double hi = leaveHigh ? dInfinity : joint.hiStop;
+  if (joint.revolute) {
+    dJointSetHingeParam(joint.id, dParamLoStop, lo);
+    dJointSetHingeParam(joint.id, dParamHiStop, hi);
+    dJointSetHingeParam(joint.id, dParamVel, velocity);
+    dJointSetHingeParam(joint.id, dParamFMax, forceLimit);
+  } else {
+    dJointSetSliderParam(joint.id, dParamLoStop, lo);
+    dJointSetSliderParam(joint.id, dParamHiStop, hi);
+    dJointSetSliderParam(joint.id, dParamVel, velocity);
+    dJointSetSliderParam(joint.id, dParamFMax, forceLimit);
+  }
+}
+
+}  // namespace rwsim::simulator::detail

@@ -1,0 +1,110 @@
+#include "rwsim/simulator/detail/trial_support.hpp"
+
+#include <algorithm>
+
+#include "rw/graspplanning/grasp_wrench_space.hpp"
+#include "rw/kinematics/frame_tree.hpp"
+
+namespace rwsim::simulator::detail {
+
+namespace {
+
+bool isHand(const std::vector<bool>& isHandBody, int body) {
+  return body >= 0 && static_cast<std::size_t>(body) < isHandBody.size() &&
+         isHandBody[static_cast<std::size_t>(body)];
+}
+
+// Normal force of a solved point on `object` (the normal pointing into it) and that normal.
+std::pair<double, rw::math::Vector3D> loadOn(const SolvedContact& c, bool objectIsB) {
+  const rw::math::Vector3D n = objectIsB ? c.point.normal : rw::math::Vector3D(-c.point.normal);
+  const rw::math::Vector3D forceOnObject = objectIsB ? c.force : rw::math::Vector3D(-c.force);
+  return {forceOnObject.dot(n), n};
+}
+
+}  // namespace
+
+std::vector<int> handContactCounts(const std::vector<SolvedBodyContact>& contacts,
+                                   const std::vector<bool>& isHandBody, double threshold) {
+  std::vector<int> counts(isHandBody.size(), 0);
+  for (const auto& bc : contacts) {
+    const bool handA = isHand(isHandBody, bc.bodyA);
+    const bool handB = isHand(isHandBody, bc.bodyB);
+    if (handA == handB) continue;
+    const int other = handA ? bc.bodyB : bc.bodyA;
+    for (const auto& p : bc.points) {
+      if (loadOn(p, handA).first > threshold) {
+        ++counts[static_cast<std::size_t>(other)];
+      }
+    }
+  }
+  return counts;
+}
+
+std::vector<TrialContact> objectContacts(const dynamics::DynamicWorkCell& dwc,
+                                         const std::vector<SolvedBodyContact>& contacts,
+                                         const std::vector<bool>& isHandBody, int object,
+                                         const rw::math::Transform3D& X_W_object,
+                                         double threshold) {
+  std::vector<TrialContact> out;
+  const rw::math::Transform3D X_object_W = X_W_object.inverse();
+  for (const auto& bc : contacts) {
+    const bool objectIsB = bc.bodyB == object;
+    if (!(objectIsB || bc.bodyA == object)) continue;
+    const int other = objectIsB ? bc.bodyA : bc.bodyB;
+    if (!isHand(isHandBody, other)) continue;
+    const double mu = dwc.materials().mu(dwc.bodies()[static_cast<std::size_t>(object)].material,
+                                         dwc.bodies()[static_cast<std::size_t>(other)].material);
+    for (const auto& p : bc.points) {
+      const auto [force, n] = loadOn(p, objectIsB);
+      if (force <= threshold) continue;
+      TrialContact c;
+      c.position = X_object_W * p.point.position;
+      c.normal = X_object_W.linear() * n;
+      c.normalForce = force;
+      c.mu = mu;
+      out.push_back(c);
+    }
+  }
+  return out;
+}
+
+double maxRadiusFromCog(const dynamics::DynamicWorkCell& dwc, int body) {
+  const auto& b = dwc.bodies()[static_cast<std::size_t>(body)];
+  const auto& wc = dwc.workcell();
+  const rw::kinematics::State state = wc.defaultState();
+  double r = 0.0;
+  for (const auto frame : b.geometryFrames) {
+    const auto* object = wc.findObject(frame);
+    if (object == nullptr) continue;
+    const rw::math::Transform3D X_body_frame =
+        rw::kinematics::relativeTransform(wc.frames(), state, b.frame, frame);
+    for (const auto& g : object->collision) {
+      const rw::math::Transform3D X = X_body_frame * g.X_frame_geometry;
+      for (const auto& v : g.geometry->triangles().vertices) {
+        r = std::max(r, (X * v - b.mass.cog).norm());
+      }
+    }
+  }
+  return r;
+}
+
+double graspWrenchQuality(const std::vector<TrialContact>& contacts, const rw::math::Vector3D& cog,
+                          double r, int coneEdges) {
+  if (contacts.empty() || !(r > 0.0)) return 0.0;
+  std::vector<rw::graspplanning::Contact3D> c3;
+  c3.reserve(contacts.size());
+  for (const auto& c : contacts) {
+    rw::graspplanning::Contact3D x;
+    x.position = c.position;
+    x.normal = c.normal.normalized();
+    x.mu = c.mu;
+    x.normalForce = c.normalForce;
+    c3.push_back(x);
+  }
+  rw::graspplanning::GwsOptions options;
+  options.coneEdges = coneEdges;
+  options.useMeasuredNormalForce = false;
+  return rw::graspplanning::gwsEpsilon(c3, cog, r, options).epsilon;
+}
+
+}  // namespace rwsim::simulator::detail

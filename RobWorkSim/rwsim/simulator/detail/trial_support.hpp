@@ -1,0 +1,34 @@
+#pragma once
+
+#include <vector>
+
+#include "rw/math/types.hpp"
+#include "rwsim/dynamics/dynamic_workcell.hpp"
+#include "rwsim/simulator/grasp_trial.hpp"
+#include "rwsim/simulator/simulator.hpp"
+
+// Private to rwsim_simulator: contact bookkeeping and quality of a grasp trial.
+namespace rwsim::simulator::detail {
+
+/// Number of loaded hand-object contact points per body (index like bodies()); a point counts
+/// when its normal force exceeds `threshold`.
+std::vector<int> handContactCounts(const std::vector<SolvedBodyContact>& contacts,
+                                   const std::vector<bool>& isHandBody, double threshold);
+
+/// The loaded contacts between the hand and `object`, in the object's frame (X_W_object is the
+/// object's pose), normals pointing into the object, mu from the pair's materials.
+std::vector<TrialContact> objectContacts(const dynamics::DynamicWorkCell& dwc,
+                                         const std::vector<SolvedBodyContact>& contacts,
+                                         const std::vector<bool>& isHandBody, int object,
+                                         const rw::math::Transform3D& X_W_object, double threshold);
+
+/// Largest distance from a body's centre of mass to a vertex of its collision geometry, m
+/// (0 without geometry).
+double maxRadiusFromCog(const dynamics::DynamicWorkCell& dwc, int body);
+
+/// Ferrari-Canny epsilon of the contacts (unit normal forces, `coneEdges` edges, torque origin
+/// the object's centre of mass, torques scaled by 1/r); 0 without contacts or with r <= 0.
+double graspWrenchQuality(const std::vector<TrialContact>& contacts, const rw::math::Vector3D& cog,
+                          double r, int coneEdges);
+
+}  // namespace rwsim::simulator::detail

@@ -1,0 +1,354 @@
+#include "rwsim/simulator/grasp_trial.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include "rw/kinematics/frame_tree.hpp"
+#include "rw/proximity/collision_detector.hpp"
+#include "rwsim/control/pd_controller.hpp"
+#include "rwsim/control/ramp_trajectory.hpp"
+#include "rwsim/simulator/detail/trial_support.hpp"
+
+namespace rwsim::simulator {
+
+using rw::kinematics::FrameId;
+using rw::math::Q;
+using rw::math::Transform3D;
+using rw::math::Vector3D;
+
+// Everything a trial needs that does not change between trials (shared by copies and threads).
+struct detail::TrialData {
+  int hand = -1;
+  int baseBody = -1;
+  FrameId baseFrame;
+  FrameId tcp;
+  const dynamics::PDController* controller = nullptr;
+  std::vector<bool> isHandBody;
+  std::vector<bool> isHandFrame;
+  std::vector<bool> isObjectFrame;
+  std::vector<int> objects;
+  std::vector<double> radius;
+  std::shared_ptr<const contacts::ContactDetector> detector;
+  std::unique_ptr<const rw::proximity::CollisionDetector> collision;
+};
+
+namespace {
+
+std::shared_ptr<detail::TrialData> prepare(const dynamics::DynamicWorkCell& dwc,
+                                           const GraspTrialSetup& setup) {
+  auto data = std::make_shared<detail::TrialData>();
+  data->hand = dwc.findDevice(setup.hand);
+  if (data->hand < 0) throw std::invalid_argument("no rigid device named '" + setup.hand + "'");
+  const auto& rd = dwc.devices()[static_cast<std::size_t>(data->hand)];
+  data->baseBody = rd.baseBody;
+  const auto& base = dwc.bodies()[static_cast<std::size_t>(rd.baseBody)];
+  if (base.kind != dynamics::BodyKind::kKinematic) {
+    throw std::invalid_argument("the base " + base.name + " of hand '" + setup.hand +
+                                "' is not a kinematic body (KinematicBase)");
+  }
+  data->baseFrame = base.frame;
+  data->controller = dwc.findController(setup.controller);
+  if (data->controller == nullptr) {
+    throw std::invalid_argument("no controller named '" + setup.controller + "'");
+  }
+  if (data->controller->device != data->hand) {
+    throw std::invalid_argument("controller '" + setup.controller + "' does not drive '" +
+                                setup.hand + "'");
+  }
+  const auto& wc = dwc.workcell();
+  const std::string tcpName =
+      !setup.tcpFrame.empty()
+          ? setup.tcpFrame
+          : (wc.findFrame(setup.hand + ".TCP").valid() ? setup.hand + ".TCP" : base.name);
+  data->tcp = wc.findFrame(tcpName);
+  if (!data->tcp.valid()) throw std::invalid_argument("no frame named '" + tcpName + "'");
+  return data;
+}
+
+void classifyBodies(const dynamics::DynamicWorkCell& dwc, detail::TrialData& data) {
+  const auto& rd = dwc.devices()[static_cast<std::size_t>(data.hand)];
+  const auto& tree = dwc.workcell().frames();
+  const std::size_t n = dwc.bodies().size();
+  data.isHandBody.assign(n, false);
+  data.isHandBody[static_cast<std::size_t>(rd.baseBody)] = true;
+  for (const int link : rd.linkBodies) {
+    if (link >= 0) data.isHandBody[static_cast<std::size_t>(link)] = true;
+  }
+  data.isHandFrame.assign(tree.size(), false);
+  data.isObjectFrame.assign(tree.size(), false);
+  for (const auto& f : tree.frames()) {
+    if (rd.device->contains(f.id()))
+      data.isHandFrame[static_cast<std::size_t>(f.id().index)] = true;
+  }
+  data.radius.assign(n, 0.0);
+  for (std::size_t b = 0; b < n; ++b) {
+    const auto& body = dwc.bodies()[b];
+    for (const FrameId f : body.geometryFrames) {
+      auto& mark = data.isHandBody[b] ? data.isHandFrame : data.isObjectFrame;
+      if (data.isHandBody[b] || body.kind == dynamics::BodyKind::kRigid) {
+        mark[static_cast<std::size_t>(f.index)] = true;
+      }
+    }
+    if (!data.isHandBody[b] && body.kind == dynamics::BodyKind::kRigid) {
+      data.objects.push_back(static_cast<int>(b));
+      data.radius[b] = detail::maxRadiusFromCog(dwc, static_cast<int>(b));
+    }
+  }
+}
+
+void checkGrasp(const GraspParameters& g, int dof) {
+  const auto check = [dof](const Q& q, const char* what, bool allowEmpty) {
+    if (allowEmpty && q.size() == 0) return;
+    if (q.size() != dof) {
+      throw std::invalid_argument(std::string(what) + " has " + std::to_string(q.size()) +
+                                  " values but the hand has " + std::to_string(dof) + " DOF");
+    }
+    if (!q.allFinite()) throw std::invalid_argument(std::string(what) + " is not finite");
+  };
+  check(g.qOpen, "qOpen", false);
+  check(g.qClosed, "qClosed", false);
+  check(g.tauMax, "tauMax", true);
+  if (g.tauMax.size() > 0 && g.tauMax.minCoeff() < 0.0) {
+    throw std::invalid_argument("tauMax must not be negative");
+  }
+  if (!g.X_W_tcp.matrix().allFinite()) throw std::invalid_argument("the TCP pose is not finite");
+}
+
+// One trial: the phases of reference §4.3 as adapted in the module's documentation.
+class TrialRun {
+ public:
+  TrialRun(const dynamics::DynamicWorkCell& dwc, const GraspTrialSetup& setup,
+           const detail::TrialData& data, const GraspParameters& grasp)
+      : dwc_(dwc),
+        setup_(setup),
+        data_(data),
+        grasp_(grasp),
+        sim_(dwc, data.detector, setup.simulator),
+        pd_(data.controller->p, data.controller->d),
+        dt_(sim_.options().timeStep) {}
+
+  GraspTrialResult run(const rw::kinematics::State& initial);
+
+ private:
+  bool inCollision(const rw::kinematics::State& state);
+  bool advance(std::string_view phase);
+  bool close();
+  bool lift(const Transform3D& X_W_base);
+  void finish(GraspOutcome outcome, std::string detail = {}) {
+    result_.outcome = outcome;
+    result_.detail = std::move(detail);
+  }
+  void evaluate(const Transform3D& X_h0, const Transform3D& X_o0);
+  GraspTrialResult withMessages() {
+    if (!sim_.odeMessages().empty()) result_.detail += " [" + sim_.odeMessages() + "]";
+    return result_;
+  }
+
+  const dynamics::DynamicWorkCell& dwc_;
+  const GraspTrialSetup& setup_;
+  const detail::TrialData& data_;
+  const GraspParameters& grasp_;
+  Simulator sim_;
+  control::PDController pd_;
+  double dt_;
+  GraspTrialResult result_;
+};
+
+bool TrialRun::inCollision(const rw::kinematics::State& state) {
+  // As RobWork's GraspTaskSimulator: a pair with an object (11) outranks one with the
+  // environment (12); our single outcome reports RobWork code 2 and names the pair.
+  const auto& tree = dwc_.workcell().frames();
+  std::string environment;
+  for (const auto& pair : data_.collision->collidingPairs(state)) {
+    const bool handA = data_.isHandFrame[static_cast<std::size_t>(pair.first.index)];
+    const bool handB = data_.isHandFrame[static_cast<std::size_t>(pair.second.index)];
+    if (handA == handB) continue;
+    const FrameId hand = handA ? pair.first : pair.second;
+    const FrameId other = handA ? pair.second : pair.first;
+    const std::string what = "hand frame " + tree.frame(hand).name() + " penetrates ";
+    if (data_.isObjectFrame[static_cast<std::size_t>(other.index)]) {
+      finish(GraspOutcome::kInCollision, what + "object frame " + tree.frame(other).name() +
+                                             " (RobWork 11 CollisionObjectInitially)");
+      return true;
+    }
+    if (environment.empty()) {
+      environment = what + "environment frame " + tree.frame(other).name() +
+                    " (RobWork 12 CollisionEnvironmentInitially)";
+    }
+  }
+  if (environment.empty()) return false;
+  finish(GraspOutcome::kInCollision, environment);
+  return true;
+}
+
+bool TrialRun::advance(std::string_view phase) {
+  const auto hand = data_.hand;
+  sim_.setMotorVelocityTargets(hand, pd_.update(sim_.jointPositions(hand), dt_));
+  const StepStatus status = sim_.step();
+  result_.simulatedTime = sim_.time();
+  if (status != StepStatus::kOk) {
+    finish(GraspOutcome::kSimulationFailure,
+           std::string(status == StepStatus::kRunaway ? "runaway: " : "numerical failure: ") +
+               sim_.failureDetail());
+    return false;
+  }
+  if (setup_.observer) setup_.observer(sim_, phase);
+  if (sim_.time() > setup_.timeLimit) {
+    finish(GraspOutcome::kTimeout,
+           "simulated time passed the limit of " + std::to_string(setup_.timeLimit) + " s");
+    return false;
+  }
+  return true;
+}
+
+bool TrialRun::close() {
+  const auto& tree = dwc_.workcell().frames();
+  const auto& active = dwc_.devices()[static_cast<std::size_t>(data_.hand)].device->activeJoints();
+  Q restSpeed(static_cast<Eigen::Index>(active.size()));
+  for (std::size_t i = 0; i < active.size(); ++i) {
+    restSpeed[static_cast<Eigen::Index>(i)] =
+        tree.frame(active[i]).type() == rw::kinematics::FrameType::kPrismatic
+            ? setup_.restSpeedPrismatic
+            : setup_.restSpeedRevolute;
+  }
+  double restSince = -1.0;
+  while (true) {
+    if (!advance("close")) return false;
+    const double t = sim_.time();
+    if (t < setup_.minCloseTime) continue;
+    const Q q = sim_.jointPositions(data_.hand);
+    if ((q - grasp_.qClosed).cwiseAbs().maxCoeff() <= setup_.closedTolerance) break;
+    const Q v = sim_.jointVelocities(data_.hand);
+    if ((v.cwiseAbs().array() < restSpeed.array()).all()) {
+      if (restSince < 0.0) restSince = t;
+      if (t - restSince >= setup_.restTime - 1e-9) break;
+    } else {
+      restSince = -1.0;
+    }
+    if (t >= setup_.closeTimeLimit) break;
+  }
+  return true;
+}
+
+bool TrialRun::lift(const Transform3D& X_W_base) {
+  Transform3D X_end = X_W_base;
+  X_end.translation().z() += setup_.liftHeight;
+  control::RampLimits limits;
+  limits.linearVelocity = setup_.liftSpeed;
+  limits.linearAcceleration = setup_.liftAcceleration;
+  const control::RampTrajectory trajectory(X_W_base, X_end, limits);
+  const double t0 = sim_.time();
+  while (sim_.time() - t0 < trajectory.duration() - 1e-9) {
+    const Transform3D next = trajectory.pose(sim_.time() - t0 + dt_);
+    const control::Twist twist = control::twistToReach(sim_.bodyPose(data_.baseBody), next, dt_);
+    sim_.setKinematicVelocity(data_.baseBody, twist.linear, twist.angular);
+    if (!advance("lift")) return false;
+  }
+  sim_.setKinematicVelocity(data_.baseBody, Vector3D::Zero(), Vector3D::Zero());
+  const double t1 = sim_.time();
+  while (sim_.time() - t1 < setup_.settleTime - 1e-9) {
+    if (!advance("settle")) return false;
+  }
+  return true;
+}
+
+void TrialRun::evaluate(const Transform3D& X_h0, const Transform3D& X_o0) {
+  const int object = result_.object;
+  const auto counts =
+      detail::handContactCounts(sim_.contacts(), data_.isHandBody, setup_.contactForceThreshold);
+  const Transform3D X_h1 = sim_.bodyPose(data_.baseBody);
+  const Transform3D X_o1 = sim_.bodyPose(object);
+  result_.handLift = X_h1.translation() - X_h0.translation();
+  result_.objectLift = X_o1.translation() - X_o0.translation();
+  if (counts[static_cast<std::size_t>(object)] == 0) {
+    finish(GraspOutcome::kDropped, "no hand contact on " +
+                                       dwc_.bodies()[static_cast<std::size_t>(object)].name +
+                                       " after lifting");
+    return;
+  }
+  const double drift = (result_.objectLift - result_.handLift).norm();
+  const double h = result_.handLift.norm();
+  result_.qLift = h > 0.0 ? std::max(0.0, 1.0 - drift / h) : 0.0;
+  result_.contacts = detail::objectContacts(dwc_, sim_.contacts(), data_.isHandBody, object, X_o1,
+                                            setup_.contactForceThreshold);
+  const auto& body = dwc_.bodies()[static_cast<std::size_t>(object)];
+  result_.qGws = !setup_.computeGws
+                     ? 0.0
+                     : detail::graspWrenchQuality(result_.contacts, body.mass.cog,
+                                                  data_.radius[static_cast<std::size_t>(object)],
+                                                  setup_.gwsConeEdges);
+  finish(
+      drift < setup_.slipThreshold ? GraspOutcome::kStable : GraspOutcome::kSlipped,
+      "object drift " + std::to_string(drift) + " m during a lift of " + std::to_string(h) + " m");
+}
+
+GraspTrialResult TrialRun::run(const rw::kinematics::State& initial) {
+  const auto& wc = dwc_.workcell();
+  const auto& tree = wc.frames();
+  const auto& device = *dwc_.devices()[static_cast<std::size_t>(data_.hand)].device;
+  rw::kinematics::State state = initial;
+  device.setQ(grasp_.qOpen, state);
+  const Transform3D X_tcp_base =
+      rw::kinematics::relativeTransform(tree, state, data_.tcp, data_.baseFrame);
+  const Transform3D X_W_base = grasp_.X_W_tcp * X_tcp_base;
+  const Transform3D X_W_parent =
+      rw::kinematics::worldTransform(tree, state, state.parentOf(data_.baseFrame));
+  tree.frame(data_.baseFrame).setMovableTransform(state, X_W_parent.inverse() * X_W_base);
+  result_.qGrasp = grasp_.qOpen;
+  if (inCollision(state)) return result_;
+
+  sim_.reset(state);
+  if (grasp_.tauMax.size() > 0) sim_.setMotorForceLimits(data_.hand, grasp_.tauMax);
+  pd_.reset(grasp_.qOpen);
+  if (setup_.clampToVelocityLimits) pd_.setVelocityLimits(device.velocityLimits());
+  pd_.setTarget(grasp_.qClosed);
+  if (!close()) return withMessages();
+  result_.qGrasp = sim_.jointPositions(data_.hand);
+
+  const auto counts =
+      detail::handContactCounts(sim_.contacts(), data_.isHandBody, setup_.contactForceThreshold);
+  int best = 0;
+  for (const int o : data_.objects) {
+    if (counts[static_cast<std::size_t>(o)] > best) {
+      best = counts[static_cast<std::size_t>(o)];
+      result_.object = o;
+    }
+  }
+  if (result_.object < 0) {
+    finish(GraspOutcome::kMissed, "no finger touches an object after closing");
+    return withMessages();
+  }
+  const Transform3D X_h0 = sim_.bodyPose(data_.baseBody);
+  const Transform3D X_o0 = sim_.bodyPose(result_.object);
+  if (lift(X_h0)) evaluate(X_h0, X_o0);
+  return withMessages();
+}
+
+}  // namespace
+
+GraspTrial::GraspTrial(const dynamics::DynamicWorkCell& dwc, GraspTrialSetup setup)
+    : dwc_(&dwc), setup_(std::move(setup)) {
+  auto data = prepare(dwc, setup_);
+  classifyBodies(dwc, *data);
+  data->detector = std::make_shared<contacts::ContactDetector>(
+      dwc, setup_.simulator.contacts, dynamics::jointConnectedBodyPairs(dwc));
+  data->collision = std::make_unique<rw::proximity::CollisionDetector>(dwc.workcell());
+  data_ = std::move(data);
+}
+
+int GraspTrial::handDevice() const { return data_->hand; }
+
+FrameId GraspTrial::tcpFrame() const { return data_->tcp; }
+
+GraspTrialResult GraspTrial::run(const GraspParameters& grasp,
+                                 const rw::kinematics::State& initial) const {
+  const auto& device = *dwc_->devices()[static_cast<std::size_t>(data_->hand)].device;
+  checkGrasp(grasp, device.dof());
+  TrialRun trial(*dwc_, setup_, *data_, grasp);
+  return trial.run(initial);
+}
+
+}  // namespace rwsim::simulator

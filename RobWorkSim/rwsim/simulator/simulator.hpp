@@ -1,0 +1,150 @@
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "rw/kinematics/state.hpp"
+#include "rw/math/types.hpp"
+#include "rwsim/contacts/contact_detector.hpp"
+#include "rwsim/dynamics/dynamic_workcell.hpp"
+
+namespace rwsim::simulator {
+
+/// Engine settings; defaults follow RobWork's ODE simulator (reference §8.3), overridable from
+/// the dwc file's PhysicsEngine properties.
+struct SimulatorOptions {
+  /// Integration step, s (RobWork's grasp simulator uses 0.005).
+  double timeStep = 0.005;
+  /// "WorldStep" (dense LCP) or "WorldQuickStep" (iterative).
+  std::string stepMethod = "WorldStep";
+  /// Global constraint force mixing.
+  double worldCfm = 1e-7;
+  /// Global error reduction parameter.
+  double worldErp = 0.2;
+  /// Allowed penetration before correction, m.
+  double contactSurfaceLayer = 0.0001;
+  /// Largest velocity used to correct penetration, m/s.
+  double maxCorrectingVelocity = 0.1;
+  /// Contact generation.
+  contacts::ContactOptions contacts;
+  /// Constraint force mixing of contact joints (RobWork: 1e-6).
+  double contactCfm = 1e-6;
+  /// Error reduction parameter of contact joints (RobWork: 0.2).
+  double contactErp = 0.2;
+  /// A body faster than this (m/s) or farther than escapeDistance from its start is a failure.
+  double maxSpeed = 50.0;
+  /// See maxSpeed, m.
+  double escapeDistance = 50.0;
+};
+
+/// Result of one step.
+enum class StepStatus {
+  kOk,                ///< the step succeeded
+  kNumericalFailure,  ///< a pose or velocity became NaN/inf, or ODE reported a fatal error
+  kRunaway,           ///< a rigid body exceeded maxSpeed or moved beyond escapeDistance
+};
+
+/// A contact point with the force the solver applied in the step (world coordinates).
+struct SolvedContact {
+  /// The geometric contact.
+  contacts::ContactPoint point;
+  /// Force on body B from body A, N (equal and opposite on A).
+  rw::math::Vector3D force = rw::math::Vector3D::Zero();
+};
+
+/// Contacts of one body pair after a step, with solver forces.
+struct SolvedBodyContact {
+  /// First body (index in DynamicWorkCell::bodies()).
+  int bodyA = -1;
+  /// Second body.
+  int bodyB = -1;
+  /// Points with their forces.
+  std::vector<SolvedContact> points;
+};
+
+/// One ODE world over a dynamic workcell (ODE is private to this module). Not copyable; one per
+/// thread. The DynamicWorkCell must outlive it.
+///
+/// Model: rigid bodies are ODE bodies at their centre of mass with the dwc's mass and inertia
+/// (the body frame is X_W_cog * cog^-1); kinematic bodies are ODE kinematic bodies moved by
+/// setKinematicVelocity(); fixed bodies have no ODE body. Each joint of a rigid device is an ODE
+/// hinge (revolute) or slider (prismatic) about/along the joint frame's z axis between its link
+/// body and the nearest body above it, with the joint limits as stops and a velocity motor
+/// whose force limit is the dwc's ForceLimit (setMotorForceLimits: per DOF). A dependent joint
+/// is driven each step with owner_vel * gain + (owner_q * gain + offset - q) / dt (RobWork's
+/// scheme) under its own force limit. Bodies joined by a joint never touch each other.
+///
+/// Contacts: each step ContactDetector finds the contacts at the current poses; each point
+/// becomes an ODE contact joint with Coulomb friction (Approx1, the pyramid's first axis along
+/// the slip or, when sticking, along last step's friction force), mu of the two materials,
+/// restitution of the two object types, soft CFM/ERP from the options. Separated points
+/// (depth < 0, within the margin) are speculative: the gap may close within the step, no
+/// further. ODE's fatal errors become kNumericalFailure, never an exit or abort. The same
+/// input gives bitwise the same result in any thread (WorldStep; WorldQuickStep uses ODE's
+/// global random generator and is only deterministic single-threaded).
+class Simulator {
+ public:
+  /// Creates the world, bodies, joints and motors. @throws std::runtime_error if ODE is not
+  /// double precision.
+  explicit Simulator(const dynamics::DynamicWorkCell& dwc, SimulatorOptions options = {});
+  /// Same, sharing a contact detector made for `dwc` (detection is const and thread-safe, so
+  /// simulators in many threads may share one); options.contacts is then the detector's.
+  /// @throws std::invalid_argument if `detector` is null.
+  Simulator(const dynamics::DynamicWorkCell& dwc,
+            std::shared_ptr<const contacts::ContactDetector> detector,
+            SimulatorOptions options = {});
+  ~Simulator();
+  Simulator(const Simulator&) = delete;
+  Simulator& operator=(const Simulator&) = delete;
+
+  /// Puts every body where `state` says, at rest; time restarts at 0. Motor targets, force
+  /// limits (back to the dwc's) and kinematic velocities are cleared; the status is kOk again.
+  void reset(const rw::kinematics::State& state);
+  /// Advances by options().timeStep: contacts, controllers' commands, integration. After a
+  /// failure every further step returns the same status until reset().
+  StepStatus step();
+  /// Why the failing step failed (empty while every step succeeded).
+  const std::string& failureDetail() const;
+  /// ODE's non-fatal messages since reset() (e.g. "LCP internal error"), "; "-separated.
+  const std::string& odeMessages() const;
+  /// Simulated time since reset, s.
+  double time() const;
+  /// The state after the last step (movable frames of bodies, joint values of devices).
+  const rw::kinematics::State& state() const;
+
+  /// World pose of a body's frame.
+  rw::math::Transform3D bodyPose(int body) const;
+  /// Linear velocity of a body's frame origin, m/s.
+  rw::math::Vector3D bodyLinearVelocity(int body) const;
+  /// Angular velocity, rad/s.
+  rw::math::Vector3D bodyAngularVelocity(int body) const;
+  /// Commands a kinematic body's velocity (world frame, about its frame origin) until changed.
+  void setKinematicVelocity(int body, const rw::math::Vector3D& linear,
+                            const rw::math::Vector3D& angular);
+
+  /// Joint positions of a rigid device's active joints (DOF order).
+  rw::math::Q jointPositions(int device) const;
+  /// Joint velocities (DOF order).
+  rw::math::Q jointVelocities(int device) const;
+  /// Motor velocity targets per DOF (dependent joints follow their owners).
+  void setMotorVelocityTargets(int device, const rw::math::Q& velocities);
+  /// Motor torque/force limits per DOF (a dependent joint takes its owner's).
+  void setMotorForceLimits(int device, const rw::math::Q& limits);
+
+  /// Contacts of the last step with their forces.
+  const std::vector<SolvedBodyContact>& contacts() const;
+  /// The options in use.
+  const SimulatorOptions& options() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// Options from a dwc file's PhysicsEngine properties over `defaults`.
+/// @throws std::invalid_argument for a known key with a bad value.
+SimulatorOptions optionsFromEngineProperties(const dynamics::DynamicWorkCell& dwc,
+                                             SimulatorOptions defaults = {});
+
+}  // namespace rwsim::simulator

@@ -1,0 +1,252 @@
+// Grasp trials: a two-jaw gripper built in code (quick checks of every outcome) and the
+// project's SDH on a box (tests/rwsim/simulator/data/sdh_box.dwc.xml).
+#include "rwsim/simulator/grasp_trial.hpp"
+
+#include <gtest/gtest.h>
+
+#include <future>
+#include <numbers>
+#include <stdexcept>
+
+#include "rw/math/rpy.hpp"
+#include "rwsim/loaders/dynamic_workcell_loader.hpp"
+#include "sim_test_scenes.hpp"
+#include "support/test_support.hpp"
+
+namespace {
+
+using rw::math::Q;
+using rw::math::Transform3D;
+using rw::math::Vector3D;
+using rwsim::simulator::GraspOutcome;
+using rwsim::simulator::GraspParameters;
+using rwsim::simulator::GraspTrial;
+using rwsim::simulator::GraspTrialResult;
+using rwsim::simulator::GraspTrialSetup;
+using rwsim::simulator::outcomeName;
+using visgrab::test::sim::SceneBuilder;
+
+Transform3D at(double x, double y, double z) {
+  return rw::math::makeTranslation(Vector3D(x, y, z));
+}
+
+Q q(std::initializer_list<double> v) {
+  Q out(static_cast<Eigen::Index>(v.size()));
+  Eigen::Index i = 0;
+  for (const double x : v) out[i++] = x;
+  return out;
+}
+
+// --- Two-jaw gripper over a box on a table ---------------------------------------------------
+
+std::unique_ptr<rwsim::dynamics::DynamicWorkCell> gripperScene() {
+  SceneBuilder scene("gripper");
+  scene.addTable("Table", at(0, 0, -0.05), Vector3D(1, 1, 0.1));
+  scene.addBox("Box", at(0, 0, 0.05), Vector3D(0.06, 0.06, 0.1), 0.2);
+  // Jaw faces at |y| = 0.04 when open; the gripper is parked away and placed by the trial.
+  scene.addGripper(at(0.5, 0.5, 0.5), 0.05, 20.0);
+  return scene.build();
+}
+
+GraspTrialSetup gripperSetup() {
+  GraspTrialSetup setup;
+  setup.hand = "Gripper";
+  return setup;
+}
+
+GraspParameters gripperGrasp(const Transform3D& X_W_tcp) {
+  GraspParameters g;
+  g.X_W_tcp = X_W_tcp;  // TCP = the base frame: the jaws' centre
+  g.qOpen = q({0.0, 0.0});
+  g.qClosed = q({0.04, 0.04});
+  return g;
+}
+
+std::string describe(const GraspTrialResult& r) {
+  return std::string(outcomeName(r.outcome)) + " (" + r.detail + "), Q_lift " +
+         std::to_string(r.qLift) + ", t " + std::to_string(r.simulatedTime);
+}
+
+TEST(GraspTrialGripper, CentredGraspIsStable) {
+  const auto dwc = gripperScene();
+  const GraspTrial trial(*dwc, gripperSetup());
+  const auto r = trial.run(gripperGrasp(at(0, 0, 0.06)), dwc->workcell().defaultState());
+  EXPECT_EQ(r.outcome, GraspOutcome::kStable) << describe(r);
+  EXPECT_EQ(r.object, dwc->findBody("Box"));
+  EXPECT_GT(r.qLift, 0.9);
+  EXPECT_NEAR(r.handLift.z(), 0.1, 1e-6);
+  EXPECT_NEAR(r.objectLift.z(), 0.1, 0.01);
+  EXPECT_FALSE(r.contacts.empty());
+  for (const auto& c : r.contacts) {
+    EXPECT_NEAR(c.mu, 0.6, 1e-12);
+    EXPECT_GT(c.normalForce, 0.0);
+    // Jaw contacts are on the box's +-y faces, pushing inwards.
+    EXPECT_NEAR(std::abs(c.position.y()), 0.03, 0.002);
+    EXPECT_NEAR(c.normal.y() * c.position.y(), -0.03, 0.003);
+  }
+  // Two parallel flat contacts (friction about their common normal is not modelled): a flat
+  // hull, epsilon 0 - as RobWork's measure gives for two point contacts.
+  EXPECT_GE(r.qGws, 0.0);
+}
+
+TEST(GraspTrialGripper, GraspBesideTheBoxMisses) {
+  const auto dwc = gripperScene();
+  const GraspTrial trial(*dwc, gripperSetup());
+  const auto r = trial.run(gripperGrasp(at(0.2, 0, 0.06)), dwc->workcell().defaultState());
+  EXPECT_EQ(r.outcome, GraspOutcome::kMissed) << describe(r);
+  EXPECT_EQ(r.object, -1);
+  EXPECT_NEAR(r.qGrasp[0], 0.04, 1e-3);
+}
+
+TEST(GraspTrialGripper, JawInsideTheBoxIsInCollision) {
+  const auto dwc = gripperScene();
+  const GraspTrial trial(*dwc, gripperSetup());
+  const auto r = trial.run(gripperGrasp(at(0, 0.045, 0.06)), dwc->workcell().defaultState());
+  EXPECT_EQ(r.outcome, GraspOutcome::kInCollision) << describe(r);
+  EXPECT_NE(r.detail.find("Box"), std::string::npos) << r.detail;
+  EXPECT_EQ(r.simulatedTime, 0.0);
+  EXPECT_EQ(rwsim::simulator::robworkCode(r.outcome), 2);
+}
+
+TEST(GraspTrialGripper, WeakJawsDropOrSlip) {
+  const auto dwc = gripperScene();
+  const GraspTrial trial(*dwc, gripperSetup());
+  auto g = gripperGrasp(at(0, 0, 0.06));
+  g.tauMax = q({0.5, 0.5});  // 2 mu F = 0.6 N < m g = 1.96 N
+  const auto r = trial.run(g, dwc->workcell().defaultState());
+  EXPECT_TRUE(r.outcome == GraspOutcome::kDropped || r.outcome == GraspOutcome::kSlipped)
+      << describe(r);
+}
+
+TEST(GraspTrialGripper, TimeLimitGivesTimeout) {
+  const auto dwc = gripperScene();
+  GraspTrialSetup setup = gripperSetup();
+  setup.timeLimit = 0.3;
+  const GraspTrial trial(*dwc, setup);
+  const auto r = trial.run(gripperGrasp(at(0, 0, 0.06)), dwc->workcell().defaultState());
+  EXPECT_EQ(r.outcome, GraspOutcome::kTimeout) << describe(r);
+  EXPECT_LE(r.simulatedTime, 0.31);
+}
+
+TEST(GraspTrialGripper, BadSetupAndParametersAreRejected) {
+  const auto dwc = gripperScene();
+  GraspTrialSetup setup = gripperSetup();
+  setup.hand = "NoSuchHand";
+  EXPECT_THROW(GraspTrial(*dwc, setup), std::invalid_argument);
+  setup = gripperSetup();
+  setup.controller = "NoSuchController";
+  EXPECT_THROW(GraspTrial(*dwc, setup), std::invalid_argument);
+  setup = gripperSetup();
+  setup.tcpFrame = "NoSuchFrame";
+  EXPECT_THROW(GraspTrial(*dwc, setup), std::invalid_argument);
+  const GraspTrial trial(*dwc, gripperSetup());
+  auto g = gripperGrasp(at(0, 0, 0.06));
+  g.qOpen = q({0.0});
+  try {
+    trial.run(g, dwc->workcell().defaultState());
+    ADD_FAILURE() << "a wrong qOpen size was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("2 DOF"), std::string::npos) << e.what();
+  }
+  g = gripperGrasp(at(0, 0, 0.06));
+  g.tauMax = q({1.0, -1.0});
+  EXPECT_THROW(trial.run(g, dwc->workcell().defaultState()), std::invalid_argument);
+}
+
+// --- The project's SDH on a box ---------------------------------------------------------------
+
+class SdhBoxTrial : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dwc_ = rwsim::loaders::loadDynamicWorkCell(visgrab::test::sourceDir() /
+                                               "tests/rwsim/simulator/data/sdh_box.dwc.xml")
+               .release();
+  }
+  static void TearDownTestSuite() {
+    delete dwc_;
+    dwc_ = nullptr;
+  }
+
+  static GraspTrial trial() {
+    GraspTrialSetup setup;
+    setup.hand = "SchunkHand";
+    setup.tcpFrame = "SchunkHand.SDHTCP";
+    setup.simulator = rwsim::simulator::optionsFromEngineProperties(*dwc_);
+    return GraspTrial(*dwc_, setup);
+  }
+
+  // VisGraB's SDH_CYL pre-shape (reference §7.1) with VisGraB's torque limits for a spread of
+  // 0 (§7.2: fingers 2 and 3 get half the thumb's, so the two sides push equally), hand pointing
+  // down (thumb towards -x) with its TCP at `p`.
+  static GraspParameters cylinderGrasp(const Vector3D& p) {
+    GraspParameters g;
+    g.X_W_tcp = rw::math::rpyTransform(Vector3D(0, std::numbers::pi, 0), p);
+    g.qOpen = q({-1.048, 0.174, 0.0, -1.048, 0.174, -1.048, 0.174});
+    g.qClosed = q({0.0, 0.349, 0.0, 0.0, 0.349, 0.0, 0.349});
+    g.tauMax = q({2.1, 1.4, 2.1, 1.05, 0.7, 1.05, 0.7});
+    return g;
+  }
+
+  static rwsim::dynamics::DynamicWorkCell* dwc_;
+};
+
+rwsim::dynamics::DynamicWorkCell* SdhBoxTrial::dwc_ = nullptr;
+
+TEST_F(SdhBoxTrial, CentredCylinderGraspIsStable) {
+  const auto r = trial().run(cylinderGrasp(Vector3D(0, 0, 0.05)), dwc_->workcell().defaultState());
+  EXPECT_EQ(r.outcome, GraspOutcome::kStable) << describe(r);
+  EXPECT_EQ(r.object, dwc_->findBody("Box"));
+  EXPECT_GT(r.qLift, 0.9);
+  EXPECT_GE(r.contacts.size(), 3u);
+  EXPECT_GT(r.qGws, 0.0);
+}
+
+TEST_F(SdhBoxTrial, GraspBesideTheBoxMisses) {
+  // Beside along y: the opened thumb and fingers spread along x.
+  const auto r =
+      trial().run(cylinderGrasp(Vector3D(0, 0.2, 0.05)), dwc_->workcell().defaultState());
+  EXPECT_EQ(r.outcome, GraspOutcome::kMissed) << describe(r);
+}
+
+TEST_F(SdhBoxTrial, HandThroughTheBoxIsInCollision) {
+  const auto r = trial().run(cylinderGrasp(Vector3D(0, 0, -0.05)), dwc_->workcell().defaultState());
+  EXPECT_EQ(r.outcome, GraspOutcome::kInCollision) << describe(r);
+}
+
+TEST_F(SdhBoxTrial, NearZeroTorqueDropsOrSlips) {
+  auto g = cylinderGrasp(Vector3D(0, 0, 0.05));
+  g.tauMax = Q::Constant(7, 0.02);
+  const auto r = trial().run(g, dwc_->workcell().defaultState());
+  EXPECT_TRUE(r.outcome == GraspOutcome::kDropped || r.outcome == GraspOutcome::kSlipped)
+      << describe(r);
+}
+
+void expectSame(const GraspTrialResult& a, const GraspTrialResult& b) {
+  EXPECT_EQ(a.outcome, b.outcome);
+  EXPECT_EQ(a.qLift, b.qLift);
+  EXPECT_EQ(a.qGws, b.qGws);
+  EXPECT_EQ(a.simulatedTime, b.simulatedTime);
+  EXPECT_EQ(a.qGrasp, b.qGrasp);
+  EXPECT_EQ(a.objectLift, b.objectLift);
+  ASSERT_EQ(a.contacts.size(), b.contacts.size());
+  for (std::size_t i = 0; i < a.contacts.size(); ++i) {
+    EXPECT_EQ(a.contacts[i].position, b.contacts[i].position);
+    EXPECT_EQ(a.contacts[i].normalForce, b.contacts[i].normalForce);
+  }
+}
+
+TEST_F(SdhBoxTrial, DeterministicTwiceAndInTwoThreads) {
+  const GraspTrial t = trial();
+  const auto g = cylinderGrasp(Vector3D(0.005, 0.003, 0.05));
+  const auto& state = dwc_->workcell().defaultState();
+  const auto first = t.run(g, state);
+  expectSame(t.run(g, state), first);
+  for (int round = 0; round < 3; ++round) {
+    auto a = std::async(std::launch::async, [&] { return t.run(g, state); });
+    auto b = std::async(std::launch::async, [&] { return t.run(g, state); });
+    expectSame(a.get(), first);
+    expectSame(b.get(), first);
+  }
+}
+
+}  // namespace

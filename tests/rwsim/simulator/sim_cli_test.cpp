@@ -1,0 +1,111 @@
+// `visgrab sim` and `visgrab grasp` on the simulator tests' SDH scene.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "support/test_support.hpp"
+
+namespace {
+
+struct RunResult {
+  int exitCode = -1;
+  std::string output;  // stdout and stderr together
+};
+
+RunResult run(const std::string& args) {
+  const std::string command = std::string("'") + VISGRAB_BINARY + "' " + args + " 2>&1";
+  RunResult result;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (pipe == nullptr) return result;
+  std::array<char, 4096> buffer{};
+  std::size_t n = 0;
+  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) {
+    result.output.append(buffer.data(), n);
+  }
+  const int status = pclose(pipe);
+  result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return result;
+}
+
+std::string scene() {
+  return "'" +
+         (visgrab::test::sourceDir() / "tests/rwsim/simulator/data/sdh_box.dwc.xml").string() + "'";
+}
+
+const std::string kCylinder =
+    " --hand SchunkHand --pose 0 0 0.05 0 180 0"
+    " --qopen -1.048 0.174 0 -1.048 0.174 -1.048 0.174 --qclose 0 0.349 0 0 0.349 0 0.349"
+    " --taumax 2.1,1.4,2.1,1.05,0.7,1.05,0.7";
+
+TEST(SimCli, SimWritesPosesPerStep) {
+  visgrab::test::TempDir dir;
+  const auto csv = dir.path() / "poses.csv";
+  const RunResult r = run("sim " + scene() + " --time 0.05 --dt 0.01 --out '" + csv.string() + "'");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("simulated 0.05 s in 5 steps"), std::string::npos) << r.output;
+  std::ifstream in(csv);
+  std::string header;
+  std::getline(in, header);
+  EXPECT_EQ(header, "time,body,x,y,z,qw,qx,qy,qz");
+  int rows = 0;
+  std::string last;
+  for (std::string line; std::getline(in, line);) {
+    ++rows;
+    last = line;
+  }
+  EXPECT_EQ(rows, 6 * 11);  // t = 0 and 5 steps, 11 bodies
+  EXPECT_EQ(last.rfind("0.05,SchunkHand.f3.Joint3,", 0), 0u) << last;
+}
+
+TEST(SimCli, SimPrintsFinalPosesWithoutOut) {
+  const RunResult r = run("sim " + scene() + " --time 0.02");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("final poses"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("  Box  "), std::string::npos) << r.output;
+}
+
+TEST(SimCli, GraspReportsOutcomeCodeAndQualities) {
+  const RunResult r = run("grasp " + scene() + kCylinder);
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("outcome: stable (RobWork code 1)"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("Q_lift: 0.9"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("Q_GWS: "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("contacts after lifting"), std::string::npos) << r.output;
+}
+
+TEST(SimCli, BadArgumentsAreUsageErrors) {
+  struct Case {
+    std::string args;
+    std::string message;
+  };
+  const std::string open7 = " --qopen -1.048 0.174 0 -1.048 0.174 -1.048 0.174";
+  const std::string close7 = " --qclose 0 0.349 0 0 0.349 0 0.349";
+  const Case cases[] = {
+      {"sim " + scene(), "--time is required"},
+      {"sim " + scene() + " --time -1", "--time must be > 0"},
+      {"sim " + scene() + " --time 1 --speed 2", "unknown option --speed"},
+      {"grasp " + scene() + " --hand SchunkHand" + open7 + close7, "--pose"},
+      {"grasp " + scene() + " --hand SchunkHand --pose 0 0 0.05 0 180" + open7 + close7,
+       "--pose needs 6 numbers"},
+      {"grasp " + scene() + " --hand SchunkHand --pose 0 0 0.05 0 180 0 --qopen 0 0 0" + close7,
+       "--qopen has 3 values but SchunkHand has 7 DOF"},
+      {"grasp " + scene() + " --hand Robot --pose 0 0 0.05 0 180 0" + open7 + close7,
+       "no rigid device 'Robot'"},
+      {"grasp " + scene() + kCylinder + " --taumax 1 1", "--taumax given twice"},
+      {"grasp " + scene() + " --hand SchunkHand --pose 0 0 0.05x 0 180 0" + open7 + close7,
+       "'0.05x' is not a number"},
+  };
+  for (const Case& c : cases) {
+    const RunResult r = run(c.args);
+    EXPECT_EQ(r.exitCode, 2) << c.args << "\n" << r.output;
+    EXPECT_NE(r.output.find(c.message), std::string::npos) << c.args << "\n" << r.output;
+    EXPECT_NE(r.output.find("usage: visgrab "), std::string::npos) << r.output;
+  }
+}
+
+}  // namespace

@@ -1,0 +1,209 @@
+// The simulator against analytic physics: resting contact, friction on a slope, free fall,
+// a friction pinch and a torque-limited finger.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "rw/math/rpy.hpp"
+#include "rwsim/simulator/simulator.hpp"
+#include "sim_test_scenes.hpp"
+#include "support/test_support.hpp"
+
+namespace {
+
+using rw::math::Transform3D;
+using rw::math::Vector3D;
+using rwsim::simulator::Simulator;
+using rwsim::simulator::StepStatus;
+using visgrab::test::sim::kG;
+using visgrab::test::sim::SceneBuilder;
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+
+Transform3D at(double x, double y, double z) {
+  return rw::math::makeTranslation(Vector3D(x, y, z));
+}
+
+// Runs until `t`, failing the test on a bad step.
+void runUntil(Simulator& sim, double t) {
+  while (sim.time() < t - 1e-9) {
+    const StepStatus s = sim.step();
+    ASSERT_EQ(s, StepStatus::kOk) << sim.failureDetail();
+  }
+}
+
+// Sum of the contact forces on body `b` in the last step.
+Vector3D forceOn(const Simulator& sim, int b) {
+  Vector3D f = Vector3D::Zero();
+  for (const auto& bc : sim.contacts()) {
+    for (const auto& p : bc.points) {
+      if (bc.bodyB == b) f += p.force;
+      if (bc.bodyA == b) f -= p.force;
+    }
+  }
+  return f;
+}
+
+TEST(SimulatorPhysics, BoxRestsOnTable) {
+  SceneBuilder scene("rest");
+  scene.addTable("Table", at(0, 0, -0.05), Vector3D(1, 1, 0.1));
+  scene.addBox("Box", at(0, 0, 0.05), Vector3D(0.1, 0.1, 0.1), 1.0);
+  const auto dwc = scene.build();
+  Simulator sim(*dwc);
+  const int box = dwc->findBody("Box");
+  runUntil(sim, 1.0);
+  EXPECT_NEAR(sim.bodyPose(box).translation().z(), 0.05, 1e-3);
+  EXPECT_NEAR(sim.bodyPose(box).translation().x(), 0.0, 1e-3);
+  EXPECT_LT(sim.bodyLinearVelocity(box).norm(), 1e-3);
+  // The table pushes the box up with its weight: checks ODE's normal and feedback conventions.
+  const Vector3D f = forceOn(sim, box);
+  EXPECT_NEAR(f.z(), 1.0 * kG, 0.02 * kG);
+  EXPECT_NEAR(f.head<2>().norm(), 0.0, 0.01);
+  // The state follows the bodies.
+  const auto& frame =
+      dwc->workcell().frames().frame(dwc->bodies()[static_cast<std::size_t>(box)].frame);
+  EXPECT_TRANSFORM_NEAR(frame.movableTransform(sim.state()), sim.bodyPose(box), 1e-12);
+}
+
+struct Slope {
+  std::unique_ptr<rwsim::dynamics::DynamicWorkCell> dwc;
+  Transform3D X_W_slope;
+};
+
+Slope slope(double angle) {
+  SceneBuilder scene("slope", 0.4);
+  const Transform3D X_W_slope(Eigen::AngleAxisd(angle, Vector3D::UnitY()));
+  scene.addTable("Slope", X_W_slope * at(0, 0, -0.05), Vector3D(2, 1, 0.1));
+  scene.addBox("Block", X_W_slope * at(0, 0, 0.025), Vector3D(0.1, 0.1, 0.05), 0.5);
+  return {scene.build(), X_W_slope};
+}
+
+// Distance slid down the slope (along the slope's -x... the downhill direction).
+double slid(const Simulator& sim, const Slope& s, int block) {
+  const Vector3D p = s.X_W_slope.inverse() * sim.bodyPose(block).translation();
+  return p.x();  // Ry(+angle) tilts +x downwards
+}
+
+TEST(SimulatorPhysics, BlockStaysOnA20DegreeSlope) {
+  const Slope s = slope(20 * kDeg);
+  Simulator sim(*s.dwc);
+  const int block = s.dwc->findBody("Block");
+  runUntil(sim, 1.0);
+  EXPECT_LT(std::abs(slid(sim, s, block)), 1e-3);
+  EXPECT_LT(sim.bodyLinearVelocity(block).norm(), 1e-3);
+}
+
+TEST(SimulatorPhysics, BlockSlidesOnA25DegreeSlope) {
+  const double angle = 25 * kDeg;
+  const Slope s = slope(angle);
+  Simulator sim(*s.dwc);
+  const int block = s.dwc->findBody("Block");
+  const double expected = kG * (std::sin(angle) - 0.4 * std::cos(angle));
+  runUntil(sim, 0.2);
+  const double s1 = slid(sim, s, block);
+  runUntil(sim, 0.8);
+  const double s2 = slid(sim, s, block);
+  // s = a t^2 / 2 from rest: a from the distance between two times.
+  const double a = 2.0 * (s2 - s1) / (0.8 * 0.8 - 0.2 * 0.2);
+  EXPECT_NEAR(a, expected, 0.1 * expected) << "s(0.2) " << s1 << ", s(0.8) " << s2;
+}
+
+TEST(SimulatorPhysics, FreeFallFollowsGravity) {
+  SceneBuilder scene("fall");
+  scene.addBox("Box", at(0, 0, 2.0), Vector3D(0.1, 0.1, 0.1), 1.0);
+  const auto dwc = scene.build();
+  Simulator sim(*dwc);
+  const int box = dwc->findBody("Box");
+  // Semi-implicit Euler falls (1 + dt/t) times too far: within 1% from t = 100 dt on.
+  for (const double t : {0.55, 0.6, 0.8}) {
+    runUntil(sim, t);
+    const double fallen = 2.0 - sim.bodyPose(box).translation().z();
+    EXPECT_NEAR(fallen, 0.5 * kG * t * t, 0.01 * 0.5 * kG * t * t) << "t = " << t;
+    EXPECT_NEAR(sim.bodyLinearVelocity(box).z(), -kG * t, 0.01 * kG * t);
+  }
+}
+
+TEST(SimulatorPhysics, DroppedBoxDoesNotRebound) {
+  SceneBuilder scene("drop");
+  scene.addTable("Table", at(0, 0, -0.05), Vector3D(1, 1, 0.1));
+  const double z0 = 0.35;
+  scene.addBox("Box", at(0, 0, z0), Vector3D(0.1, 0.1, 0.1), 1.0);
+  const auto dwc = scene.build();
+  Simulator sim(*dwc);
+  const int box = dwc->findBody("Box");
+  double highestAfterImpact = 0.0;
+  bool impacted = false;
+  while (sim.time() < 1.5) {
+    ASSERT_EQ(sim.step(), StepStatus::kOk) << sim.failureDetail();
+    const double z = sim.bodyPose(box).translation().z();
+    EXPECT_LE(z, z0 + 1e-9);
+    if (!sim.contacts().empty()) impacted = true;
+    if (impacted) highestAfterImpact = std::max(highestAfterImpact, z);
+  }
+  EXPECT_TRUE(impacted);
+  EXPECT_LT(highestAfterImpact, 0.05 + 0.005);  // no bounce with restitution 0
+  EXPECT_NEAR(sim.bodyPose(box).translation().z(), 0.05, 1e-3);
+  EXPECT_LT(sim.bodyLinearVelocity(box).norm(), 1e-3);
+}
+
+// Drop of the box between two jaws pressing with `force` each, at the given times.
+std::vector<double> pinchDrops(double force, const std::vector<double>& times) {
+  SceneBuilder scene("pinch");
+  const double mass = 0.5;
+  scene.addBox("Box", at(0, 0, 0), Vector3D(0.06, 0.06, 0.06), mass);
+  scene.addGripper(at(0, 0, 0), 0.04, force);  // jaw faces touch the box
+  const auto dwc = scene.build();
+  Simulator sim(*dwc);
+  const int box = dwc->findBody("Box");
+  sim.setMotorVelocityTargets(0, Eigen::Vector2d(0.05, 0.05));
+  std::vector<double> drops;
+  for (const double t : times) {
+    runUntil(sim, t);
+    drops.push_back(-sim.bodyPose(box).translation().z());
+  }
+  return drops;
+}
+
+constexpr double kPinchMass = 0.5;
+constexpr double kPinchMu = 0.6;  // Finger-Object
+
+TEST(SimulatorPhysics, PinchHoldsWithEnoughFriction) {
+  const double force = 1.25 * kPinchMass * kG / (2.0 * kPinchMu);  // 2 mu F = 1.25 m g
+  const auto drops = pinchDrops(force, {0.1, 1.1});
+  EXPECT_LT(std::abs(drops[1] - drops[0]), 1e-3);  // held for a second
+  EXPECT_LT(std::abs(drops[1]), 1e-3);
+}
+
+TEST(SimulatorPhysics, PinchSlipsWithTooLittleFriction) {
+  const double force = 0.8 * kPinchMass * kG / (2.0 * kPinchMu);  // 2 mu F = 0.8 m g
+  // While the box is between the jaws it slides down with a = g - 2 mu F / m = 0.2 g.
+  const auto drops = pinchDrops(force, {0.05, 0.15});
+  const double a = 2.0 * (drops[1] - drops[0]) / (0.15 * 0.15 - 0.05 * 0.05);
+  EXPECT_NEAR(a, 0.2 * kG, 0.1 * 0.2 * kG) << "drops " << drops[0] << ", " << drops[1];
+}
+
+TEST(SimulatorPhysics, FingerAtItsTorqueLimitPressesWithTauOverLever) {
+  SceneBuilder scene("finger");
+  const double lever = 0.1;
+  const double torque = 0.5;
+  scene.addFinger(Transform3D::Identity(), lever, torque);
+  // The tip's lowest point is at (lever, 0, 0); the plate's top 2 mm below it, clear of the rod.
+  scene.addTable("Plate", at(lever + 0.01, 0, -0.002 - 0.01), Vector3D(0.03, 0.05, 0.02));
+  const auto dwc = scene.build(0.0);  // no gravity: only the motor loads the plate
+  Simulator sim(*dwc);
+  sim.setMotorVelocityTargets(0, Eigen::VectorXd::Constant(1, 1.0));
+  runUntil(sim, 0.5);
+  const int plate = dwc->findBody("Plate");
+  const Vector3D f = forceOn(sim, plate);
+  double arm = 0.0;
+  for (const auto& bc : sim.contacts()) {
+    for (const auto& p : bc.points) arm = p.point.position.x();
+  }
+  EXPECT_NEAR(arm, lever, 0.005);
+  EXPECT_NEAR(-f.z(), torque / lever, 0.1 * torque / lever);
+  EXPECT_LT(std::abs(sim.jointVelocities(0)[0]), 1e-3);
+}
+
+}  // namespace
