@@ -52,11 +52,16 @@ void Arguments::requirePositionals(std::size_t n, const std::string& what) const
 
 namespace {
 
+// "group name" or, for a one-word command (empty name), "group".
+std::string commandWords(const Command& c) {
+  return c.name.empty() ? c.group : c.group + " " + c.name;
+}
+
 void printHelp(const std::vector<Command>& commands) {
   std::cout << "visgrab: the VisGraB benchmark for vision-based grasping\n\nUsage:\n";
   for (const Command& c : commands) {
-    std::cout << "  visgrab " << c.group << " " << c.name << " " << c.usage << "\n      "
-              << c.summary << "\n";
+    std::cout << "  visgrab " << commandWords(c) << " " << c.usage << "\n      " << c.summary
+              << "\n";
   }
   std::cout << "\n  visgrab --help | --version\n";
 }
@@ -75,18 +80,19 @@ int dispatch(const std::vector<Command>& commands, const std::vector<std::string
   const bool groupKnown = std::any_of(commands.begin(), commands.end(),
                                       [&](const Command& c) { return c.group == argv[0]; });
   for (const Command& c : commands) {
-    if (c.group != argv[0] || argv.size() < 2 || c.name != argv[1]) continue;
-    const std::vector<std::string> rest(argv.begin() + 2, argv.end());
+    const bool oneWord = c.name.empty();
+    if (c.group != argv[0] || (!oneWord && (argv.size() < 2 || c.name != argv[1]))) continue;
+    const std::vector<std::string> rest(argv.begin() + (oneWord ? 1 : 2), argv.end());
     if (std::find(rest.begin(), rest.end(), "--help") != rest.end()) {
-      std::cout << "usage: visgrab " << c.group << " " << c.name << " " << c.usage << "\n"
+      std::cout << "usage: visgrab " << commandWords(c) << " " << c.usage << "\n"
                 << c.summary << "\n";
       return 0;
     }
     try {
       return c.run(rest);
     } catch (const UsageError& e) {
-      std::cerr << "visgrab " << c.group << " " << c.name << ": " << e.what() << "\nusage: visgrab "
-                << c.group << " " << c.name << " " << c.usage << "\n";
+      std::cerr << "visgrab " << commandWords(c) << ": " << e.what() << "\nusage: visgrab "
+                << commandWords(c) << " " << c.usage << "\n";
       return 2;
     }
   }

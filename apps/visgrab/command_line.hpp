@@ -41,7 +41,7 @@ class Arguments {
 struct Command {
   /// Group ("wc").
   std::string group;
-  /// Name ("info").
+  /// Name ("info"); empty for a one-word command (`visgrab sim FILE`).
   std::string name;
   /// Usage after "visgrab group name".
   std::string usage;

@@ -1,14 +1,17 @@
 #include <exception>
 #include <iostream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "command_line.hpp"
+#include "sim_commands.hpp"
 #include "wc_commands.hpp"
 
 int main(int argc, char** argv) {
   try {
     std::vector<visgrab::app::Command> commands = visgrab::app::workcellCommands();
+    for (auto& c : visgrab::app::simulationCommands()) commands.push_back(std::move(c));
     const std::vector<std::string> args(argv + 1, argv + argc);
     return visgrab::app::dispatch(commands, args);
   } catch (const std::exception& e) {

@@ -1,0 +1,308 @@
+#include "sim_commands.hpp"
+
+#include <cctype>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <sstream>
+#include <string>
+
+#include "rw/loaders/diagnostic.hpp"
+#include "rw/math/rpy.hpp"
+#include "rwsim/loaders/dynamic_workcell_loader.hpp"
+#include "rwsim/simulator/grasp_trial.hpp"
+#include "rwsim/simulator/simulator.hpp"
+
+namespace visgrab::app {
+
+namespace {
+
+using rw::math::Transform3D;
+using rwsim::dynamics::DynamicWorkCell;
+
+std::string fmt(double v, int precision = 6) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*g", precision, v);
+  return buf;
+}
+
+std::string vectorText(const Eigen::VectorXd& v, int precision = 6) {
+  std::string out;
+  for (Eigen::Index i = 0; i < v.size(); ++i) out += (i ? " " : "") + fmt(v[i], precision);
+  return out;
+}
+
+// Loads a dynamic workcell, printing warnings; nullptr (after printing the errors) on failure.
+std::unique_ptr<DynamicWorkCell> load(const std::string& file) {
+  std::vector<rw::loaders::Diagnostic> warnings;
+  try {
+    auto dwc = rwsim::loaders::loadDynamicWorkCell(file, &warnings);
+    for (const auto& w : warnings) std::cerr << w.format() << "\n";
+    return dwc;
+  } catch (const rw::loaders::LoadError& e) {
+    for (const auto& w : warnings) std::cerr << w.format() << "\n";
+    std::cerr << e.what() << "\n";
+    return nullptr;
+  }
+}
+
+double parseNumber(const std::string& option, const std::string& text) {
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(v)) {
+    throw UsageError("--" + option + ": '" + text + "' is not a number");
+  }
+  return v;
+}
+
+double positiveOption(const Arguments& a, const std::string& name, std::optional<double> def) {
+  const auto text = a.option(name);
+  if (!text) {
+    if (!def) throw UsageError("--" + name + " is required");
+    return *def;
+  }
+  const double v = parseNumber(name, *text);
+  if (!(v > 0.0)) throw UsageError("--" + name + " must be > 0, got " + *text);
+  return v;
+}
+
+// A word meant as a number (then it must parse): starts like one and is not an option.
+bool looksNumeric(const std::string& s) {
+  if (s.empty() || s.rfind("--", 0) == 0) return false;
+  return std::isdigit(static_cast<unsigned char>(s[0])) || s[0] == '-' || s[0] == '+' ||
+         s[0] == '.';
+}
+
+// Takes the options that carry several numbers (`--pose x y z r p y`, also `--pose=x,y,...` or
+// one quoted word) out of `args`; the rest stays for Arguments.
+std::map<std::string, std::vector<double>> takeNumberLists(std::vector<std::string>& args,
+                                                           const std::vector<std::string>& names) {
+  std::map<std::string, std::vector<double>> lists;
+  std::vector<std::string> rest;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    std::string name;
+    std::string inlineValue;
+    for (const auto& n : names) {
+      if (args[i] == "--" + n) name = n;
+      if (args[i].rfind("--" + n + "=", 0) == 0) {
+        name = n;
+        inlineValue = args[i].substr(n.size() + 3);
+      }
+    }
+    if (name.empty()) {
+      rest.push_back(args[i]);
+      continue;
+    }
+    if (lists.count(name)) throw UsageError("--" + name + " given twice");
+    std::vector<std::string> words;
+    const auto split = [&](const std::string& text) {
+      std::string t = text;
+      for (char& c : t) c = (c == ',') ? ' ' : c;
+      std::istringstream is(t);
+      for (std::string w; is >> w;) words.push_back(w);
+    };
+    if (!inlineValue.empty()) split(inlineValue);
+    while (inlineValue.empty() && i + 1 < args.size() && !args[i + 1].empty() &&
+           (looksNumeric(args[i + 1]) || args[i + 1].find_first_of(" ,") != std::string::npos)) {
+      split(args[++i]);
+    }
+    auto& values = lists[name];
+    for (const auto& w : words) values.push_back(parseNumber(name, w));
+    if (values.empty()) throw UsageError("--" + name + " needs numbers");
+  }
+  args = rest;
+  return lists;
+}
+
+// --- visgrab sim --------------------------------------------------------------------------
+
+void writePoseRow(std::ostream& out, double t, const std::string& body, const Transform3D& X) {
+  const Eigen::Quaterniond q(X.linear());
+  const auto& p = X.translation();
+  out << fmt(t, 9) << "," << body << "," << fmt(p.x(), 9) << "," << fmt(p.y(), 9) << ","
+      << fmt(p.z(), 9) << "," << fmt(q.w(), 9) << "," << fmt(q.x(), 9) << "," << fmt(q.y(), 9)
+      << "," << fmt(q.z(), 9) << "\n"
+      << std::flush;
+}
+
+int runSim(const std::vector<std::string>& args) {
+  const Arguments a(args, {});
+  a.rejectUnknown({"time", "dt", "out"});
+  a.requirePositionals(1, "FILE (a .dwc.xml dynamic workcell)");
+  const double duration = positiveOption(a, "time", std::nullopt);
+  const auto dwc = load(a.positionals()[0]);
+  if (!dwc) return 1;
+  auto options = rwsim::simulator::optionsFromEngineProperties(*dwc);
+  options.timeStep = positiveOption(a, "dt", options.timeStep);
+  std::ofstream file;
+  if (const auto out = a.option("out")) {
+    file.open(*out);
+    if (!file) {
+      std::cerr << "visgrab sim: cannot write " << *out << "\n";
+      return 1;
+    }
+    file << "time,body,x,y,z,qw,qx,qy,qz\n" << std::flush;
+  }
+  rwsim::simulator::Simulator sim(*dwc, options);
+  const auto& bodies = dwc->bodies();
+  const auto writeAll = [&] {
+    if (!file.is_open()) return;
+    for (std::size_t b = 0; b < bodies.size(); ++b) {
+      writePoseRow(file, sim.time(), bodies[b].name, sim.bodyPose(static_cast<int>(b)));
+    }
+  };
+  writeAll();
+  const auto start = std::chrono::steady_clock::now();
+  rwsim::simulator::StepStatus status = rwsim::simulator::StepStatus::kOk;
+  int steps = 0;
+  while (sim.time() < duration - 1e-9 && status == rwsim::simulator::StepStatus::kOk) {
+    status = sim.step();
+    ++steps;
+    if (status == rwsim::simulator::StepStatus::kOk) writeAll();
+  }
+  const double wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::cout << "simulated " << fmt(sim.time()) << " s in " << steps << " steps of "
+            << fmt(options.timeStep) << " s (" << fmt(wall * 1e3, 4) << " ms wall, "
+            << options.stepMethod << ")\n";
+  if (status != rwsim::simulator::StepStatus::kOk) {
+    std::cerr << "visgrab sim: simulation failed at t = " << fmt(sim.time())
+              << " s: " << sim.failureDetail() << "\n";
+    return 1;
+  }
+  if (!file.is_open()) {
+    std::cout << "final poses (x y z m, qw qx qy qz):\n";
+    for (std::size_t b = 0; b < bodies.size(); ++b) {
+      const Transform3D X = sim.bodyPose(static_cast<int>(b));
+      const Eigen::Quaterniond q(X.linear());
+      std::cout << "  " << bodies[b].name << "  " << vectorText(X.translation()) << "  "
+                << fmt(q.w()) << " " << fmt(q.x()) << " " << fmt(q.y()) << " " << fmt(q.z())
+                << "\n";
+    }
+  }
+  return 0;
+}
+
+// --- visgrab grasp ------------------------------------------------------------------------
+
+Eigen::VectorXd dofVector(const std::map<std::string, std::vector<double>>& lists,
+                          const std::string& name, int dof, const std::string& hand,
+                          bool required) {
+  const auto it = lists.find(name);
+  if (it == lists.end()) {
+    if (required)
+      throw UsageError("--" + name + " is required (" + std::to_string(dof) + " values for " +
+                       hand + ")");
+    return {};
+  }
+  if (static_cast<int>(it->second.size()) != dof) {
+    throw UsageError("--" + name + " has " + std::to_string(it->second.size()) + " values but " +
+                     hand + " has " + std::to_string(dof) + " DOF");
+  }
+  return Eigen::Map<const Eigen::VectorXd>(it->second.data(), dof);
+}
+
+std::string handName(const Arguments& a, const DynamicWorkCell& dwc) {
+  std::string names;
+  for (const auto& d : dwc.devices()) names += (names.empty() ? "" : ", ") + d.device->name();
+  if (const auto hand = a.option("hand")) {
+    if (dwc.findDevice(*hand) < 0) {
+      throw UsageError("no rigid device '" + *hand +
+                       "' (devices: " + (names.empty() ? "none" : names) + ")");
+    }
+    return *hand;
+  }
+  if (dwc.devices().size() == 1) return dwc.devices()[0].device->name();
+  throw UsageError("--hand is required (devices: " + (names.empty() ? "none" : names) + ")");
+}
+
+void printResult(const rwsim::simulator::GraspTrialResult& r, const DynamicWorkCell& dwc) {
+  std::cout << "outcome: " << rwsim::simulator::outcomeName(r.outcome) << " (RobWork code "
+            << rwsim::simulator::robworkCode(r.outcome) << ")\n"
+            << "Q_lift: " << fmt(r.qLift) << "\nQ_GWS: " << fmt(r.qGws) << "\n"
+            << "object: "
+            << (r.object >= 0 ? dwc.bodies()[static_cast<std::size_t>(r.object)].name : "-")
+            << "\nsimulated time: " << fmt(r.simulatedTime) << " s\n"
+            << "q grasp: " << vectorText(r.qGrasp) << "\n";
+  if (r.outcome == rwsim::simulator::GraspOutcome::kStable ||
+      r.outcome == rwsim::simulator::GraspOutcome::kSlipped) {
+    std::cout << "hand lift h: " << vectorText(r.handLift)
+              << " m, object lift o: " << vectorText(r.objectLift) << " m\n";
+  }
+  if (!r.detail.empty()) std::cout << "detail: " << r.detail << "\n";
+  std::cout << "contacts after lifting (object frame; position m, normal into the object, "
+               "normal force N, mu): "
+            << r.contacts.size() << "\n";
+  for (const auto& c : r.contacts) {
+    std::cout << "  p " << vectorText(c.position) << "  n " << vectorText(c.normal, 4) << "  f "
+              << fmt(c.normalForce, 4) << "  mu " << fmt(c.mu, 3) << "\n";
+  }
+}
+
+int runGrasp(const std::vector<std::string>& raw) {
+  std::vector<std::string> args = raw;
+  const auto lists = takeNumberLists(args, {"pose", "qopen", "qclose", "taumax"});
+  const Arguments a(args, {});
+  a.rejectUnknown({"hand", "tcp", "controller", "dt"});
+  a.requirePositionals(1, "FILE (a .dwc.xml dynamic workcell)");
+  const auto pose = lists.find("pose");
+  if (pose == lists.end()) throw UsageError("--pose x y z roll pitch yaw is required");
+  if (pose->second.size() != 6) {
+    throw UsageError("--pose needs 6 numbers (x y z in m, roll pitch yaw in degrees), got " +
+                     std::to_string(pose->second.size()));
+  }
+  const auto dwc = load(a.positionals()[0]);
+  if (!dwc) return 1;
+  rwsim::simulator::GraspTrialSetup setup;
+  setup.hand = handName(a, *dwc);
+  setup.tcpFrame = a.option("tcp").value_or("");
+  setup.controller = a.option("controller").value_or(setup.controller);
+  setup.simulator = rwsim::simulator::optionsFromEngineProperties(*dwc);
+  setup.simulator.timeStep = positiveOption(a, "dt", setup.simulator.timeStep);
+  std::unique_ptr<rwsim::simulator::GraspTrial> trial;
+  try {
+    trial = std::make_unique<rwsim::simulator::GraspTrial>(*dwc, setup);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+  const int dof = dwc->devices()[static_cast<std::size_t>(trial->handDevice())].device->dof();
+  rwsim::simulator::GraspParameters grasp;
+  const auto& v = pose->second;
+  grasp.X_W_tcp = rw::math::rpyTransform(rw::math::Vector3D(v[3], v[4], v[5]) * rw::math::kDeg2Rad,
+                                         rw::math::Vector3D(v[0], v[1], v[2]));
+  grasp.qOpen = dofVector(lists, "qopen", dof, setup.hand, true);
+  grasp.qClosed = dofVector(lists, "qclose", dof, setup.hand, true);
+  grasp.tauMax = dofVector(lists, "taumax", dof, setup.hand, false);
+  if (grasp.tauMax.size() > 0 && grasp.tauMax.minCoeff() < 0.0) {
+    throw UsageError("--taumax values must be >= 0");
+  }
+  std::cout << "hand " << setup.hand << ", TCP "
+            << dwc->workcell().frames().frame(trial->tcpFrame()).name() << ", controller "
+            << setup.controller << "\n";
+  printResult(trial->run(grasp, dwc->workcell().defaultState()), *dwc);
+  return 0;
+}
+
+}  // namespace
+
+std::vector<Command> simulationCommands() {
+  return {
+      {"sim", "", "FILE.dwc.xml --time T [--dt DT] [--out poses.csv]",
+       "Simulate a dynamic workcell for T seconds; write every body's pose per step as CSV "
+       "(time,body,x,y,z,qw,qx,qy,qz) or print the final poses.",
+       runSim},
+      {"grasp", "",
+       "FILE.dwc.xml [--hand NAME] --pose X Y Z ROLL PITCH YAW --qopen Q... --qclose Q... "
+       "[--taumax T...] [--tcp FRAME] [--controller NAME] [--dt DT]",
+       "Run one grasp trial: TCP pose in m and RobWork RPY degrees (Rz Ry Rx, as in .wc.xml), "
+       "q in rad/m, tau in N m/N; print the outcome, RobWork code, Q_lift, Q_GWS and contacts.",
+       runGrasp},
+  };
+}
+
+}  // namespace visgrab::app
