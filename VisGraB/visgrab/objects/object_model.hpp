@@ -1,0 +1,79 @@
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "rw/geometry/geometry.hpp"
+#include "rw/geometry/mass_properties.hpp"
+#include "rw/math/types.hpp"
+#include "visgrab/objects/object_spec.hpp"
+#include "visgrab/visual/visual_mesh.hpp"
+
+namespace visgrab::objects {
+
+/// One drawable part of an object (a box's shell, a can's label, its lids, a handle), each with
+/// its own texture and specularity.
+struct VisualPart {
+  /// Part name, unique in the object ("box", "side0_label", "top", "handle", ...).
+  std::string name;
+  /// The mesh in the object frame; its texture is sRGB-encoded, `colour` is white.
+  visual::VisualMesh mesh;
+};
+
+/// A way the object rests on a table: its pose relative to a table frame whose z = 0 is the
+/// table top, with the collision geometry touching z = 0 from above and the collision bounding
+/// box centred on the table frame's z axis. Scene generation turns it about the table's z axis.
+struct RestingPose {
+  /// "standing", "lying-x" (turned about the object's x axis), "lying-y", "lying".
+  std::string name;
+  /// True for the lying poses (the object's z axis horizontal).
+  bool lying = false;
+  /// Pose of the object frame in the table frame.
+  rw::math::Transform3D X_TO = rw::math::Transform3D::Identity();
+  /// The object-frame direction that points up in this pose.
+  rw::math::Vector3D up = rw::math::Vector3D::UnitZ();
+};
+
+/// A generated object: what the cameras see, what the simulator touches, and how heavy it is.
+/// Frame: origin at the centre of the bottom face when standing, z up.
+struct ObjectModel {
+  /// Number in the paper's tables.
+  int id = 0;
+  /// Lower-case name.
+  std::string name;
+  /// Visual parts; together they form a closed surface (when vertices are joined by position).
+  std::vector<VisualPart> visual;
+  /// Convex collision pieces, closed and wound outwards (a box; frusta; handle segments).
+  std::vector<std::shared_ptr<const rw::geometry::TriMesh>> collision;
+  /// Mass, COG and inertia about the COG, uniform density over the collision pieces.
+  rw::geometry::BodyMassProperties mass;
+  /// Standing first, then the lying poses.
+  std::vector<RestingPose> restingPoses;
+
+  /// Bounding box of the collision pieces in the object frame.
+  rw::geometry::Aabb collisionBounds() const;
+};
+
+/// A generated table surface: a textured rectangle at z = 0 centred at the origin, facing up.
+struct TableModel {
+  /// "plain" or "textured".
+  std::string name;
+  /// The surface mesh (normals +z) with its texture.
+  visual::VisualMesh surface;
+  /// Size along x in metres.
+  double x = 0.0;
+  /// Size along y in metres.
+  double y = 0.0;
+};
+
+/// Generates the object described by `spec` (deterministic: the same spec gives the same
+/// meshes and textures, bit for bit).
+/// @throws std::invalid_argument if `spec` breaks the rules loadObjectSpecs checks.
+ObjectModel generateObject(const ObjectSpec& spec);
+
+/// Generates a table surface (deterministic).
+/// @throws std::invalid_argument unless the size is positive.
+TableModel generateTable(const TableSpec& spec);
+
+}  // namespace visgrab::objects
