@@ -1,0 +1,87 @@
+#include "visgrab/render/png_io.hpp"
+
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include <array>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace visgrab::render {
+
+namespace {
+
+std::vector<std::uint8_t> readBytes(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error(path.string() + ": cannot open the file");
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+visual::RgbImage decode(const std::filesystem::path& path, const std::vector<std::uint8_t>& bytes) {
+  cv::Mat bgr;
+  try {
+    bgr = cv::imdecode(bytes, cv::IMREAD_COLOR);
+  } catch (const cv::Exception& e) {
+    throw std::runtime_error(path.string() + ": cannot decode the image: " + e.what());
+  }
+  if (bgr.empty() || bgr.type() != CV_8UC3) {
+    throw std::runtime_error(path.string() + ": cannot decode the image (corrupt or truncated)");
+  }
+  visual::RgbImage image;
+  image.width = bgr.cols;
+  image.height = bgr.rows;
+  image.pixels.resize(static_cast<std::size_t>(bgr.cols) * static_cast<std::size_t>(bgr.rows) * 3);
+  cv::Mat rgb(bgr.rows, bgr.cols, CV_8UC3, image.pixels.data());
+  cv::cvtColor(bgr, rgb, cv::COLOR_BGR2RGB);
+  return image;
+}
+
+}  // namespace
+
+void writePng(const std::filesystem::path& path, const visual::RgbImage& image, int compression) {
+  if (image.empty() || image.pixels.size() != static_cast<std::size_t>(image.width) *
+                                                  static_cast<std::size_t>(image.height) * 3) {
+    throw std::invalid_argument("writePng: " + path.string() + ": empty or inconsistent image");
+  }
+  if (compression < 0 || compression > 9) {
+    throw std::invalid_argument("writePng: compression level " + std::to_string(compression) +
+                                " outside 0..9");
+  }
+  // NOLINTNEXTLINE(cppcoreguidelines-pro-type-const-cast): cv::Mat wraps without copying.
+  const cv::Mat rgb(image.height, image.width, CV_8UC3,
+                    const_cast<std::uint8_t*>(image.pixels.data()));
+  cv::Mat bgr;
+  cv::cvtColor(rgb, bgr, cv::COLOR_RGB2BGR);
+  std::vector<std::uint8_t> bytes;
+  const std::vector<int> params = {cv::IMWRITE_PNG_COMPRESSION, compression};
+  if (!cv::imencode(".png", bgr, bytes, params)) {
+    throw std::runtime_error(path.string() + ": cannot encode the PNG");
+  }
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out.write(reinterpret_cast<const char*>(bytes.data()),
+            static_cast<std::streamsize>(bytes.size()));
+  out.close();
+  if (!out) throw std::runtime_error(path.string() + ": cannot write the file");
+}
+
+visual::RgbImage readPng(const std::filesystem::path& path) {
+  const std::vector<std::uint8_t> bytes = readBytes(path);
+  static constexpr std::array<std::uint8_t, 8> kSignature = {0x89, 'P',  'N',  'G',
+                                                             '\r', '\n', 0x1a, '\n'};
+  if (bytes.size() < kSignature.size() ||
+      std::memcmp(bytes.data(), kSignature.data(), kSignature.size()) != 0) {
+    throw std::runtime_error(path.string() + ": not a PNG file");
+  }
+  return decode(path, bytes);
+}
+
+visual::RgbImage readImage(const std::filesystem::path& path) {
+  return decode(path, readBytes(path));
+}
+
+}  // namespace visgrab::render

@@ -1,0 +1,160 @@
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "render_test_util.hpp"
+#include "support/test_support.hpp"
+#include "visgrab/render/mesh_loader.hpp"
+#include "visgrab/render/png_io.hpp"
+
+namespace visgrab::render {
+namespace {
+
+using visgrab::test::TempDir;
+using visgrab::test::writeFile;
+
+/// Expects `call` to throw std::runtime_error whose message contains every one of `parts`.
+template <class Call>
+void expectErrorMentioning(Call call, std::initializer_list<std::string> parts) {
+  try {
+    call();
+    FAIL() << "expected std::runtime_error";
+  } catch (const std::runtime_error& e) {
+    for (const auto& part : parts) {
+      EXPECT_NE(std::string(e.what()).find(part), std::string::npos)
+          << "message '" << e.what() << "' lacks '" << part << "'";
+    }
+  }
+}
+
+visual::RgbImage twoByTwo() {
+  visual::RgbImage image;
+  image.width = 2;
+  image.height = 2;
+  image.pixels = {255, 0, 0, 0, 255, 0, 0, 0, 255, 255, 255, 255};
+  return image;
+}
+
+TEST(PngTest, RoundTripKeepsEveryByte) {
+  TempDir dir;
+  visual::RgbImage image;
+  image.width = 7;
+  image.height = 3;
+  for (int i = 0; i < 7 * 3 * 3; ++i) image.pixels.push_back(static_cast<std::uint8_t>(i * 11));
+  for (int level : {0, 3, 9}) {
+    const auto path = dir.path() / ("image" + std::to_string(level) + ".png");
+    writePng(path, image, level);
+    const visual::RgbImage back = readPng(path);
+    EXPECT_EQ(back.width, 7);
+    EXPECT_EQ(back.height, 3);
+    EXPECT_TRUE(back.pixels == image.pixels) << "level " << level;
+  }
+}
+
+TEST(PngTest, TruncatedPngThrowsNamingThePath) {
+  TempDir dir;
+  visual::RgbImage image;
+  image.width = 64;
+  image.height = 64;
+  for (int i = 0; i < 64 * 64 * 3; ++i) image.pixels.push_back(static_cast<std::uint8_t>(i * 37));
+  const auto path = dir.path() / "whole.png";
+  writePng(path, image, 0);
+  const auto size = std::filesystem::file_size(path);
+  std::filesystem::resize_file(path, size / 2);
+  expectErrorMentioning([&] { readPng(path); }, {path.string()});
+}
+
+TEST(PngTest, MissingAndNonPngFilesThrowNamingThePath) {
+  TempDir dir;
+  const auto missing = dir.path() / "missing.png";
+  expectErrorMentioning([&] { readPng(missing); }, {missing.string()});
+  const auto text = writeFile(dir.path() / "text.png", "not an image at all");
+  expectErrorMentioning([&] { readPng(text); }, {text.string(), "not a PNG"});
+  const auto nowhere = dir.path() / "no" / "such" / "folder" / "out.png";
+  expectErrorMentioning([&] { writePng(nowhere, twoByTwo()); }, {nowhere.string()});
+}
+
+/// A textured square: 4 vertices, 2 triangles, OBJ's v-up texture coordinates.
+void writeTexturedSquare(const std::filesystem::path& dir, const std::string& textureName) {
+  writeFile(dir / "square.obj",
+            "mtllib square.mtl\n"
+            "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+            "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+            "vn 0 0 1\n"
+            "usemtl painted\n"
+            "f 1/1/1 2/2/1 3/3/1\nf 1/1/1 3/3/1 4/4/1\n");
+  writeFile(dir / "square.mtl",
+            "newmtl painted\nKd 0.5 0.25 1.0\nKs 0.2 0.2 0.2\nmap_Kd " + textureName + "\n");
+}
+
+TEST(MeshLoaderTest, ObjWithMaterialAndTextureRoundTrip) {
+  TempDir dir;
+  writeTexturedSquare(dir.path(), "textures/paint.png");
+  std::filesystem::create_directories(dir.path() / "textures");
+  writePng(dir.path() / "textures" / "paint.png", twoByTwo());
+
+  const auto meshes = loadVisualMeshes(dir.path() / "square.obj");
+  ASSERT_EQ(meshes.size(), 1u);
+  const visual::VisualMesh& mesh = meshes[0];
+  ASSERT_EQ(mesh.positions.size(), 4u);
+  ASSERT_EQ(mesh.uvs.size(), 4u);
+  ASSERT_EQ(mesh.normals.size(), 4u);
+  EXPECT_EQ(mesh.triangles.size(), 2u);
+  EXPECT_NEAR(mesh.colour.x(), 0.5f, 1e-6);
+  EXPECT_NEAR(mesh.colour.y(), 0.25f, 1e-6);
+  EXPECT_NEAR(mesh.colour.z(), 1.0f, 1e-6);
+  EXPECT_NEAR(mesh.specular, 0.2f, 1e-6);
+  for (std::size_t i = 0; i < 4; ++i) {
+    EXPECT_NEAR(mesh.normals[i].z(), 1.0f, 1e-6);
+    // OBJ's v runs up from the bottom; VisualMesh's runs down from the top: the vertex at
+    // y = 1 (vt v = 1, the texture's top edge) gets v = 0.
+    const Eigen::Vector3f& p = mesh.positions[i];
+    EXPECT_NEAR(mesh.uvs[i].x(), p.x(), 1e-6);
+    EXPECT_NEAR(mesh.uvs[i].y(), 1.0f - p.y(), 1e-6);
+  }
+  ASSERT_TRUE(mesh.texture);
+  EXPECT_EQ(mesh.texture->width, 2);
+  EXPECT_EQ(mesh.texture->height, 2);
+  EXPECT_TRUE(mesh.texture->pixels == twoByTwo().pixels);
+}
+
+TEST(MeshLoaderTest, StlWithoutMaterialLoads) {
+  TempDir dir;
+  const auto path = writeFile(dir.path() / "tri.stl",
+                              "solid t\n"
+                              "facet normal 0 0 1\nouter loop\n"
+                              "vertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\n"
+                              "endloop\nendfacet\n"
+                              "endsolid t\n");
+  const auto meshes = loadVisualMeshes(path);
+  ASSERT_EQ(meshes.size(), 1u);
+  EXPECT_EQ(meshes[0].triangles.size(), 1u);
+  EXPECT_TRUE(meshes[0].uvs.empty());
+  EXPECT_FALSE(meshes[0].texture);
+}
+
+TEST(MeshLoaderTest, MissingFileThrowsNamingIt) {
+  TempDir dir;
+  const auto path = dir.path() / "absent.obj";
+  expectErrorMentioning([&] { loadVisualMeshes(path); }, {path.string(), "does not exist"});
+}
+
+TEST(MeshLoaderTest, MissingTextureThrowsNamingBothFiles) {
+  TempDir dir;
+  writeTexturedSquare(dir.path(), "gone.png");
+  const auto path = dir.path() / "square.obj";
+  expectErrorMentioning([&] { loadVisualMeshes(path); },
+                        {path.string(), (dir.path() / "gone.png").string()});
+}
+
+TEST(MeshLoaderTest, GarbageObjThrowsNamingIt) {
+  TempDir dir;
+  const auto path =
+      writeFile(dir.path() / "garbage.obj", "this is not\n\x01\x02 a mesh {{{\nf 9 8 7\n");
+  expectErrorMentioning([&] { loadVisualMeshes(path); }, {path.string()});
+}
+
+}  // namespace
+}  // namespace visgrab::render
