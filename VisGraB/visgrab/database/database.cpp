@@ -1,0 +1,266 @@
+#include "visgrab/database/database.hpp"
+
+#include <algorithm>
+#include <fstream>
+#include <iomanip>
+#include <iterator>
+#include <sstream>
+#include <system_error>
+#include <utility>
+
+#include "rw/loaders/xml/text_file.hpp"
+#include "rw/math/rpy.hpp"
+#include "visgrab/database/original_manifest.hpp"
+
+namespace visgrab::database {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::size_t editDistance(std::string_view a, std::string_view b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = up;
+    }
+  }
+  return row[b.size()];
+}
+
+std::string unknownMessage(const std::string& id, const std::vector<std::string>& closest) {
+  std::string message = "unknown scene id \"" + id + "\"";
+  if (!closest.empty()) {
+    message += "; closest known ids:";
+    for (const std::string& c : closest) message += " " + c;
+  }
+  return message;
+}
+
+cv::Mat readImage(const fs::path& file, const std::string& what, const std::string& id, int flags) {
+  const std::string prefix = file.string() + ": error: " + what + " of scene " + id + ": ";
+  if (file.empty()) throw DatabaseError("scene " + id + ": no " + what + " is known");
+  std::error_code ec;
+  if (!fs::is_regular_file(file, ec)) throw DatabaseError(prefix + "no such file");
+  std::ifstream in(file, std::ios::binary);
+  std::vector<uchar> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (!in.good() && !in.eof()) throw DatabaseError(prefix + "cannot read the file");
+  if (bytes.empty()) throw DatabaseError(prefix + "the file is empty");
+  cv::Mat image;
+  try {
+    image = cv::imdecode(bytes, flags);
+  } catch (const cv::Exception& e) {
+    throw DatabaseError(prefix + "cannot decode the image: " + e.msg);
+  }
+  if (image.empty()) {
+    throw DatabaseError(prefix + "cannot decode the image (corrupt, truncated or not an image)");
+  }
+  return image;
+}
+
+std::string fileLine(const char* label, const fs::path& file) {
+  std::string line = std::string(label) + file.string();
+  std::error_code ec;
+  if (!file.empty() && !fs::exists(file, ec)) line += "  (missing)";
+  return line + "\n";
+}
+
+}  // namespace
+
+UnknownSceneError::UnknownSceneError(std::string id, std::vector<std::string> closest)
+    : DatabaseError(unknownMessage(id, closest)),
+      id_(std::move(id)),
+      closest_(std::move(closest)) {}
+
+Database Database::open(const fs::path& dir) {
+  const DatabaseIndex index = readIndex(dir / kIndexFileName);
+  Database db;
+  db.source_ = Source::kGenerated;
+  db.root_ = dir;
+  db.seed_ = index.seed;
+  for (const SceneRecord& r : index.scenes) {
+    SceneEntry e;
+    e.id = r.id;
+    e.conditions = r.conditions;
+    e.originalId = originalIdOf(r.conditions);
+    e.leftImage = dir / r.files.left;
+    e.rightImage = dir / r.files.right;
+    e.calibration = dir / r.files.calibration;
+    e.workcell = dir / r.files.workcell;
+    e.dynamicWorkcell = dir / r.files.dynamicWorkcell;
+    e.groundTruth = r.objects;
+    db.scenes_.push_back(std::move(e));
+  }
+  std::stable_sort(db.scenes_.begin(), db.scenes_.end(), [](const auto& a, const auto& b) {
+    return sceneIndex(*a.conditions) < sceneIndex(*b.conditions);
+  });
+  db.buildLookup();
+  return db;
+}
+
+Database Database::openOriginalManifestText(std::string_view text, const fs::path& manifest) {
+  OriginalManifest m = parseOriginalManifest(text, manifest);
+  Database db;
+  db.source_ = Source::kOriginalManifest;
+  db.root_ = m.directory;
+  db.warnings_ = std::move(m.warnings);
+  for (const OriginalScene& s : m.scenes) {
+    if (m.find(s.id) != &s) continue;  // an earlier duplicate: the last one wins
+    SceneEntry e;
+    e.id = s.id;
+    e.originalId = s.id;
+    e.conditions = deriveConditions(s);
+    e.leftImage = s.leftImage;
+    e.rightImage = s.rightImage;
+    e.workcell = s.workcell;
+    e.dynamicWorkcell = s.dynamicWorkcell;
+    e.disparity = s.disparity;
+    e.pointCloud = s.pointCloud;
+    e.collision = s.collision;
+    db.scenes_.push_back(std::move(e));
+  }
+  db.buildLookup();
+  return db;
+}
+
+Database Database::openOriginalManifest(const fs::path& manifest) {
+  std::string text;
+  const std::string why = rw::loaders::xml::readTextFile(manifest, text);
+  if (!why.empty()) {
+    throw rw::loaders::LoadError(
+        {rw::loaders::Diagnostic{rw::loaders::Diagnostic::Severity::kError,
+                                 manifest.string(),
+                                 0,
+                                 0,
+                                 "cannot read the VisGraB manifest: " + why,
+                                 {}}});
+  }
+  return openOriginalManifestText(text, manifest);
+}
+
+Database Database::openAny(const fs::path& path) {
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) return open(path);
+  if (path.filename() == kIndexFileName) return open(path.parent_path());
+  return openOriginalManifest(path);
+}
+
+void Database::buildLookup() {
+  byId_.clear();
+  byAlias_.clear();
+  for (std::size_t i = 0; i < scenes_.size(); ++i) {
+    byId_.emplace(scenes_[i].id, i);
+  }
+  for (std::size_t i = 0; i < scenes_.size(); ++i) {
+    const SceneEntry& e = scenes_[i];
+    std::string alias;
+    if (source_ == Source::kGenerated) {
+      alias = e.originalId;
+    } else if (e.conditions) {
+      alias = sceneIdOf(*e.conditions);
+    }
+    if (alias.empty() || byId_.count(alias) != 0) continue;
+    const auto [it, inserted] = byAlias_.emplace(alias, i);
+    if (!inserted) it->second = scenes_.size();  // ambiguous: two scenes map to it
+  }
+}
+
+const SceneEntry* Database::find(std::string_view id) const {
+  if (const auto it = byId_.find(id); it != byId_.end()) return &scenes_[it->second];
+  if (const auto it = byAlias_.find(id); it != byAlias_.end() && it->second < scenes_.size()) {
+    return &scenes_[it->second];
+  }
+  return nullptr;
+}
+
+std::vector<const SceneEntry*> Database::filter(const SceneFilter& f) const {
+  std::vector<const SceneEntry*> out;
+  for (const SceneEntry& e : scenes_) {
+    if (f.matches(e.id, e.conditions ? &*e.conditions : nullptr)) out.push_back(&e);
+  }
+  return out;
+}
+
+std::vector<std::string> Database::closestIds(std::string_view id, std::size_t count) const {
+  std::vector<std::pair<std::size_t, std::size_t>> ranked;  // (distance, index)
+  for (std::size_t i = 0; i < scenes_.size(); ++i) {
+    ranked.emplace_back(editDistance(id, scenes_[i].id), i);
+  }
+  const std::size_t n = std::min(count, ranked.size());
+  std::partial_sort(ranked.begin(), ranked.begin() + static_cast<std::ptrdiff_t>(n), ranked.end());
+  std::vector<std::string> out;
+  for (std::size_t i = 0; i < n; ++i) out.push_back(scenes_[ranked[i].second].id);
+  return out;
+}
+
+const SceneEntry& Database::scene(std::string_view id) const {
+  if (const SceneEntry* e = find(id)) return *e;
+  throw UnknownSceneError(std::string(id), closestIds(id));
+}
+
+cv::Mat Database::leftImage(std::string_view id, int flags) const {
+  const SceneEntry& e = scene(id);
+  return readImage(e.leftImage, "left image", e.id, flags);
+}
+
+cv::Mat Database::rightImage(std::string_view id, int flags) const {
+  const SceneEntry& e = scene(id);
+  return readImage(e.rightImage, "right image", e.id, flags);
+}
+
+StereoCalibration Database::calibration(std::string_view id) const {
+  const SceneEntry& e = scene(id);
+  if (e.calibration.empty()) {
+    throw DatabaseError("scene " + e.id +
+                        ": no calibration file is known (the original manifest names none)");
+  }
+  return readCalibration(e.calibration);
+}
+
+const std::vector<ObjectPose>& Database::groundTruth(std::string_view id) const {
+  return scene(id).groundTruth;
+}
+
+std::string Database::summaryLine(const SceneEntry& s) {
+  std::ostringstream out;
+  out << std::left << std::setw(44) << s.id << "  ";
+  out << (s.conditions ? describe(*s.conditions) : std::string("(conditions unknown)"));
+  return out.str();
+}
+
+std::string Database::details(const SceneEntry& s) {
+  std::string out = "id:               " + s.id + "\n";
+  if (s.originalId != s.id) out += "original id:      " + s.originalId + "\n";
+  if (s.conditions) {
+    out += "canonical id:     " + sceneIdOf(*s.conditions) + "\n";
+    out += "conditions:       " + describe(*s.conditions) + "\n";
+  } else {
+    out += "conditions:       unknown (not derivable from the manifest)\n";
+  }
+  out += fileLine("left image:       ", s.leftImage);
+  out += fileLine("right image:      ", s.rightImage);
+  if (!s.calibration.empty()) out += fileLine("calibration:      ", s.calibration);
+  out += fileLine("workcell:         ", s.workcell);
+  out += fileLine("dynamic workcell: ", s.dynamicWorkcell);
+  if (!s.disparity.empty()) out += fileLine("disparity:        ", s.disparity);
+  if (!s.pointCloud.empty()) out += fileLine("point cloud:      ", s.pointCloud);
+  if (!s.collision.empty()) out += fileLine("collision mesh:   ", s.collision);
+  for (const ObjectPose& o : s.groundTruth) {
+    const Eigen::Vector3d p = o.X_WO.translation();
+    const Eigen::Vector3d rpy = rw::math::rotationToRpy(o.X_WO.linear()) * rw::math::kRad2Deg;
+    std::ostringstream line;
+    line << std::fixed << std::setprecision(4) << "object " << o.object << " "
+         << objectName(o.object) << ": position " << p.x() << " " << p.y() << " " << p.z()
+         << " m, RPY " << std::setprecision(2) << rpy.x() << " " << rpy.y() << " " << rpy.z()
+         << " deg (table frame)\n";
+    out += line.str();
+  }
+  return out;
+}
+
+}  // namespace visgrab::database

@@ -1,0 +1,142 @@
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <opencv2/core/mat.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "rw/loaders/diagnostic.hpp"
+#include "visgrab/database/database_index.hpp"
+#include "visgrab/database/scene_filter.hpp"
+#include "visgrab/database/scene_set.hpp"
+#include "visgrab/database/stereo_calibration.hpp"
+
+namespace visgrab::database {
+
+/// A scene's data that cannot be read (missing or corrupt image, no calibration, ...).
+class DatabaseError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// A scene id that the database does not have; what() suggests the closest known ids.
+class UnknownSceneError : public DatabaseError {
+ public:
+  /// Makes the error for `id` with the closest known ids.
+  UnknownSceneError(std::string id, std::vector<std::string> closest);
+  /// The id asked for.
+  const std::string& id() const { return id_; }
+  /// The closest known ids (by edit distance), best first.
+  const std::vector<std::string>& closest() const { return closest_; }
+
+ private:
+  std::string id_;
+  std::vector<std::string> closest_;
+};
+
+/// One scene as the Database presents it (generated or original).
+struct SceneEntry {
+  /// The id used to select it: ours for a generated database, the manifest's for the original.
+  std::string id;
+  /// Its conditions; nullopt for an original scene whose conditions could not be derived.
+  std::optional<SceneConditions> conditions;
+  /// The id in the original layout (originalIdOf) for a generated scene; the manifest id for an
+  /// original one.
+  std::string originalId;
+  /// Left image (absolute or relative to the working folder, as the database was opened).
+  std::filesystem::path leftImage;
+  /// Right image.
+  std::filesystem::path rightImage;
+  /// Stereo calibration; empty for original scenes (the manifest names none).
+  std::filesystem::path calibration;
+  /// Scene workcell (.wc.xml).
+  std::filesystem::path workcell;
+  /// Scene dynamic workcell (.dwc.xml).
+  std::filesystem::path dynamicWorkcell;
+  /// Ground-truth object poses (generated scenes only).
+  std::vector<ObjectPose> groundTruth;
+  /// Original only: disparity image, point cloud and collision mesh (may be empty).
+  std::filesystem::path disparity, pointCloud, collision;
+};
+
+/// A scene database opened for reading: a generated folder (DIR/index.xml) or an original
+/// VisGraB benchmark manifest. Immutable after opening; safe to share between threads.
+class Database {
+ public:
+  /// Where the scenes came from.
+  enum class Source { kGenerated, kOriginalManifest };
+
+  /// Opens a generated database folder (reads DIR/index.xml; images are read on demand).
+  /// @throws rw::loaders::LoadError if the index is missing or corrupt.
+  static Database open(const std::filesystem::path& dir);
+  /// Opens an original VisGraB manifest (see readOriginalManifest).
+  /// @throws rw::loaders::LoadError.
+  static Database openOriginalManifest(const std::filesystem::path& manifest);
+  /// Same, from manifest text; `manifest` names it and gives the folder paths are relative to.
+  /// @throws rw::loaders::LoadError.
+  static Database openOriginalManifestText(std::string_view text,
+                                           const std::filesystem::path& manifest);
+  /// Opens what `path` is: a folder or an `index.xml` file → generated; another file → an
+  /// original manifest. @throws rw::loaders::LoadError.
+  static Database openAny(const std::filesystem::path& path);
+
+  /// Generated or original.
+  Source source() const { return source_; }
+  /// The database folder (generated) or the manifest's folder (original).
+  const std::filesystem::path& root() const { return root_; }
+  /// Generator seed (0 for an original manifest).
+  std::uint64_t seed() const { return seed_; }
+  /// Warnings found while opening (original manifests: ignored elements, duplicate ids).
+  const std::vector<rw::loaders::Diagnostic>& warnings() const { return warnings_; }
+
+  /// All scenes (generated: enumerateScenes() order; original: document order, one per id).
+  const std::vector<SceneEntry>& list() const { return scenes_; }
+  /// The scenes that `filter` selects, in list() order.
+  std::vector<const SceneEntry*> filter(const SceneFilter& filter) const;
+  /// True if scene(id) would find a scene.
+  bool contains(std::string_view id) const { return find(id) != nullptr; }
+  /// The scene with `id`. Also accepts the other spelling: an original id
+  /// (`textured/cocacola/img_03`) in a generated database, our id in an original one whose
+  /// conditions were derived. @throws UnknownSceneError naming the id and the closest ids.
+  const SceneEntry& scene(std::string_view id) const;
+  /// The closest known ids to `id` (edit distance), at most `count`, best first.
+  std::vector<std::string> closestIds(std::string_view id, std::size_t count = 3) const;
+
+  /// The left image, decoded with cv::imread `flags`. @throws UnknownSceneError, DatabaseError
+  /// naming the file when it is missing or cannot be decoded (corrupt, truncated).
+  cv::Mat leftImage(std::string_view id, int flags = cv::IMREAD_COLOR) const;
+  /// The right image; as leftImage.
+  cv::Mat rightImage(std::string_view id, int flags = cv::IMREAD_COLOR) const;
+  /// The scene's stereo calibration. @throws UnknownSceneError, DatabaseError (none known),
+  /// CalibrationError (file missing or invalid, naming file and node).
+  StereoCalibration calibration(std::string_view id) const;
+  /// The ground-truth object poses (empty for original scenes). @throws UnknownSceneError.
+  const std::vector<ObjectPose>& groundTruth(std::string_view id) const;
+
+  /// One line for `visgrab db list`: id and conditions.
+  static std::string summaryLine(const SceneEntry& scene);
+  /// Several lines for `visgrab db show`: ids, conditions, files (marked when missing),
+  /// ground truth.
+  static std::string details(const SceneEntry& scene);
+
+ private:
+  Database() = default;
+  const SceneEntry* find(std::string_view id) const;
+  void buildLookup();
+
+  Source source_ = Source::kGenerated;
+  std::filesystem::path root_;
+  std::uint64_t seed_ = 0;
+  std::vector<SceneEntry> scenes_;
+  std::map<std::string, std::size_t, std::less<>> byId_;
+  std::map<std::string, std::size_t, std::less<>> byAlias_;
+  std::vector<rw::loaders::Diagnostic> warnings_;
+};
+
+}  // namespace visgrab::database

@@ -1,0 +1,335 @@
+#include "visgrab/database/database_index.hpp"
+
+#include <charconv>
+#include <map>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <utility>
+
+#include "rw/loaders/diagnostic.hpp"
+#include "rw/loaders/xml/diagnostic_sink.hpp"
+#include "rw/loaders/xml/numbers.hpp"
+#include "rw/loaders/xml/text_file.hpp"
+#include "rw/loaders/xml/xml_reader.hpp"
+#include "rw/math/rpy.hpp"
+#include "visgrab/database/atomic_file.hpp"
+#include "visgrab/database/detail/index_schema.hpp"
+
+namespace visgrab::database {
+
+namespace xml = rw::loaders::xml;
+using rw::math::kDeg2Rad;
+using rw::math::kRad2Deg;
+
+namespace {
+
+constexpr std::string_view kRoot = "VisGraBDatabase";
+
+std::string shortest(double value) {
+  if (value == 0) return "0";
+  char buffer[64];
+  const auto [end, ec] = std::to_chars(buffer, buffer + sizeof(buffer), value);
+  return ec == std::errc() ? std::string(buffer, end) : std::string("nan");
+}
+
+std::string escape(std::string_view text) {
+  std::string out;
+  for (char c : text) {
+    switch (c) {
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
+    }
+  }
+  return out;
+}
+
+// Reads the three numbers of <Pos>/<RPY>; reports non-finite values (the schema's xs:double
+// accepts NaN and INF).
+bool vector3(const xml::XmlElement& e, xml::DiagnosticSink& sink, Eigen::Vector3d& out) {
+  std::vector<double> values;
+  const std::string why = xml::parseNumberList(e.text, values);
+  if (!why.empty() || values.size() != 3) {
+    sink.error(e.location, "<" + e.name + ">: " + (why.empty() ? "expected 3 numbers" : why));
+    return false;
+  }
+  out = Eigen::Vector3d(values[0], values[1], values[2]);
+  return true;
+}
+
+class IndexParser {
+ public:
+  explicit IndexParser(xml::DiagnosticSink& sink) : sink_(sink) {}
+
+  std::optional<DatabaseIndex> parse(const std::vector<xml::XmlElement>& top,
+                                     const xml::SourceLocation& whole) {
+    if (top.empty()) {
+      sink_.error(whole, "no <VisGraBDatabase> element: not a VisGraB database index");
+      return std::nullopt;
+    }
+    if (top.size() > 1) {
+      sink_.error(top[1].location, "a second <VisGraBDatabase> element; an index has one");
+      return std::nullopt;
+    }
+    const xml::XmlElement& root = top[0];
+    DatabaseIndex index;
+    const std::string version = root.attributeOr("formatVersion", "1");
+    if (version != std::to_string(kIndexFormatVersion)) {
+      sink_.error(root.location, "index format version " + version +
+                                     " is not supported (this program reads version " +
+                                     std::to_string(kIndexFormatVersion) + ")");
+      return std::nullopt;
+    }
+    index.seed = std::stoull(root.attributeOr("seed", "0"));
+    index.generator = root.attributeOr("generator", "");
+    std::map<std::string, int> firstLine;
+    for (const xml::XmlElement& scene : root.children) {
+      auto record = parseScene(scene);
+      if (!record) continue;
+      const auto [it, inserted] = firstLine.emplace(record->id, scene.location.line);
+      if (!inserted) {
+        sink_.error(scene.location, "duplicate scene id \"" + record->id + "\" (first at line " +
+                                        std::to_string(it->second) + ")");
+        continue;
+      }
+      index.scenes.push_back(std::move(*record));
+    }
+    if (sink_.hasErrors()) return std::nullopt;
+    return index;
+  }
+
+ private:
+  std::optional<SceneRecord> parseScene(const xml::XmlElement& e) {
+    SceneRecord record;
+    record.id = e.attributeOr("id", "");
+    const auto parsed = parseSceneId(record.id);
+    if (!parsed) {
+      sink_.error(e.location, e.describe() + ": \"" + record.id +
+                                  "\" is not a scene id (expected <plain|textured>/<single|"
+                                  "double>/<object or pair>/<01..08>, e.g. "
+                                  "textured/single/cocacola/03)");
+      return std::nullopt;
+    }
+    record.conditions = *parsed;
+    const std::string texture(toString(parsed->texture));
+    const std::string kind(toString(parsed->kind));
+    const std::string arrangement(toString(parsed->arrangement()));
+    const std::string pose = std::to_string(parsed->pose);
+    for (const auto& [name, expected] :
+         {std::pair{"texture", texture}, std::pair{"kind", kind},
+          std::pair{"arrangement", arrangement}, std::pair{"pose", pose}}) {
+      const std::string got = e.attributeOr(name, "");
+      if (got != expected) {
+        sink_.error(e.location, e.describe() + ": " + name + "=\"" + got +
+                                    "\" contradicts the id, which means " + name + "=\"" +
+                                    expected + "\"");
+        return std::nullopt;
+      }
+    }
+    bool ok = true;
+    for (const xml::XmlElement& child : e.children) {
+      if (child.name == "Files") {
+        ok = parseFiles(child, record.files) && ok;
+      } else if (child.name == "Object") {
+        if (auto objectPose = parseObject(child)) {
+          record.objects.push_back(*objectPose);
+        } else {
+          ok = false;
+        }
+      }
+    }
+    if (!ok) return std::nullopt;
+    std::vector<int> ids;
+    for (const ObjectPose& o : record.objects) ids.push_back(o.object);
+    if (ids != record.conditions.objects) {
+      std::string expected;
+      for (int id : record.conditions.objects) {
+        expected += (expected.empty() ? "" : ", ") + std::to_string(id);
+      }
+      sink_.error(e.location, e.describe() + ": the <Object> ids must be " + expected +
+                                  " (in this order) for this scene");
+      return std::nullopt;
+    }
+    return record;
+  }
+
+  bool parseFiles(const xml::XmlElement& e, SceneFiles& files) {
+    const std::pair<const char*, std::string*> fields[] = {
+        {"left", &files.left},
+        {"right", &files.right},
+        {"calibration", &files.calibration},
+        {"workcell", &files.workcell},
+        {"dynamicWorkcell", &files.dynamicWorkcell}};
+    for (const auto& [name, target] : fields) {
+      *target = e.attributeOr(name, "");
+      const std::string why = checkRelativePath(*target);
+      if (!why.empty()) {
+        sink_.error(e.location, "<Files>: " + std::string(name) + "=\"" + *target + "\": " + why);
+        return false;
+      }
+    }
+    return true;
+  }
+
+  std::optional<ObjectPose> parseObject(const xml::XmlElement& e) {
+    ObjectPose pose;
+    pose.object = std::stoi(e.attributeOr("id", "0"));
+    const std::string name = e.attributeOr("name", "");
+    if (name != objectName(pose.object)) {
+      sink_.error(e.location, e.describe() + ": object " + std::to_string(pose.object) +
+                                  " is called \"" + std::string(objectName(pose.object)) +
+                                  "\", not \"" + name + "\"");
+      return std::nullopt;
+    }
+    Eigen::Vector3d position = Eigen::Vector3d::Zero();
+    Eigen::Vector3d rpy = Eigen::Vector3d::Zero();
+    bool ok = true;
+    for (const xml::XmlElement& child : e.children) {
+      if (child.name == "Pos") ok = vector3(child, sink_, position) && ok;
+      if (child.name == "RPY") ok = vector3(child, sink_, rpy) && ok;
+    }
+    if (!ok) return std::nullopt;
+    pose.X_WO = rw::math::rpyTransform(rpy * kDeg2Rad, position);
+    return pose;
+  }
+
+  xml::DiagnosticSink& sink_;
+};
+
+}  // namespace
+
+std::string checkRelativePath(std::string_view path) {
+  if (path.empty()) return "the path is empty";
+  if (path.front() == '/') return "the path must be relative to the database folder";
+  for (char c : path) {
+    if (c == '\\') return "use '/' as the folder separator";
+    if (static_cast<unsigned char>(c) < 0x20) return "the path contains a control character";
+  }
+  std::size_t start = 0;
+  while (start <= path.size()) {
+    const std::size_t end = std::min(path.find('/', start), path.size());
+    if (path.substr(start, end - start) == "..") return "the path must not contain \"..\"";
+    start = end + 1;
+  }
+  return {};
+}
+
+SceneFiles defaultSceneFiles(std::string_view id) {
+  const std::string dir = "scenes/" + std::string(id) + "/";
+  return SceneFiles{dir + "left.png", dir + "right.png", dir + "calibration.yml",
+                    dir + "scene.wc.xml", dir + "scene.dwc.xml"};
+}
+
+DatabaseIndex parseIndex(std::string_view text, const std::string& displayPath) {
+  xml::DiagnosticSink sink;
+  auto file = std::make_shared<const xml::SourceFile>(xml::SourceFile{displayPath, {}});
+  const xml::SourceLocation whole{file, 0, 0};
+  std::optional<DatabaseIndex> index;
+  try {
+    xml::XmlReader reader(xml::XmlReaderOptions{std::string(detail::indexSchema()), {}});
+    const auto top = reader.parse(text, file, sink);
+    if (top && !sink.hasErrors()) index = IndexParser(sink).parse(*top, whole);
+  } catch (const std::exception& e) {
+    sink.error(whole, std::string("internal error while reading the index: ") + e.what());
+  }
+  if (!index && !sink.hasErrors()) sink.error(whole, "the index could not be read");
+  if (sink.hasErrors()) throw rw::loaders::LoadError(sink.take());
+  return std::move(*index);
+}
+
+DatabaseIndex readIndex(const std::filesystem::path& file) {
+  std::string text;
+  const std::string why = xml::readTextFile(file, text);
+  if (!why.empty()) {
+    throw rw::loaders::LoadError({rw::loaders::Diagnostic{rw::loaders::Diagnostic::Severity::kError,
+                                                          file.string(),
+                                                          0,
+                                                          0,
+                                                          "cannot read the database index: " + why,
+                                                          {}}});
+  }
+  return parseIndex(text, file.string());
+}
+
+std::string indexToXml(const DatabaseIndex& index) {
+  std::vector<const SceneRecord*> ordered;
+  for (const SceneRecord& s : index.scenes) {
+    const std::string expectedId = sceneIdOf(s.conditions);
+    if (s.id != expectedId) {
+      throw std::invalid_argument("scene record \"" + s.id + "\" has the conditions of \"" +
+                                  expectedId + "\"");
+    }
+    for (const std::string* path : {&s.files.left, &s.files.right, &s.files.calibration,
+                                    &s.files.workcell, &s.files.dynamicWorkcell}) {
+      const std::string why = checkRelativePath(*path);
+      if (!why.empty()) {
+        throw std::invalid_argument("scene \"" + s.id + "\": file \"" + *path + "\": " + why);
+      }
+    }
+    if (s.objects.size() != s.conditions.objects.size()) {
+      throw std::invalid_argument("scene \"" + s.id +
+                                  "\": one ground-truth pose per object needed");
+    }
+    ordered.push_back(&s);
+  }
+  std::stable_sort(ordered.begin(), ordered.end(), [](const SceneRecord* a, const SceneRecord* b) {
+    return sceneIndex(a->conditions) < sceneIndex(b->conditions);
+  });
+  std::string out = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
+  out += "<!-- VisGraB scene database index; format: docs/database-format.md -->\n";
+  out += "<VisGraBDatabase formatVersion=\"" + std::to_string(index.formatVersion) + "\" seed=\"" +
+         std::to_string(index.seed) + "\"";
+  if (!index.generator.empty()) out += " generator=\"" + escape(index.generator) + "\"";
+  out += ">\n";
+  for (const SceneRecord* s : ordered) {
+    const SceneConditions& c = s->conditions;
+    out += "  <Scene id=\"" + escape(s->id) + "\" texture=\"" + std::string(toString(c.texture)) +
+           "\" kind=\"" + std::string(toString(c.kind)) + "\" arrangement=\"" +
+           std::string(toString(c.arrangement())) + "\" pose=\"" + std::to_string(c.pose) + "\">\n";
+    out += "    <Files left=\"" + escape(s->files.left) + "\" right=\"" + escape(s->files.right) +
+           "\"\n           calibration=\"" + escape(s->files.calibration) + "\"\n" +
+           "           workcell=\"" + escape(s->files.workcell) + "\" dynamicWorkcell=\"" +
+           escape(s->files.dynamicWorkcell) + "\"/>\n";
+    for (std::size_t i = 0; i < s->objects.size(); ++i) {
+      const ObjectPose& o = s->objects[i];
+      if (o.object != c.objects[i]) {
+        throw std::invalid_argument("scene \"" + s->id + "\": ground-truth object " +
+                                    std::to_string(o.object) + " is not object " +
+                                    std::to_string(c.objects[i]) + " of the scene");
+      }
+      const Eigen::Vector3d p = o.X_WO.translation();
+      const Eigen::Vector3d rpy = rw::math::rotationToRpy(o.X_WO.linear()) * kRad2Deg;
+      if (!p.allFinite() || !rpy.allFinite()) {
+        throw std::invalid_argument("scene \"" + s->id + "\": non-finite object pose");
+      }
+      out += "    <Object id=\"" + std::to_string(o.object) + "\" name=\"" +
+             std::string(objectName(o.object)) + "\">\n";
+      out += "      <Pos>" + shortest(p.x()) + " " + shortest(p.y()) + " " + shortest(p.z()) +
+             "</Pos>\n";
+      out += "      <RPY>" + shortest(rpy.x()) + " " + shortest(rpy.y()) + " " + shortest(rpy.z()) +
+             "</RPY>\n";
+      out += "    </Object>\n";
+    }
+    out += "  </Scene>\n";
+  }
+  out += "</VisGraBDatabase>\n";
+  return out;
+}
+
+void writeIndex(const std::filesystem::path& file, const DatabaseIndex& index) {
+  writeFileAtomically(file, indexToXml(index));
+}
+
+}  // namespace visgrab::database

@@ -1,0 +1,97 @@
+#include "visgrab/database/database_writer.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+#include <system_error>
+#include <utility>
+
+namespace visgrab::database {
+
+namespace fs = std::filesystem;
+
+DatabaseWriter::DatabaseWriter(fs::path dir, std::uint64_t seed, std::string generator)
+    : dir_(std::move(dir)) {
+  std::error_code ec;
+  fs::create_directories(dir_, ec);
+  if (ec) throw std::runtime_error("cannot create " + dir_.string() + ": " + ec.message());
+  const fs::path indexFile = dir_ / kIndexFileName;
+  if (fs::exists(indexFile, ec)) {
+    index_ = readIndex(indexFile);
+    resumed_ = true;
+    if (index_.seed != seed) {
+      throw std::runtime_error(indexFile.string() + ": the database was generated with seed " +
+                               std::to_string(index_.seed) + ", not " + std::to_string(seed) +
+                               "; use the same seed to resume, or another folder");
+    }
+  }
+  index_.seed = seed;
+  if (!generator.empty()) index_.generator = std::move(generator);
+}
+
+DatabaseIndex DatabaseWriter::index() const {
+  const std::lock_guard lock(mutex_);
+  return index_;
+}
+
+bool DatabaseWriter::filesExist(const SceneFiles& files) const {
+  for (const std::string* f :
+       {&files.left, &files.right, &files.calibration, &files.workcell, &files.dynamicWorkcell}) {
+    std::error_code ec;
+    const fs::path p = dir_ / *f;
+    if (!fs::is_regular_file(p, ec) || fs::file_size(p, ec) == 0 || ec) return false;
+  }
+  return true;
+}
+
+bool DatabaseWriter::isComplete(std::string_view id) const {
+  const std::lock_guard lock(mutex_);
+  for (const SceneRecord& r : index_.scenes) {
+    if (r.id == id) return filesExist(r.files);
+  }
+  return false;
+}
+
+std::vector<SceneConditions> DatabaseWriter::remaining(
+    const std::vector<SceneConditions>& wanted) const {
+  std::vector<SceneConditions> out;
+  for (const SceneConditions& c : wanted) {
+    if (!isComplete(sceneIdOf(c))) out.push_back(c);
+  }
+  return out;
+}
+
+void DatabaseWriter::addScene(SceneRecord record) {
+  if (record.id != sceneIdOf(record.conditions)) {
+    throw std::invalid_argument("scene record \"" + record.id + "\" has the conditions of \"" +
+                                sceneIdOf(record.conditions) + "\"");
+  }
+  for (const std::string* f : {&record.files.left, &record.files.right, &record.files.calibration,
+                               &record.files.workcell, &record.files.dynamicWorkcell}) {
+    const std::string why = checkRelativePath(*f);
+    if (!why.empty()) {
+      throw std::invalid_argument("scene " + record.id + ": file \"" + *f + "\": " + why);
+    }
+    std::error_code ec;
+    if (!fs::is_regular_file(dir_ / *f, ec)) {
+      throw std::runtime_error("scene " + record.id + ": " + (dir_ / *f).string() +
+                               " does not exist; write the scene's files before adding it");
+    }
+  }
+  const std::lock_guard lock(mutex_);
+  DatabaseIndex next = index_;
+  const auto it = std::find_if(next.scenes.begin(), next.scenes.end(),
+                               [&](const SceneRecord& r) { return r.id == record.id; });
+  if (it != next.scenes.end()) {
+    *it = std::move(record);
+  } else {
+    next.scenes.push_back(std::move(record));
+  }
+  std::stable_sort(next.scenes.begin(), next.scenes.end(),
+                   [](const SceneRecord& a, const SceneRecord& b) {
+                     return sceneIndex(a.conditions) < sceneIndex(b.conditions);
+                   });
+  writeIndex(dir_ / kIndexFileName, next);  // throws before index_ changes
+  index_ = std::move(next);
+}
+
+}  // namespace visgrab::database

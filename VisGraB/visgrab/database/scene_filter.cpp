@@ -1,0 +1,307 @@
+#include "visgrab/database/scene_filter.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <optional>
+
+namespace visgrab::database {
+
+namespace {
+
+constexpr std::string_view kExpected =
+    "expected plain, textured, single, double, standing, lying, apart, close, an object name, "
+    "all, an id glob (with / * ?) or KEY=VALUE with KEY one of texture, kind, arrangement, "
+    "object, pair, pose, id";
+
+std::string_view trim(std::string_view text) {
+  const auto first = text.find_first_not_of(" \t\r\n");
+  if (first == std::string_view::npos) return {};
+  const auto last = text.find_last_not_of(" \t\r\n");
+  return text.substr(first, last - first + 1);
+}
+
+std::vector<std::string_view> split(std::string_view text, char separator) {
+  std::vector<std::string_view> parts;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t at = text.find(separator, start);
+    if (at == std::string_view::npos) {
+      parts.push_back(text.substr(start));
+      return parts;
+    }
+    parts.push_back(text.substr(start, at - start));
+    start = at + 1;
+  }
+}
+
+std::optional<Texture> textureWord(std::string_view w) {
+  if (w == "non-textured" || w == "nontextured") return Texture::kPlain;
+  return textureFromString(w);
+}
+
+std::optional<Arrangement> arrangementWord(std::string_view w) {
+  if (w == "laying") return Arrangement::kLying;
+  if (w == "far") return Arrangement::kApart;
+  if (w == "touching") return Arrangement::kClose;
+  return arrangementFromString(w);
+}
+
+std::optional<int> smallInt(std::string_view text) {
+  int value = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (ec != std::errc() || end != text.data() + text.size() || text.empty()) return std::nullopt;
+  return value;
+}
+
+// Levenshtein distance, for "did you mean".
+std::size_t editDistance(std::string_view a, std::string_view b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = up;
+    }
+  }
+  return row[b.size()];
+}
+
+std::string suggestion(std::string_view word) {
+  std::vector<std::string_view> known = {
+      "plain", "textured", "single", "double", "standing", "lying", "apart", "close",
+      "all",   "texture",  "kind",   "object", "pair",     "pose",  "id",    "arrangement"};
+  known.insert(known.end(), kObjectNames.begin(), kObjectNames.end());
+  std::string_view best;
+  std::size_t bestDistance = 3;
+  for (std::string_view k : known) {
+    const std::size_t d = editDistance(word, k);
+    if (d < bestDistance) {
+      bestDistance = d;
+      best = k;
+    }
+  }
+  return best.empty() ? std::string() : " (did you mean \"" + std::string(best) + "\"?)";
+}
+
+[[noreturn]] void fail(std::string_view whole, const std::string& what) {
+  throw FilterError("scene filter \"" + std::string(whole) + "\": " + what);
+}
+
+}  // namespace
+
+bool globMatch(std::string_view pattern, std::string_view text) {
+  std::size_t p = 0;
+  std::size_t t = 0;
+  std::size_t starP = std::string_view::npos;
+  std::size_t starT = 0;
+  while (t < text.size()) {
+    if (p < pattern.size() && (pattern[p] == '?' || pattern[p] == text[t])) {
+      ++p;
+      ++t;
+    } else if (p < pattern.size() && pattern[p] == '*') {
+      starP = p++;
+      starT = t;
+    } else if (starP != std::string_view::npos) {
+      p = starP + 1;
+      t = ++starT;
+    } else {
+      return false;
+    }
+  }
+  while (p < pattern.size() && pattern[p] == '*') ++p;
+  return p == pattern.size();
+}
+
+SceneFilter::Term SceneFilter::parseTerm(std::string_view text, std::string_view whole) {
+  Term term;
+  std::string_view word = trim(text);
+  if (word.empty()) fail(whole, "empty term (two separators in a row, or one at an end)");
+  if (word.front() == '!') {
+    term.negated = true;
+    word = trim(word.substr(1));
+    if (word.empty()) fail(whole, "'!' must be followed by a term");
+  }
+  const auto equals = word.find('=');
+  if (equals == std::string_view::npos) {
+    if (word == "all" || word == "*") {
+      term.type = Term::Type::kAll;
+    } else if (const auto t = textureWord(word)) {
+      term.type = Term::Type::kTexture;
+      term.value = static_cast<int>(*t);
+    } else if (const auto k = sceneKindFromString(word)) {
+      term.type = Term::Type::kKind;
+      term.value = static_cast<int>(*k);
+    } else if (const auto a = arrangementWord(word)) {
+      term.type = Term::Type::kArrangement;
+      term.value = static_cast<int>(*a);
+    } else if (const auto o = objectIdByName(word)) {
+      term.type = Term::Type::kObject;
+      term.value = *o;
+    } else if (word.find_first_of("/*?") != std::string_view::npos) {
+      term.type = Term::Type::kIdGlob;
+      term.glob = std::string(word);
+    } else {
+      fail(whole, "unknown word \"" + std::string(word) + "\"" + suggestion(word) + "; " +
+                      std::string(kExpected));
+    }
+    return term;
+  }
+  const std::string_view key = trim(word.substr(0, equals));
+  const std::string_view value = trim(word.substr(equals + 1));
+  const auto badValue = [&](std::string_view expected) {
+    fail(whole, "bad value \"" + std::string(value) + "\" for " + std::string(key) +
+                    "=; expected " + std::string(expected));
+  };
+  if (key == "id") {
+    if (value.empty()) badValue("a scene id or glob");
+    term.type = Term::Type::kIdGlob;
+    term.glob = std::string(value);
+  } else if (key == "texture") {
+    const auto t = textureWord(value);
+    if (!t) badValue("plain or textured");
+    term.type = Term::Type::kTexture;
+    term.value = static_cast<int>(*t);
+  } else if (key == "kind") {
+    const auto k = sceneKindFromString(value);
+    if (!k) badValue("single or double");
+    term.type = Term::Type::kKind;
+    term.value = static_cast<int>(*k);
+  } else if (key == "arrangement") {
+    const auto a = arrangementWord(value);
+    if (!a) badValue("standing, lying, apart or close");
+    term.type = Term::Type::kArrangement;
+    term.value = static_cast<int>(*a);
+  } else if (key == "object") {
+    auto id = smallInt(value);
+    if (!id) id = objectIdByName(value);
+    if (!id || *id < 1 || *id > kObjectCount) badValue("an object id 1..18 or an object name");
+    term.type = Term::Type::kObject;
+    term.value = *id;
+  } else if (key == "pair") {
+    if (value.size() != 1 || !pairByLetter(value[0])) badValue("a pair letter a..i");
+    term.type = Term::Type::kPair;
+    term.value = value[0];
+  } else if (key == "pose") {
+    const auto pose = smallInt(value);
+    if (!pose || *pose < 1 || *pose > kPosesPerSubject) badValue("a pose index 1..8");
+    term.type = Term::Type::kPose;
+    term.value = *pose;
+  } else {
+    fail(whole, "unknown key \"" + std::string(key) + "\"" + suggestion(key) +
+                    "; expected texture, kind, arrangement, object, pair, pose or id");
+  }
+  return term;
+}
+
+SceneFilter SceneFilter::parse(std::string_view text) {
+  SceneFilter filter;
+  if (trim(text).empty()) return filter;
+  bool all = false;
+  for (std::string_view alternative : split(text, ';')) {
+    Conjunction conjunction;
+    for (std::string_view term : split(alternative, ',')) {
+      conjunction.push_back(parseTerm(term, text));
+    }
+    const bool everything = std::all_of(conjunction.begin(), conjunction.end(), [](const Term& t) {
+      return t.type == Term::Type::kAll && !t.negated;
+    });
+    all = all || everything;
+    filter.alternatives_.push_back(std::move(conjunction));
+  }
+  if (all) filter.alternatives_.clear();
+  return filter;
+}
+
+SceneFilter SceneFilter::parse(const std::vector<std::string>& texts) {
+  SceneFilter filter;
+  for (const std::string& text : texts) {
+    SceneFilter one = parse(text);
+    if (one.selectsAll()) return one;
+    filter.alternatives_.insert(filter.alternatives_.end(), one.alternatives_.begin(),
+                                one.alternatives_.end());
+  }
+  return filter;
+}
+
+bool SceneFilter::matchesTerm(const Term& term, std::string_view id, const SceneConditions* c) {
+  bool result = false;
+  switch (term.type) {
+    case Term::Type::kAll:
+      result = true;
+      break;
+    case Term::Type::kIdGlob:
+      result = globMatch(term.glob, id);
+      break;
+    case Term::Type::kTexture:
+      result = c != nullptr && static_cast<int>(c->texture) == term.value;
+      break;
+    case Term::Type::kKind:
+      result = c != nullptr && static_cast<int>(c->kind) == term.value;
+      break;
+    case Term::Type::kArrangement:
+      result = c != nullptr && static_cast<int>(c->arrangement()) == term.value;
+      break;
+    case Term::Type::kObject:
+      result = c != nullptr &&
+               std::find(c->objects.begin(), c->objects.end(), term.value) != c->objects.end();
+      break;
+    case Term::Type::kPair: {
+      const auto pair = c != nullptr ? c->pair() : std::nullopt;
+      result = pair && pair->letter == static_cast<char>(term.value);
+      break;
+    }
+    case Term::Type::kPose:
+      result = c != nullptr && c->pose == term.value;
+      break;
+  }
+  return term.negated ? !result : result;
+}
+
+bool SceneFilter::matches(std::string_view id, const SceneConditions* conditions) const {
+  if (alternatives_.empty()) return true;
+  return std::any_of(alternatives_.begin(), alternatives_.end(), [&](const Conjunction& terms) {
+    return std::all_of(terms.begin(), terms.end(),
+                       [&](const Term& t) { return matchesTerm(t, id, conditions); });
+  });
+}
+
+std::string SceneFilter::termToString(const Term& term) {
+  std::string out = term.negated ? "!" : "";
+  switch (term.type) {
+    case Term::Type::kAll:
+      return out + "all";
+    case Term::Type::kIdGlob:
+      return out + "id=" + term.glob;
+    case Term::Type::kTexture:
+      return out + std::string(database::toString(static_cast<Texture>(term.value)));
+    case Term::Type::kKind:
+      return out + std::string(database::toString(static_cast<SceneKind>(term.value)));
+    case Term::Type::kArrangement:
+      return out + std::string(database::toString(static_cast<Arrangement>(term.value)));
+    case Term::Type::kObject:
+      return out + "object=" + std::to_string(term.value);
+    case Term::Type::kPair:
+      return out + "pair=" + std::string(1, static_cast<char>(term.value));
+    case Term::Type::kPose:
+      return out + "pose=" + std::to_string(term.value);
+  }
+  return out;
+}
+
+std::string SceneFilter::toString() const {
+  if (alternatives_.empty()) return "all";
+  std::string out;
+  for (std::size_t i = 0; i < alternatives_.size(); ++i) {
+    if (i > 0) out += ";";
+    for (std::size_t j = 0; j < alternatives_[i].size(); ++j) {
+      if (j > 0) out += ",";
+      out += termToString(alternatives_[i][j]);
+    }
+  }
+  return out;
+}
+
+}  // namespace visgrab::database

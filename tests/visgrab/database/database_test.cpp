@@ -1,0 +1,186 @@
+#include "visgrab/database/database.hpp"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <opencv2/core.hpp>
+#include <string>
+
+#include "rw/math/rpy.hpp"
+#include "support/test_support.hpp"
+#include "visgrab/database/atomic_file.hpp"
+#include "visgrab/database/database_writer.hpp"
+
+namespace visgrab::database {
+namespace {
+
+namespace fs = std::filesystem;
+using rw::loaders::LoadError;
+
+// Writes a tiny scene (8x6 images, ideal calibration, stub models) and records it.
+void addFakeScene(DatabaseWriter& writer, const SceneConditions& c, int shade) {
+  const std::string id = sceneIdOf(c);
+  const SceneFiles files = writer.filesFor(id);
+  cv::Mat left(6, 8, CV_8UC3, cv::Scalar(shade, 10, 200));
+  cv::Mat right(6, 8, CV_8UC3, cv::Scalar(shade, 20, 100));
+  writeImageAtomically(writer.path(files.left), left);
+  writeImageAtomically(writer.path(files.right), right);
+  writeCalibration(writer.path(files.calibration),
+                   idealRectifiedRig(10, 10, 3.5, 2.5, 0.1, 8, 6,
+                                     rw::math::makeTranslation(Eigen::Vector3d(0, -0.5, 0.6))));
+  writeFileAtomically(writer.path(files.workcell), "<WorkCell name=\"s\"/>\n");
+  writeFileAtomically(writer.path(files.dynamicWorkcell), "<DynamicWorkcell/>\n");
+  SceneRecord record{id, c, files, {}};
+  for (int object : c.objects) {
+    record.objects.push_back(
+        {object, rw::math::rpyTransform(Eigen::Vector3d(0.2 * object, 0, 0),
+                                        Eigen::Vector3d(0.01 * object, 0.02, 0.03))});
+  }
+  writer.addScene(record);
+}
+
+class DatabaseTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    DatabaseWriter writer(dir_.path(), 42, "test");
+    addFakeScene(writer, SceneConditions::single(Texture::kTextured, 5, 3), 1);
+    addFakeScene(writer, SceneConditions::single(Texture::kPlain, 5, 6), 2);
+    addFakeScene(writer, SceneConditions::pairScene(Texture::kTextured, 'e', 7), 3);
+  }
+  test::TempDir dir_;
+};
+
+TEST_F(DatabaseTest, ListFilterAndShow) {
+  const Database db = Database::open(dir_.path());
+  EXPECT_EQ(db.source(), Database::Source::kGenerated);
+  EXPECT_EQ(db.seed(), 42u);
+  ASSERT_EQ(db.list().size(), 3u);
+  EXPECT_EQ(db.list()[0].id, "plain/single/cocacola/06");
+  EXPECT_EQ(db.list()[1].id, "textured/single/cocacola/03");
+  EXPECT_EQ(db.list()[2].id, "textured/double/cocacola_saltcylinder/07");
+  EXPECT_EQ(db.filter(SceneFilter::parse("textured")).size(), 2u);
+  EXPECT_EQ(db.filter(SceneFilter::parse("lying;close")).size(), 2u);
+  EXPECT_EQ(db.filter(SceneFilter::parse("object=14")).size(), 1u);
+  EXPECT_EQ(Database::summaryLine(db.list()[1]),
+            "textured/single/cocacola/03                   textured, single, standing, object 5 "
+            "cocacola, pose 3");
+  const std::string details = Database::details(db.scene("textured/single/cocacola/03"));
+  EXPECT_NE(details.find("original id:      textured/cocacola/img_03\n"), std::string::npos);
+  EXPECT_NE(details.find("object 5 cocacola: position 0.0500 0.0200 0.0300 m, RPY 57.30 0.00 "
+                         "0.00 deg (table frame)"),
+            std::string::npos)
+      << details;
+  // The original spelling finds the scene too.
+  EXPECT_EQ(db.scene("textured/cocacola/img_03").id, "textured/single/cocacola/03");
+  EXPECT_TRUE(Database::openAny(dir_.path() / "index.xml").contains("plain/single/cocacola/06"));
+}
+
+TEST_F(DatabaseTest, ImagesCalibrationAndGroundTruth) {
+  const Database db = Database::open(dir_.path());
+  const cv::Mat left = db.leftImage("textured/single/cocacola/03");
+  ASSERT_EQ(left.rows, 6);
+  ASSERT_EQ(left.cols, 8);
+  EXPECT_EQ(left.at<cv::Vec3b>(2, 3), cv::Vec3b(1, 10, 200));
+  EXPECT_EQ(db.rightImage("textured/single/cocacola/03").at<cv::Vec3b>(0, 0),
+            cv::Vec3b(1, 20, 100));
+  const StereoCalibration calibration = db.calibration("textured/single/cocacola/03");
+  EXPECT_EQ(calibration.width, 8);
+  EXPECT_NEAR(calibration.baseline(), 0.1, 1e-12);
+  const auto& truth = db.groundTruth("textured/double/cocacola_saltcylinder/07");
+  ASSERT_EQ(truth.size(), 2u);
+  EXPECT_EQ(truth[1].object, 14);
+  EXPECT_TRANSFORM_NEAR(
+      truth[1].X_WO,
+      rw::math::rpyTransform(Eigen::Vector3d(2.8, 0, 0), Eigen::Vector3d(0.14, 0.02, 0.03)), 1e-12);
+}
+
+TEST_F(DatabaseTest, UnknownIdSuggestsClosestIds) {
+  const Database db = Database::open(dir_.path());
+  try {
+    db.scene("textured/single/cocacola/04");
+    FAIL();
+  } catch (const UnknownSceneError& e) {
+    EXPECT_EQ(e.id(), "textured/single/cocacola/04");
+    ASSERT_FALSE(e.closest().empty());
+    EXPECT_EQ(e.closest()[0], "textured/single/cocacola/03");
+    EXPECT_EQ(std::string(e.what()),
+              "unknown scene id \"textured/single/cocacola/04\"; closest known ids: "
+              "textured/single/cocacola/03 plain/single/cocacola/06 "
+              "textured/double/cocacola_saltcylinder/07");
+  }
+  EXPECT_THROW(db.leftImage("nope"), UnknownSceneError);
+}
+
+TEST_F(DatabaseTest, MissingAndCorruptImagesNameTheFile) {
+  const Database db = Database::open(dir_.path());
+  const fs::path left = dir_.path() / "scenes/textured/single/cocacola/03/left.png";
+  const fs::path right = dir_.path() / "scenes/textured/single/cocacola/03/right.png";
+  fs::remove(left);
+  try {
+    db.leftImage("textured/single/cocacola/03");
+    FAIL();
+  } catch (const DatabaseError& e) {
+    EXPECT_EQ(std::string(e.what()), left.string() +
+                                         ": error: left image of scene "
+                                         "textured/single/cocacola/03: no such file");
+  }
+  // Truncated PNG: keep only the first half of the file.
+  std::string bytes;
+  {
+    std::ifstream in(right, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  ASSERT_GT(bytes.size(), 40u);
+  writeFileAtomically(right, std::string_view(bytes).substr(0, bytes.size() / 2));
+  try {
+    db.rightImage("textured/single/cocacola/03");
+    FAIL();
+  } catch (const DatabaseError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              right.string() +
+                  ": error: right image of scene textured/single/cocacola/03: cannot decode the "
+                  "image (corrupt, truncated or not an image)");
+  }
+  writeFileAtomically(right, "not a png");
+  EXPECT_THROW(db.rightImage("textured/single/cocacola/03"), DatabaseError);
+}
+
+TEST_F(DatabaseTest, MissingOrCorruptIndex) {
+  test::TempDir empty;
+  try {
+    Database::open(empty.path());
+    FAIL();
+  } catch (const LoadError& e) {
+    EXPECT_NE(std::string(e.what()).find("index.xml: error: cannot read the database index: "),
+              std::string::npos);
+  }
+  writeFileAtomically(empty.path() / "index.xml", "<VisGraBDatabase formatVersion=\"1\"");
+  EXPECT_THROW(Database::open(empty.path()), LoadError);
+}
+
+TEST_F(DatabaseTest, WriterResumesAndKnowsCompleteScenes) {
+  DatabaseWriter writer(dir_.path(), 42);
+  EXPECT_TRUE(writer.resumed());
+  EXPECT_EQ(writer.index().generator, "test");
+  EXPECT_TRUE(writer.isComplete("textured/single/cocacola/03"));
+  EXPECT_FALSE(writer.isComplete("textured/single/cocacola/04"));
+  // A scene whose files are gone is no longer complete.
+  fs::remove(dir_.path() / "scenes/plain/single/cocacola/06/scene.dwc.xml");
+  EXPECT_FALSE(writer.isComplete("plain/single/cocacola/06"));
+  const auto remaining = writer.remaining(enumerateScenes());
+  EXPECT_EQ(remaining.size(), 432u - 2u);
+  // Re-adding replaces the record; files must exist.
+  SceneRecord record = writer.index().scenes.at(0);
+  EXPECT_THROW(writer.addScene(record), std::runtime_error);
+  addFakeScene(writer, SceneConditions::single(Texture::kPlain, 5, 6), 9);
+  EXPECT_EQ(writer.index().scenes.size(), 3u);
+  EXPECT_TRUE(writer.isComplete("plain/single/cocacola/06"));
+  // Another seed cannot resume this folder.
+  EXPECT_THROW(DatabaseWriter(dir_.path(), 43), std::runtime_error);
+  // An invalid record is refused.
+  record.id = "plain/single/cocacola/05";
+  EXPECT_THROW(writer.addScene(record), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace visgrab::database
