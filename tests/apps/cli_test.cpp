@@ -1,32 +1,16 @@
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
-#include <array>
-#include <cstdio>
 #include <string>
 
 #include "support/test_support.hpp"
 
 namespace {
 
-struct RunResult {
-  int exitCode = -1;
-  std::string output;  // stdout and stderr together
-};
+using visgrab::test::RunResult;
 
-// Runs the visgrab binary with `args` (already shell-quoted) and captures its output.
+// Runs the visgrab binary with `args` (already shell-quoted).
 RunResult runVisgrab(const std::string& args) {
-  const std::string command = std::string("'") + VISGRAB_BINARY + "' " + args + " 2>&1";
-  RunResult result;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (pipe == nullptr) return result;
-  std::array<char, 4096> buffer{};
-  std::size_t n = 0;
-  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0)
-    result.output.append(buffer.data(), n);
-  const int status = pclose(pipe);
-  result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
+  return visgrab::test::runProgram(VISGRAB_BINARY, args);
 }
 
 std::string quoted(const std::filesystem::path& p) { return "'" + p.string() + "'"; }

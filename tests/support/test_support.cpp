@@ -1,6 +1,10 @@
 #include "support/test_support.hpp"
 
+#include <sys/wait.h>
+
+#include <array>
 #include <atomic>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <random>
@@ -74,5 +78,22 @@ std::filesystem::path writeFile(const std::filesystem::path& file, const std::st
   out << text;
   return file;
 }
+
+RunResult runProgram(const std::filesystem::path& program, const std::string& args) {
+  const std::string command = shellQuoted(program) + " " + args + " 2>&1";
+  RunResult result;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (pipe == nullptr) return result;
+  std::array<char, 4096> buffer{};
+  std::size_t n = 0;
+  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) {
+    result.output.append(buffer.data(), n);
+  }
+  const int status = pclose(pipe);
+  result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return result;
+}
+
+std::string shellQuoted(const std::filesystem::path& path) { return "'" + path.string() + "'"; }
 
 }  // namespace visgrab::test

@@ -44,6 +44,20 @@ class TempDir {
 /// Writes `text` to `file` (creating folders) and returns the path.
 std::filesystem::path writeFile(const std::filesystem::path& file, const std::string& text);
 
+/// What a command printed and how it exited.
+struct RunResult {
+  /// Exit code (-1 if it did not exit normally).
+  int exitCode = -1;
+  /// Its stdout and stderr together.
+  std::string output;
+};
+
+/// Runs `program` with `args` (already shell-quoted) through the shell and captures its output.
+RunResult runProgram(const std::filesystem::path& program, const std::string& args);
+
+/// `path` in single quotes for a shell command line.
+std::string shellQuoted(const std::filesystem::path& path);
+
 }  // namespace visgrab::test
 
 /// Expects two Transform3D to agree within tol (positions in metres, rotation entries).
