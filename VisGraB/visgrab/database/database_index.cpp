@@ -1,6 +1,6 @@
 #include "visgrab/database/database_index.hpp"
 
-#include <charconv>
+#include <cstdio>
 #include <map>
 #include <memory>
 #include <optional>
@@ -26,11 +26,15 @@ namespace {
 
 constexpr std::string_view kRoot = "VisGraBDatabase";
 
-std::string shortest(double value) {
-  if (value == 0) return "0";
+// Poses at a fixed resolution (1 nm, 1e-9 degree), so that reading and writing an index again
+// gives the same text (the shortest form of an RPY angle changes in its last digits when it
+// goes through a rotation matrix and back).
+std::string fixed(double value) {
   char buffer[64];
-  const auto [end, ec] = std::to_chars(buffer, buffer + sizeof(buffer), value);
-  return ec == std::errc() ? std::string(buffer, end) : std::string("nan");
+  std::snprintf(buffer, sizeof buffer, "%.9f", value);
+  std::string text(buffer);
+  if (text == "-0.000000000") text = "0.000000000";
+  return text;
 }
 
 std::string escape(std::string_view text) {
@@ -316,10 +320,9 @@ std::string indexToXml(const DatabaseIndex& index) {
       }
       out += "    <Object id=\"" + std::to_string(o.object) + "\" name=\"" +
              std::string(objectName(o.object)) + "\">\n";
-      out += "      <Pos>" + shortest(p.x()) + " " + shortest(p.y()) + " " + shortest(p.z()) +
-             "</Pos>\n";
-      out += "      <RPY>" + shortest(rpy.x()) + " " + shortest(rpy.y()) + " " + shortest(rpy.z()) +
-             "</RPY>\n";
+      out += "      <Pos>" + fixed(p.x()) + " " + fixed(p.y()) + " " + fixed(p.z()) + "</Pos>\n";
+      out +=
+          "      <RPY>" + fixed(rpy.x()) + " " + fixed(rpy.y()) + " " + fixed(rpy.z()) + "</RPY>\n";
       out += "    </Object>\n";
     }
     out += "  </Scene>\n";
