@@ -1,0 +1,305 @@
+#include "visgrab/generator/generator.hpp"
+
+#include <atomic>
+#include <chrono>
+#include <exception>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
+#include <stdexcept>
+#include <thread>
+
+#include "rwsim/loaders/dynamic_workcell_loader.hpp"
+#include "visgrab/database/atomic_file.hpp"
+#include "visgrab/database/database_writer.hpp"
+#include "visgrab/database/stereo_calibration.hpp"
+#include "visgrab/generator/scene_model.hpp"
+#include "visgrab/objects/object_spec.hpp"
+#include "visgrab/objects/object_writer.hpp"
+#include "visgrab/render/offscreen_renderer.hpp"
+
+namespace visgrab::generator {
+
+namespace {
+
+namespace fs = std::filesystem;
+using rw::math::Transform3D;
+using rw::math::Vector3D;
+
+/// Instance ids in the rendered id images: the table, then 10 + object id.
+constexpr std::uint16_t kTableInstance = 1;
+constexpr std::uint16_t kObjectInstanceBase = 10;
+
+/// The generated models every worker reads (const after preparation).
+struct Assets {
+  std::map<int, objects::ObjectModel> objects;
+  std::map<std::string, objects::TableModel> tables;
+  /// The same meshes as shared pointers, for uploading.
+  std::map<int, std::vector<std::shared_ptr<const visual::VisualMesh>>> objectMeshes;
+  std::map<std::string, std::shared_ptr<const visual::VisualMesh>> tableMeshes;
+};
+
+void copyFile(const fs::path& from, const fs::path& to) {
+  std::error_code ec;
+  fs::create_directories(to.parent_path(), ec);
+  fs::copy_file(from, to, fs::copy_options::overwrite_existing, ec);
+  if (ec)
+    throw std::runtime_error("cannot copy " + from.string() + " to " + to.string() + ": " +
+                             ec.message());
+}
+
+Assets prepareAssets(const std::vector<database::SceneConditions>& scenes,
+                     const GeneratorOptions& options, const AssetLayout& layout) {
+  const objects::ObjectDatabaseSpec spec = objects::loadObjectSpecs(options.objectSpec);
+  Assets assets;
+  for (const auto& scene : scenes) {
+    for (const int id : scene.objects) {
+      if (assets.objects.count(id) != 0) continue;
+      const objects::ObjectSpec* objectSpec = spec.findObject(id);
+      if (objectSpec == nullptr) {
+        throw std::runtime_error(options.objectSpec.string() + ": no object with id " +
+                                 std::to_string(id));
+      }
+      objects::ObjectModel model = objects::generateObject(*objectSpec);
+      objects::writeObjectFiles(model, options.out / layout.objects);
+      auto& meshes = assets.objectMeshes[id];
+      for (const auto& part : model.visual) {
+        meshes.push_back(std::make_shared<const visual::VisualMesh>(part.mesh));
+      }
+      assets.objects.emplace(id, std::move(model));
+    }
+    const std::string texture(database::toString(scene.texture));
+    if (assets.tables.count(texture) == 0) {
+      const objects::TableSpec* tableSpec = spec.findTable(texture);
+      if (tableSpec == nullptr) {
+        throw std::runtime_error(options.objectSpec.string() + ": no table named \"" + texture +
+                                 "\"");
+      }
+      objects::TableModel table = objects::generateTable(*tableSpec);
+      objects::writeTableFiles(table, options.out / layout.tables);
+      assets.tableMeshes[texture] = std::make_shared<const visual::VisualMesh>(table.surface);
+      assets.tables.emplace(texture, std::move(table));
+    }
+  }
+  // The hand's folder as it is (its workcell includes its collision setup and meshes).
+  std::error_code ec;
+  fs::directory_iterator it(options.handFolder, ec);
+  if (ec) {
+    throw std::runtime_error("cannot read the hand folder " + options.handFolder.string() + ": " +
+                             ec.message());
+  }
+  for (const auto& entry : it) {
+    if (entry.is_regular_file()) {
+      copyFile(entry.path(), options.out / layout.hand / entry.path().filename());
+    }
+  }
+  copyFile(options.materials, options.out / layout.materials);
+  return assets;
+}
+
+/// One worker's renderer with the meshes it has uploaded.
+class SceneRenderer {
+ public:
+  explicit SceneRenderer(const Assets& assets) : assets_(&assets) {}
+
+  render::RenderResult render(const database::SceneConditions& scene,
+                              const std::vector<Transform3D>& X_WO,
+                              const render::PinholeCamera& camera) {
+    render::Scene drawn;
+    const std::string texture(database::toString(scene.texture));
+    drawn.items.push_back({tableHandle(texture), Transform3D::Identity(), kTableInstance});
+    for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+      const int id = scene.objects[i];
+      for (const auto handle : objectHandles(id)) {
+        drawn.items.push_back(
+            {handle, X_WO[i], static_cast<std::uint16_t>(kObjectInstanceBase + id)});
+      }
+    }
+    drawn.background = Eigen::Vector3f(0.55f, 0.57f, 0.6f);  // a grey lab wall
+    drawn.lighting.ambient = Eigen::Vector3f(0.3f, 0.3f, 0.3f);
+    render::Light key;
+    key.direction_W = Vector3D(0.35, 0.45, -1.0);
+    key.colour = Eigen::Vector3f(0.75f, 0.74f, 0.7f);
+    key.castsShadows = true;
+    render::Light fill;
+    fill.direction_W = Vector3D(-0.6, 0.2, -0.7);
+    fill.colour = Eigen::Vector3f(0.2f, 0.21f, 0.23f);
+    drawn.lighting.lights = {key, fill};
+    return renderer_.render(drawn, camera);
+  }
+
+ private:
+  render::MeshHandle tableHandle(const std::string& texture) {
+    auto it = tables_.find(texture);
+    if (it == tables_.end()) {
+      it = tables_.emplace(texture, renderer_.add(assets_->tableMeshes.at(texture))).first;
+    }
+    return it->second;
+  }
+
+  const std::vector<render::MeshHandle>& objectHandles(int id) {
+    auto it = objects_.find(id);
+    if (it == objects_.end()) {
+      std::vector<render::MeshHandle> handles;
+      for (const auto& mesh : assets_->objectMeshes.at(id)) handles.push_back(renderer_.add(mesh));
+      it = objects_.emplace(id, std::move(handles)).first;
+    }
+    return it->second;
+  }
+
+  const Assets* assets_;
+  render::OffscreenRenderer renderer_;
+  std::map<std::string, render::MeshHandle> tables_;
+  std::map<int, std::vector<render::MeshHandle>> objects_;
+};
+
+cv::Mat toBgr(const visual::RgbImage& image) {
+  cv::Mat rgb(image.height, image.width, CV_8UC3, const_cast<std::uint8_t*>(image.pixels.data()));
+  cv::Mat bgr;
+  cv::cvtColor(rgb, bgr, cv::COLOR_RGB2BGR);
+  return bgr;
+}
+
+bool onTable(const Transform3D& X_WO, const TableGeometry& table) {
+  const Vector3D p = X_WO.translation();
+  return p.z() > -0.01 && std::abs(p.x()) < 0.5 * table.x && std::abs(p.y()) < 0.5 * table.y;
+}
+
+/// Makes one scene's files and returns its index record. @throws std::runtime_error when no
+/// placement settles.
+database::SceneRecord makeScene(const database::SceneConditions& scene, const Assets& assets,
+                                const GeneratorOptions& options, const AssetLayout& layout,
+                                database::DatabaseWriter& writer, SceneRenderer& renderer) {
+  database::SceneRecord record;
+  record.id = database::sceneIdOf(scene);
+  record.conditions = scene;
+  record.files = writer.filesFor(record.id);
+  const fs::path wcFile = writer.path(record.files.workcell);
+  const fs::path dwcFile = writer.path(record.files.dynamicWorkcell);
+  const fs::path folder = wcFile.parent_path();
+  fs::create_directories(folder);
+  const std::string toDatabase = relativeFolder(folder, writer.directory());
+  std::vector<const objects::ObjectModel*> models;
+  std::vector<std::string> names;
+  for (const int id : scene.objects) {
+    models.push_back(&assets.objects.at(id));
+    names.push_back(models.back()->name);
+  }
+  TableGeometry table;
+  table.x = assets.tables.at(std::string(database::toString(scene.texture))).x;
+  table.y = assets.tables.at(std::string(database::toString(scene.texture))).y;
+
+  database::writeFileAtomically(
+      dwcFile, sceneDynamicsXml(scene, models, wcFile.filename().string(), toDatabase, layout));
+  std::string reasons;
+  std::vector<Transform3D> settled;
+  for (int attempt = 0; attempt < options.maxAttempts && settled.empty(); ++attempt) {
+    Placement placement = placeObjects(scene, models, options.seed, attempt, options.placement);
+    for (auto& X : placement.X_TO) X.pretranslate(Vector3D(0.0, 0.0, options.dropHeight));
+    database::writeFileAtomically(
+        wcFile, sceneWorkcellXml(scene, models, placement.X_TO, toDatabase, layout, table));
+    const auto dwc = rwsim::loaders::loadDynamicWorkCell(dwcFile);
+    const SettleResult result = settle(*dwc, names, options.settle);
+    std::string why;
+    if (!result.failure.empty()) {
+      why = "simulation failed: " + result.failure;
+    } else if (!result.atRest) {
+      why = "not at rest after " + std::to_string(result.time) + " s";
+    } else if (result.maxPenetration > options.maxPenetration) {
+      why = "penetration " + std::to_string(result.maxPenetration * 1000.0) + " mm";
+    } else if (!std::all_of(result.X_WO.begin(), result.X_WO.end(),
+                            [&](const Transform3D& X) { return onTable(X, table); })) {
+      why = "an object left the table";
+    }
+    if (why.empty()) {
+      settled = result.X_WO;
+    } else {
+      reasons +=
+          (reasons.empty() ? "" : "; ") + ("attempt " + std::to_string(attempt + 1) + ": " + why);
+    }
+  }
+  if (settled.empty()) throw std::runtime_error("no placement settled (" + reasons + ")");
+  database::writeFileAtomically(
+      wcFile, sceneWorkcellXml(scene, models, settled, toDatabase, layout, table));
+
+  const database::StereoCalibration calibration = rigCalibration(options.rig);
+  const auto [left, right] = rigCameras(calibration);
+  const std::array<std::pair<const render::PinholeCamera*, const std::string*>, 2> views{
+      {{&left, &record.files.left}, {&right, &record.files.right}}};
+  for (const auto& [camera, file] : views) {
+    render::RenderResult image = renderer.render(scene, settled, *camera);
+    Random noise(options.seed, record.id + "|" + *file);
+    addSensorEffects(image.colour, options.rig, noise);
+    database::writeImageAtomically(writer.path(*file), toBgr(image.colour));
+  }
+  database::writeCalibration(writer.path(record.files.calibration), calibration);
+  for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+    record.objects.push_back({scene.objects[i], settled[i]});
+  }
+  return record;
+}
+
+}  // namespace
+
+GenerationReport generateDatabase(const std::vector<database::SceneConditions>& scenes,
+                                  const GeneratorOptions& options,
+                                  const std::function<void(const GenerationProgress&)>& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  database::DatabaseWriter writer(options.out, options.seed, "visgrab db generate");
+  const std::vector<database::SceneConditions> todo = writer.remaining(scenes);
+  GenerationReport report;
+  report.skipped = static_cast<int>(scenes.size() - todo.size());
+  if (todo.empty()) return report;
+  const AssetLayout layout;
+  const Assets assets = prepareAssets(todo, options, layout);
+
+  std::mutex mutex;
+  std::atomic<std::size_t> next{0};
+  std::exception_ptr fatal;
+  GenerationProgress state;
+  state.total = static_cast<int>(todo.size());
+  state.skipped = report.skipped;
+  auto work = [&]() {
+    std::unique_ptr<SceneRenderer> renderer;
+    try {
+      renderer = std::make_unique<SceneRenderer>(assets);
+    } catch (...) {
+      const std::lock_guard lock(mutex);
+      if (!fatal) fatal = std::current_exception();
+      return;
+    }
+    for (std::size_t i = next++; i < todo.size(); i = next++) {
+      std::string failure;
+      database::SceneRecord record;
+      try {
+        record = makeScene(todo[i], assets, options, layout, writer, *renderer);
+        writer.addScene(record);
+      } catch (const std::exception& e) {
+        failure = database::sceneIdOf(todo[i]) + ": " + e.what();
+      }
+      const std::lock_guard lock(mutex);
+      if (failure.empty()) {
+        ++report.generated;
+      } else {
+        report.failures.push_back(failure);
+      }
+      ++state.done;
+      state.lastId = database::sceneIdOf(todo[i]);
+      state.elapsed =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      if (progress) progress(state);
+    }
+  };
+  const int threads = std::max(1, std::min<int>(options.threads, static_cast<int>(todo.size())));
+  std::vector<std::thread> workers;
+  for (int t = 1; t < threads; ++t) workers.emplace_back(work);
+  work();
+  for (auto& w : workers) w.join();
+  if (fatal) std::rethrow_exception(fatal);
+  std::sort(report.failures.begin(), report.failures.end());
+  return report;
+}
+
+}  // namespace visgrab::generator

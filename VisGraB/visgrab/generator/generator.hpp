@@ -1,0 +1,81 @@
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "visgrab/database/scene_set.hpp"
+#include "visgrab/generator/placement.hpp"
+#include "visgrab/generator/settle.hpp"
+#include "visgrab/generator/stereo_rig.hpp"
+
+namespace visgrab::generator {
+
+/// What `visgrab db generate` needs.
+struct GeneratorOptions {
+  /// The database folder to write (created; an existing generation with the same seed resumes).
+  std::filesystem::path out;
+  /// The object spec (scenes/objects/objects.xml).
+  std::filesystem::path objectSpec;
+  /// The hand's folder (scenes/hands/sdh), copied into the database.
+  std::filesystem::path handFolder;
+  /// The material map (scenes/materials.xml), copied into the database.
+  std::filesystem::path materials;
+  /// Seed of placements and sensor noise.
+  std::uint64_t seed = 1;
+  /// Worker threads (each with its own simulator and offscreen renderer).
+  int threads = 1;
+  /// Camera rig.
+  StereoRigSpec rig;
+  /// Placements.
+  PlacementOptions placement;
+  /// Settling.
+  SettleOptions settle;
+  /// Height objects are dropped from above their resting placement, m.
+  double dropHeight = 0.003;
+  /// Deepest penetration a settled scene may keep, m.
+  double maxPenetration = 0.001;
+  /// Placements tried per scene before it is reported as failed.
+  int maxAttempts = 6;
+};
+
+/// Progress after each finished (or failed) scene.
+struct GenerationProgress {
+  /// Scenes finished or failed in this run.
+  int done = 0;
+  /// Scenes this run has to make.
+  int total = 0;
+  /// Scenes found complete from an earlier run (not made again).
+  int skipped = 0;
+  /// Id of the scene just finished.
+  std::string lastId;
+  /// Seconds since the run started.
+  double elapsed = 0.0;
+};
+
+/// What a run did.
+struct GenerationReport {
+  /// Scenes made.
+  int generated = 0;
+  /// Scenes already complete.
+  int skipped = 0;
+  /// "id: reason" for each scene that could not be made.
+  std::vector<std::string> failures;
+};
+
+/// Generates the scenes `scenes` (e.g. enumerateScenes() or a filtered subset) into
+/// options.out: the shared assets (objects, tables, hand, materials) once, then per scene the
+/// placement, settling (retried with new placements until every object is at rest and
+/// penetrates less than maxPenetration), the scene files with the settled poses, the rendered
+/// rectified stereo pair with sensor effects and the calibration; each finished scene is added
+/// to the index at once, so an interrupted run loses nothing and resumes. The same seed gives
+/// byte-identical files whatever the thread count. A scene that fails is reported, not fatal.
+/// @throws std::runtime_error (or rw::loaders::LoadError) for unusable inputs: the object spec,
+/// the hand folder, an index with another seed, no OpenGL.
+GenerationReport generateDatabase(
+    const std::vector<database::SceneConditions>& scenes, const GeneratorOptions& options,
+    const std::function<void(const GenerationProgress&)>& progress = {});
+
+}  // namespace visgrab::generator

@@ -1,0 +1,325 @@
+// A small generated database checked against independent truth: the simulator (the settled
+// objects stay put and do not penetrate), the renderer's ground-truth depth (OpenCV's
+// StereoSGBM on the rectified pair, reprojected with Q), the collision geometry projected with
+// P1 (silhouettes), and byte equality (determinism across thread counts, resume).
+#include <gtest/gtest.h>
+#include <sys/file.h>
+#include <unistd.h>
+
+#include <fcntl.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <iterator>
+#include <map>
+#include <opencv2/calib3d.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "rw/loaders/workcell_loader.hpp"
+#include "rwsim/loaders/dynamic_workcell_loader.hpp"
+#include "rwsim/simulator/simulator.hpp"
+#include "support/test_support.hpp"
+#include "visgrab/database/database.hpp"
+#include "visgrab/database/scene_set.hpp"
+#include "visgrab/generator/generator.hpp"
+#include "visgrab/render/mesh_loader.hpp"
+#include "visgrab/render/offscreen_renderer.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+namespace db = visgrab::database;
+namespace gen = visgrab::generator;
+using rw::math::Transform3D;
+using rw::math::Vector3D;
+
+gen::GeneratorOptions optionsFor(const fs::path& out, int threads) {
+  gen::GeneratorOptions options;
+  options.out = out;
+  options.objectSpec = visgrab::test::sourceDir() / "scenes/objects/objects.xml";
+  options.handFolder = visgrab::test::sourceDir() / "scenes/hands/sdh";
+  options.materials = visgrab::test::sourceDir() / "scenes/materials.xml";
+  options.seed = 5;
+  options.threads = threads;
+  return options;
+}
+
+// Standing, lying and touching, on both tables.
+std::vector<db::SceneConditions> sampleScenes() {
+  std::vector<db::SceneConditions> scenes;
+  for (const auto texture : {db::Texture::kPlain, db::Texture::kTextured}) {
+    scenes.push_back(db::SceneConditions::single(texture, 5, 1));       // cocacola standing
+    scenes.push_back(db::SceneConditions::single(texture, 13, 6));      // saltbox lying
+    scenes.push_back(db::SceneConditions::pairScene(texture, 'c', 5));  // burti + denkmit close
+  }
+  return scenes;
+}
+
+// The shared sample database in the build tree, generated once (the generator resumes, so a
+// complete one costs nothing); a file lock keeps parallel test processes apart.
+const db::Database& sampleDatabase() {
+  static const db::Database database = [] {
+    const fs::path dir = VISGRAB_TEST_DB_DIR;
+    fs::create_directories(dir.parent_path());
+    const fs::path lockFile = dir.string() + ".lock";
+    const int fd = ::open(lockFile.c_str(), O_CREAT | O_RDWR, 0644);
+    if (fd < 0 || ::flock(fd, LOCK_EX) != 0)
+      throw std::runtime_error("cannot lock " + lockFile.string());
+    const auto report = gen::generateDatabase(sampleScenes(), optionsFor(dir, 2));
+    ::flock(fd, LOCK_UN);
+    ::close(fd);
+    if (!report.failures.empty()) throw std::runtime_error(report.failures.front());
+    return db::Database::open(dir);
+  }();
+  return database;
+}
+
+TEST(GeneratedDatabase, ListsTheGeneratedScenesWithTheirConditions) {
+  const auto& database = sampleDatabase();
+  ASSERT_EQ(database.list().size(), sampleScenes().size());
+  for (const auto& scene : sampleScenes()) {
+    const auto& entry = database.scene(db::sceneIdOf(scene));
+    ASSERT_TRUE(entry.conditions.has_value());
+    EXPECT_EQ(*entry.conditions, scene);
+    EXPECT_EQ(database.groundTruth(db::sceneIdOf(scene)).size(), scene.objects.size());
+  }
+}
+
+TEST(GeneratedDatabase, SettledObjectsAreAtRestAndDoNotPenetrate) {
+  const auto& database = sampleDatabase();
+  for (const auto& entry : database.list()) {
+    const auto dwc = rwsim::loaders::loadDynamicWorkCell(entry.dynamicWorkcell);
+    rwsim::simulator::Simulator sim(*dwc);
+    sim.reset(dwc->workcell().defaultState());
+    const auto& truth = database.groundTruth(entry.id);
+    std::vector<int> bodies;
+    for (const auto& pose : truth) {
+      const int body = dwc->findBody(db::objectName(pose.object));
+      ASSERT_GE(body, 0);
+      // The scene file puts the object where the index says.
+      EXPECT_TRANSFORM_NEAR(sim.bodyPose(body), pose.X_WO, 1e-6);
+      bodies.push_back(body);
+    }
+    double deepest = 0.0;
+    for (int step = 0; step < 100; ++step) {  // 0.5 s more
+      ASSERT_EQ(sim.step(), rwsim::simulator::StepStatus::kOk) << entry.id;
+      for (const auto& pair : sim.contacts()) {
+        for (const auto& c : pair.points) deepest = std::max(deepest, c.point.depth);
+      }
+    }
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      const Transform3D X = sim.bodyPose(bodies[i]);
+      EXPECT_LT((X.translation() - truth[i].X_WO.translation()).norm(), 1e-3) << entry.id;
+      EXPECT_LT(sim.bodyLinearVelocity(bodies[i]).norm(), 1e-3) << entry.id;
+    }
+    EXPECT_LT(deepest, 1e-3) << entry.id;
+  }
+}
+
+// Renders what the left camera sees from the database's own files (object and table OBJs,
+// ground-truth poses, calibration): depth and instance ids (10 + object id) as truth.
+visgrab::render::RenderResult renderTruth(const db::Database& database,
+                                          const db::SceneEntry& entry) {
+  static visgrab::render::OffscreenRenderer renderer;
+  static std::map<std::string, std::vector<visgrab::render::MeshHandle>> uploaded;
+  auto meshes = [&](const fs::path& obj) -> const std::vector<visgrab::render::MeshHandle>& {
+    auto it = uploaded.find(obj.string());
+    if (it == uploaded.end()) {
+      std::vector<visgrab::render::MeshHandle> handles;
+      for (auto& m : visgrab::render::loadVisualMeshes(obj)) {
+        handles.push_back(renderer.add(std::make_shared<const visgrab::visual::VisualMesh>(m)));
+      }
+      it = uploaded.emplace(obj.string(), handles).first;
+    }
+    return it->second;
+  };
+  const std::string texture(db::toString(entry.conditions->texture));
+  visgrab::render::Scene scene;
+  for (const auto h : meshes(database.root() / "tables" / texture / (texture + ".obj"))) {
+    scene.items.push_back({h, Transform3D::Identity(), 1});
+  }
+  for (const auto& pose : database.groundTruth(entry.id)) {
+    const std::string name(db::objectName(pose.object));
+    for (const auto h : meshes(database.root() / "objects" / name / (name + ".obj"))) {
+      scene.items.push_back({h, pose.X_WO, static_cast<std::uint16_t>(10 + pose.object)});
+    }
+  }
+  const auto calibration = database.calibration(entry.id);
+  visgrab::render::PinholeCamera camera;
+  camera.fx = calibration.P1(0, 0);
+  camera.fy = calibration.P1(1, 1);
+  camera.cx = calibration.P1(0, 2);
+  camera.cy = calibration.P1(1, 2);
+  camera.width = calibration.width;
+  camera.height = calibration.height;
+  camera.X_WC = calibration.X_TL;
+  return renderer.render(scene, camera);
+}
+
+TEST(GeneratedDatabase, StereoReconstructsTheObjectsWithinFiveMillimetres) {
+  const auto& database = sampleDatabase();
+  for (const auto& entry : database.list()) {
+    const cv::Mat left = database.leftImage(entry.id);
+    const cv::Mat right = database.rightImage(entry.id);
+    const auto calibration = database.calibration(entry.id);
+    // Disparities 48..240 px cover the table from 0.4 m to 2 m; 5x5 blocks on colour.
+    const int blockSize = 5;
+    auto sgbm = cv::StereoSGBM::create(48, 192, blockSize, 8 * 3 * blockSize * blockSize,
+                                       32 * 3 * blockSize * blockSize, 1, 0, 10, 100, 2,
+                                       cv::StereoSGBM::MODE_SGBM);
+    cv::Mat disparity16, disparity;
+    sgbm->compute(left, right, disparity16);
+    disparity16.convertTo(disparity, CV_32F, 1.0 / 16.0);
+    cv::Mat Q(4, 4, CV_64F);
+    for (int i = 0; i < 4; ++i) {
+      for (int j = 0; j < 4; ++j) Q.at<double>(i, j) = calibration.Q(i, j);
+    }
+    cv::Mat points;
+    cv::reprojectImageTo3D(disparity, points, Q, true);
+    const auto truth = renderTruth(database, entry);
+    int objectPixels = 0, withDisparity = 0, within = 0;
+    for (int r = 0; r < truth.depth.height; ++r) {
+      for (int c = 0; c < truth.depth.width; ++c) {
+        if (truth.instanceIds.at(r, c) < 10) continue;
+        ++objectPixels;
+        if (disparity.at<float>(r, c) < 48.0f) continue;  // no disparity found
+        ++withDisparity;
+        const double z = points.at<cv::Vec3f>(r, c)[2];
+        if (std::abs(z - truth.depth.at(r, c)) < 0.005) ++within;
+      }
+    }
+    std::cout << entry.id << ": " << within << " of " << withDisparity
+              << " object pixels with a disparity within 5 mm ("
+              << 100.0 * within / std::max(1, withDisparity) << " %), " << objectPixels
+              << " object pixels\n";
+    ASSERT_GT(objectPixels, 2000) << entry.id;
+    EXPECT_GT(withDisparity, objectPixels / 2) << entry.id;
+    EXPECT_GE(within, 0.8 * withDisparity)
+        << entry.id << ": " << within << " of " << withDisparity << " object pixels with a "
+        << "disparity are within 5 mm (" << objectPixels << " object pixels)";
+  }
+}
+
+TEST(GeneratedDatabase, SceneModelProjectedWithP1MatchesTheRenderedSilhouette) {
+  const auto& database = sampleDatabase();
+  for (const auto& entry : database.list()) {
+    const auto calibration = database.calibration(entry.id);
+    const auto wc = rw::loaders::loadWorkCell(entry.workcell);
+    const auto state = wc->defaultState();
+    const Transform3D X_LW = calibration.X_TL.inverse();
+    const auto truth = renderTruth(database, entry);
+    for (const auto& pose : database.groundTruth(entry.id)) {
+      const auto frame = wc->frames().find(db::objectName(pose.object));
+      ASSERT_TRUE(frame.valid());
+      const auto* object = wc->findObject(frame);
+      ASSERT_NE(object, nullptr);
+      const Transform3D X_WF = rw::kinematics::worldTransform(wc->frames(), state, frame);
+      cv::Mat model = cv::Mat::zeros(calibration.height, calibration.width, CV_8U);
+      for (const auto& g : object->collision) {
+        const auto& mesh = g.geometry->triangles();
+        for (const auto& t : mesh.triangles) {
+          std::vector<cv::Point> corners;
+          for (const auto i : t) {
+            const Eigen::Vector3d u =
+                calibration.P1 *
+                (X_LW * X_WF * g.X_frame_geometry * mesh.vertices[i]).homogeneous();
+            // Fixed point with 8 fractional bits; pixel centres at integers as in OpenCV.
+            corners.emplace_back(static_cast<int>(std::lround(u.x() / u.z() * 256.0)),
+                                 static_cast<int>(std::lround(u.y() / u.z() * 256.0)));
+          }
+          cv::fillConvexPoly(model, corners, cv::Scalar(255), cv::LINE_8, 8);
+        }
+      }
+      int both = 0, either = 0;
+      for (int r = 0; r < model.rows; ++r) {
+        for (int c = 0; c < model.cols; ++c) {
+          // Pixels where the other object of a pair is in front say nothing about this one.
+          const int id = truth.instanceIds.at(r, c);
+          if (id >= 10 && id != 10 + pose.object) continue;
+          const bool m = model.at<std::uint8_t>(r, c) != 0;
+          const bool s = id == 10 + pose.object;
+          both += m && s;
+          either += m || s;
+        }
+      }
+      ASSERT_GT(either, 0);
+      EXPECT_GE(static_cast<double>(both) / either, 0.95) << entry.id << " object " << pose.object;
+    }
+  }
+}
+
+// Names of the files that differ between two folders' contents (or exist in one only).
+std::vector<std::string> differences(const std::map<std::string, std::string>& a,
+                                     const std::map<std::string, std::string>& b) {
+  std::vector<std::string> out;
+  for (const auto& [name, bytes] : a) {
+    const auto it = b.find(name);
+    if (it == b.end() || it->second != bytes) out.push_back(name);
+  }
+  for (const auto& [name, bytes] : b) {
+    if (a.count(name) == 0) out.push_back(name + " (only in the second)");
+  }
+  return out;
+}
+
+std::map<std::string, std::string> filesOf(const fs::path& dir) {
+  std::map<std::string, std::string> files;
+  for (const auto& e : fs::recursive_directory_iterator(dir)) {
+    if (!e.is_regular_file()) continue;
+    std::ifstream in(e.path(), std::ios::binary);
+    files[fs::relative(e.path(), dir).generic_string()] =
+        std::string(std::istreambuf_iterator<char>(in), {});
+  }
+  return files;
+}
+
+TEST(GeneratedDatabase, SameSeedSameBytesWhateverTheThreadsAndAResumeRedoesOnlyWhatIsMissing) {
+  visgrab::test::TempDir tmp;
+  const std::vector<db::SceneConditions> scenes{
+      db::SceneConditions::single(db::Texture::kTextured, 18, 2),
+      db::SceneConditions::pairScene(db::Texture::kPlain, 'e', 6)};
+  const auto one = gen::generateDatabase(scenes, optionsFor(tmp.path() / "one", 1));
+  const auto two = gen::generateDatabase(scenes, optionsFor(tmp.path() / "two", 2));
+  EXPECT_EQ(one.generated, 2);
+  EXPECT_EQ(two.generated, 2);
+  const auto a = filesOf(tmp.path() / "one");
+  EXPECT_EQ(differences(a, filesOf(tmp.path() / "two")), std::vector<std::string>{});
+  EXPECT_GT(a.size(), 10u);
+  // Interrupted after a scene lost its right image: only that scene is made again, identically.
+  const std::string right = "scenes/" + db::sceneIdOf(scenes[1]) + "/right.png";
+  ASSERT_EQ(a.count(right), 1u);
+  fs::remove(tmp.path() / "one" / right);
+  const auto resumed = gen::generateDatabase(scenes, optionsFor(tmp.path() / "one", 1));
+  EXPECT_EQ(resumed.generated, 1);
+  EXPECT_EQ(resumed.skipped, 1);
+  EXPECT_EQ(differences(filesOf(tmp.path() / "one"), a), std::vector<std::string>{});
+  // Another seed in the same folder is refused.
+  auto other = optionsFor(tmp.path() / "one", 1);
+  other.seed = 6;
+  EXPECT_THROW(gen::generateDatabase(scenes, other), std::runtime_error);
+}
+
+TEST(GeneratedDatabase, UnusableInputsAreClearErrors) {
+  visgrab::test::TempDir tmp;
+  const std::vector<db::SceneConditions> scenes{
+      db::SceneConditions::single(db::Texture::kPlain, 5, 1)};
+  auto options = optionsFor(tmp.path() / "db", 1);
+  options.objectSpec = tmp.path() / "missing.xml";
+  try {
+    gen::generateDatabase(scenes, options);
+    ADD_FAILURE() << "a missing object spec must throw";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("missing.xml"), std::string::npos) << e.what();
+  }
+  options = optionsFor(tmp.path() / "db2", 1);
+  options.handFolder = tmp.path() / "nohand";
+  try {
+    gen::generateDatabase(scenes, options);
+    ADD_FAILURE() << "a missing hand folder must throw";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("nohand"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
