@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "command_line.hpp"
+#include "db_commands.hpp"
 #include "sim_commands.hpp"
 #include "wc_commands.hpp"
 
@@ -12,6 +13,7 @@ int main(int argc, char** argv) {
   try {
     std::vector<visgrab::app::Command> commands = visgrab::app::workcellCommands();
     for (auto& c : visgrab::app::simulationCommands()) commands.push_back(std::move(c));
+    for (auto& c : visgrab::app::databaseCommands()) commands.push_back(std::move(c));
     const std::vector<std::string> args(argv + 1, argv + argc);
     return visgrab::app::dispatch(commands, args);
   } catch (const std::exception& e) {

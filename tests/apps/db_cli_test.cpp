@@ -1,0 +1,76 @@
+// `visgrab db generate | list | show` on a one-scene database made by the command itself.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+
+#include "support/test_support.hpp"
+
+namespace {
+
+using visgrab::test::RunResult;
+using visgrab::test::shellQuoted;
+
+RunResult visgrab(const std::string& args) {
+  return visgrab::test::runProgram(VISGRAB_BINARY, args);
+}
+
+TEST(DbCli, GeneratesListsAndShowsAScene) {
+  visgrab::test::TempDir dir;
+  const auto db = dir.path() / "db";
+  const RunResult made = visgrab("db generate --out " + shellQuoted(db) +
+                                 " --scenes 'plain,single,cocacola,pose=1' --threads 1");
+  ASSERT_EQ(made.exitCode, 0) << made.output;
+  EXPECT_NE(made.output.find("1 scenes generated, 0 already complete, 0 failed"), std::string::npos)
+      << made.output;
+  // Progress on stderr.
+  EXPECT_NE(made.output.find("1/1 scenes"), std::string::npos) << made.output;
+  for (const char* file :
+       {"left.png", "right.png", "calibration.yml", "scene.wc.xml", "scene.dwc.xml"}) {
+    EXPECT_TRUE(std::filesystem::is_regular_file(db / "scenes/plain/single/cocacola/01" / file))
+        << file;
+  }
+  // Again: nothing left to do.
+  const RunResult again = visgrab("db generate --out " + shellQuoted(db) +
+                                  " --scenes 'plain,single,cocacola,pose=1' --quiet");
+  ASSERT_EQ(again.exitCode, 0) << again.output;
+  EXPECT_NE(again.output.find("0 scenes generated, 1 already complete"), std::string::npos)
+      << again.output;
+
+  const RunResult list = visgrab("db list --db " + shellQuoted(db));
+  ASSERT_EQ(list.exitCode, 0) << list.output;
+  EXPECT_NE(list.output.find("plain/single/cocacola/01"), std::string::npos) << list.output;
+  EXPECT_NE(list.output.find("1 of 1 scenes"), std::string::npos) << list.output;
+
+  const RunResult show = visgrab("db show --db " + shellQuoted(db) + " plain/single/cocacola/01");
+  ASSERT_EQ(show.exitCode, 0) << show.output;
+  EXPECT_NE(show.output.find("cocacola"), std::string::npos) << show.output;
+  EXPECT_NE(show.output.find("calibration.yml"), std::string::npos) << show.output;
+
+  // An unknown id names the id and suggests the scene that exists.
+  const RunResult unknown =
+      visgrab("db show --db " + shellQuoted(db) + " plain/single/cocacola/02");
+  EXPECT_EQ(unknown.exitCode, 1) << unknown.output;
+  EXPECT_NE(unknown.output.find("plain/single/cocacola/02"), std::string::npos) << unknown.output;
+  EXPECT_NE(unknown.output.find("plain/single/cocacola/01"), std::string::npos) << unknown.output;
+}
+
+TEST(DbCli, BadArgumentsAreUsageErrors) {
+  visgrab::test::TempDir dir;
+  const RunResult noOut = visgrab("db generate --scenes cocacola");
+  EXPECT_EQ(noOut.exitCode, 2) << noOut.output;
+  EXPECT_NE(noOut.output.find("--out DIR is required"), std::string::npos) << noOut.output;
+  const RunResult badFilter =
+      visgrab("db generate --out " + shellQuoted(dir.path() / "x") + " --scenes cocacolla");
+  EXPECT_EQ(badFilter.exitCode, 2) << badFilter.output;
+  EXPECT_NE(badFilter.output.find("cocacolla"), std::string::npos) << badFilter.output;
+  const RunResult badThreads =
+      visgrab("db generate --out " + shellQuoted(dir.path() / "x") + " --threads zero");
+  EXPECT_EQ(badThreads.exitCode, 2) << badThreads.output;
+  EXPECT_NE(badThreads.output.find("--threads"), std::string::npos) << badThreads.output;
+  const RunResult missing = visgrab("db list --db " + shellQuoted(dir.path() / "nothing"));
+  EXPECT_EQ(missing.exitCode, 1) << missing.output;
+  EXPECT_NE(missing.output.find("nothing"), std::string::npos) << missing.output;
+}
+
+}  // namespace
