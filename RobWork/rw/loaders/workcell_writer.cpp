@@ -12,6 +12,7 @@
 #include <stdexcept>
 #include <system_error>
 
+#include "rw/loaders/xml/strings.hpp"
 #include "rw/math/rpy.hpp"
 
 namespace rw::loaders {
@@ -71,30 +72,6 @@ std::string formatList(const Q& q) {
   return text;
 }
 
-std::string escapeXml(std::string_view text) {
-  std::string out;
-  out.reserve(text.size());
-  for (const char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
-
 /// A minimal indenting XML writer; attributes are written in the order given.
 class XmlWriter {
  public:
@@ -128,7 +105,7 @@ class XmlWriter {
     indent();
     start(tag, attributes);
     out_ += '>';
-    out_ += escapeXml(body);
+    out_ += xml::escapeXml(body);
     out_ += "</";
     out_ += tag;
     out_ += ">\n";
@@ -144,7 +121,7 @@ class XmlWriter {
       out_ += ' ';
       out_ += name;
       out_ += "=\"";
-      out_ += escapeXml(value);
+      out_ += xml::escapeXml(value);
       out_ += '"';
     }
   }

@@ -8,6 +8,7 @@
 #include <system_error>
 #include <utility>
 
+#include "rw/loaders/xml/strings.hpp"
 #include "rw/loaders/xml/text_file.hpp"
 #include "rw/math/rpy.hpp"
 #include "visgrab/database/original_manifest.hpp"
@@ -17,21 +18,6 @@ namespace visgrab::database {
 namespace fs = std::filesystem;
 
 namespace {
-
-std::size_t editDistance(std::string_view a, std::string_view b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diagonal = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t up = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
-      diagonal = up;
-    }
-  }
-  return row[b.size()];
-}
 
 std::string unknownMessage(const std::string& id, const std::vector<std::string>& closest) {
   std::string message = "unknown scene id \"" + id + "\"";
@@ -189,7 +175,7 @@ std::vector<const SceneEntry*> Database::filter(const SceneFilter& f) const {
 std::vector<std::string> Database::closestIds(std::string_view id, std::size_t count) const {
   std::vector<std::pair<std::size_t, std::size_t>> ranked;  // (distance, index)
   for (std::size_t i = 0; i < scenes_.size(); ++i) {
-    ranked.emplace_back(editDistance(id, scenes_[i].id), i);
+    ranked.emplace_back(rw::loaders::xml::editDistance(id, scenes_[i].id), i);
   }
   const std::size_t n = std::min(count, ranked.size());
   std::partial_sort(ranked.begin(), ranked.begin() + static_cast<std::ptrdiff_t>(n), ranked.end());

@@ -10,6 +10,7 @@
 #include "rw/loaders/diagnostic.hpp"
 #include "rw/loaders/xml/diagnostic_sink.hpp"
 #include "rw/loaders/xml/numbers.hpp"
+#include "rw/loaders/xml/strings.hpp"
 #include "rw/loaders/xml/text_file.hpp"
 #include "rw/loaders/xml/xml_reader.hpp"
 #include "rw/math/rpy.hpp"
@@ -35,29 +36,6 @@ std::string fixed(double value) {
   std::string text(buffer);
   if (text == "-0.000000000") text = "0.000000000";
   return text;
-}
-
-std::string escape(std::string_view text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
 }
 
 // Reads the three numbers of <Pos>/<RPY>; reports non-finite values (the schema's xs:double
@@ -295,17 +273,19 @@ std::string indexToXml(const DatabaseIndex& index) {
   out += "<!-- VisGraB scene database index; format: docs/database-format.md -->\n";
   out += "<VisGraBDatabase formatVersion=\"" + std::to_string(index.formatVersion) + "\" seed=\"" +
          std::to_string(index.seed) + "\"";
-  if (!index.generator.empty()) out += " generator=\"" + escape(index.generator) + "\"";
+  if (!index.generator.empty()) out += " generator=\"" + xml::escapeXml(index.generator) + "\"";
   out += ">\n";
   for (const SceneRecord* s : ordered) {
     const SceneConditions& c = s->conditions;
-    out += "  <Scene id=\"" + escape(s->id) + "\" texture=\"" + std::string(toString(c.texture)) +
-           "\" kind=\"" + std::string(toString(c.kind)) + "\" arrangement=\"" +
-           std::string(toString(c.arrangement())) + "\" pose=\"" + std::to_string(c.pose) + "\">\n";
-    out += "    <Files left=\"" + escape(s->files.left) + "\" right=\"" + escape(s->files.right) +
-           "\"\n           calibration=\"" + escape(s->files.calibration) + "\"\n" +
-           "           workcell=\"" + escape(s->files.workcell) + "\" dynamicWorkcell=\"" +
-           escape(s->files.dynamicWorkcell) + "\"/>\n";
+    out += "  <Scene id=\"" + xml::escapeXml(s->id) + "\" texture=\"" +
+           std::string(toString(c.texture)) + "\" kind=\"" + std::string(toString(c.kind)) +
+           "\" arrangement=\"" + std::string(toString(c.arrangement())) + "\" pose=\"" +
+           std::to_string(c.pose) + "\">\n";
+    out += "    <Files left=\"" + xml::escapeXml(s->files.left) + "\" right=\"" +
+           xml::escapeXml(s->files.right) + "\"\n           calibration=\"" +
+           xml::escapeXml(s->files.calibration) + "\"\n" + "           workcell=\"" +
+           xml::escapeXml(s->files.workcell) + "\" dynamicWorkcell=\"" +
+           xml::escapeXml(s->files.dynamicWorkcell) + "\"/>\n";
     for (std::size_t i = 0; i < s->objects.size(); ++i) {
       const ObjectPose& o = s->objects[i];
       if (o.object != c.objects[i]) {

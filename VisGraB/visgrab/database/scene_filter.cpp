@@ -4,6 +4,8 @@
 #include <charconv>
 #include <optional>
 
+#include "rw/loaders/xml/strings.hpp"
+
 namespace visgrab::database {
 
 namespace {
@@ -53,22 +55,6 @@ std::optional<int> smallInt(std::string_view text) {
   return value;
 }
 
-// Levenshtein distance, for "did you mean".
-std::size_t editDistance(std::string_view a, std::string_view b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diagonal = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t up = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
-      diagonal = up;
-    }
-  }
-  return row[b.size()];
-}
-
 std::string suggestion(std::string_view word) {
   std::vector<std::string_view> known = {
       "plain", "textured", "single", "double", "standing", "lying", "apart", "close",
@@ -77,7 +63,7 @@ std::string suggestion(std::string_view word) {
   std::string_view best;
   std::size_t bestDistance = 3;
   for (std::string_view k : known) {
-    const std::size_t d = editDistance(word, k);
+    const std::size_t d = rw::loaders::xml::editDistance(word, k);
     if (d < bestDistance) {
       bestDistance = d;
       best = k;

@@ -9,6 +9,7 @@
 
 #include "rw/loaders/detail/setup_files.hpp"
 #include "rw/loaders/detail/wc_geometry.hpp"
+#include "rw/loaders/xml/strings.hpp"
 
 namespace rw::loaders::detail {
 
@@ -23,21 +24,6 @@ namespace {
 
 constexpr int kWorldIndex = -1;
 constexpr int kUnresolved = -2;
-
-std::size_t editDistance(std::string_view a, std::string_view b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diagonal = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t up = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
-      diagonal = up;
-    }
-  }
-  return row[b.size()];
-}
 
 std::string_view lastComponent(std::string_view name) {
   const auto dot = name.rfind('.');
@@ -414,7 +400,7 @@ std::string suggestName(std::string_view wanted, const std::vector<std::string>&
   std::size_t bestScore = std::string::npos;
   for (const std::string& c : candidates) {
     if (c.size() > kLongest || c == wanted) continue;
-    std::size_t score = editDistance(wanted, c);
+    std::size_t score = xml::editDistance(wanted, c);
     const bool sameLast = lastComponent(c) == wantedLast;
     if (sameLast) score = std::min<std::size_t>(score, 1);
     const std::size_t allowed = std::max<std::size_t>(2, wanted.size() / 4);
