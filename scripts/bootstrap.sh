@@ -2,11 +2,12 @@
 # VisGraB set-up on Debian 12: install the Debian packages, build, then either run the main job
 # or run all tests.
 #
-#   scripts/bootstrap.sh run     install, build (Release) and run the main job
+#   scripts/bootstrap.sh run     install, build and run the main job (generate the scene database)
 #   scripts/bootstrap.sh test    install, build (warnings as errors) and run every test, plus the
 #                                malformed-input suites again under AddressSanitizer+UBSan
 #
-# Environment: BUILD_DIR (default build), JOBS (default: number of cores),
+# Environment: BUILD_DIR (default build), JOBS (default: number of cores), VISGRAB_DATABASE
+# (where the main job writes the database, default database/),
 # RW_COMPAT_DATA (RobWork's own files for the compatibility tests; they are skipped without it).
 set -euo pipefail
 
@@ -55,9 +56,13 @@ configure_and_build() {
 install_packages
 
 if [[ "$mode" == run ]]; then
-  configure_and_build "$build" -DCMAKE_BUILD_TYPE=Release
-  echo "== main job: visgrab wc info scenes/hands/sdh/sdh.wc.xml"
-  "$build/apps/visgrab/visgrab" wc info scenes/hands/sdh/sdh.wc.xml
+  # RelWithDebInfo (-O2), as the test build: one build serves both commands, and GCC 12's -O3
+  # false-positive warnings stay out of the way.
+  configure_and_build "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo
+  db=${VISGRAB_DATABASE:-database}
+  echo "== main job: generate the scene database into $db (resumes if interrupted)"
+  "$build/apps/visgrab/visgrab" db generate --out "$db" --threads "$jobs"
+  "$build/apps/visgrab/visgrab" db list --db "$db" --scenes 'textured,single,pose=1'
   exit 0
 fi
 
