@@ -1,0 +1,441 @@
+#include "visgrab/grasp/contact_ik.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numeric>
+#include <stdexcept>
+
+#include "rw/kinematics/frame_tree.hpp"
+
+namespace visgrab::grasp {
+
+namespace {
+
+using rw::kinematics::FrameId;
+using rw::kinematics::FrameType;
+using rw::math::Q;
+using rw::math::Rotation3D;
+using rw::math::Transform3D;
+using rw::math::Vector3D;
+
+constexpr double kRegularisation = 1e-5;  // m per rad (or m per m) towards the seed
+constexpr int kMaxIterations = 200;
+constexpr double kErrorPenalty = 10.0;        // m of clearance per m of position error
+constexpr double kBasinDirectionGain = 10.0;  // direction weight of the first phase / described
+constexpr double kMaxRotationStep = 0.5;      // rad
+constexpr double kMaxTranslationStep = 0.1;   // m
+constexpr double kMaxJointStep = 0.5;         // rad or m
+
+Rotation3D skew(const Vector3D& v) {
+  Rotation3D S;
+  S << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
+  return S;
+}
+
+double angleBetween(const Vector3D& a, const Vector3D& b) {
+  return std::atan2(a.cross(b).norm(), a.dot(b));
+}
+
+// A joint on the path from a fingertip to the base: its frame, the DOF it follows and the gain.
+struct ChainJoint {
+  FrameId frame;
+  int dof = 0;
+  double gain = 1.0;
+  bool revolute = true;
+};
+
+// One target of the solver: a fingertip and where its pad should be, pushing along `direction`.
+struct Target {
+  int fingertip = 0;
+  Vector3D position = Vector3D::Zero();
+  Vector3D direction = Vector3D::UnitZ();
+};
+
+// The hand's kinematics for the solver: sets the base pose and q, evaluates the residuals.
+class HandModel {
+ public:
+  explicit HandModel(const HandGraspSetup& setup)
+      : setup_(setup),
+        ik_(*setup.contactIk()),
+        state_(setup.defaultState()),
+        directionWeight_(ik_.directionWeight) {
+    const auto& tree = setup.workcell().frames();
+    const FrameId base = setup.device().base();
+    X_W_parent_ = rw::kinematics::worldTransform(tree, state_, tree.frame(base).parent());
+    const auto& active = setup.device().activeJoints();
+    for (const Fingertip& tip : ik_.fingertips) {
+      std::vector<ChainJoint> chain;
+      for (FrameId f = tip.frame; f.valid() && f != base; f = tree.frame(f).parent()) {
+        const auto& frame = tree.frame(f);
+        if (!frame.isJoint() || frame.isPassive()) continue;
+        const FrameId owner = frame.isDependent() ? frame.dependency()->owner : f;
+        const auto it = std::find(active.begin(), active.end(), owner);
+        if (it == active.end()) continue;
+        chain.push_back({f, static_cast<int>(it - active.begin()),
+                         frame.isDependent() ? frame.dependency()->gain : 1.0,
+                         frame.type() == FrameType::kRevolute});
+      }
+      chains_.push_back(std::move(chain));
+    }
+  }
+
+  // Residuals and Jacobian (columns: base v, base w if moveBase, then the free joints).
+  double evaluate(const Transform3D& X_W_base, const Q& q, const std::vector<Target>& targets,
+                  const std::vector<int>& free, const Q& qRef, bool moveBase,
+                  const Vector3D& approach, Eigen::VectorXd& r, Eigen::MatrixXd* J) {
+    const auto& tree = setup_.workcell().frames();
+    tree.frame(setup_.device().base())
+        .setMovableTransform(state_, X_W_parent_.inverse() * X_W_base);
+    setup_.device().setQ(q, state_);
+    const rw::kinematics::FKTable fk(tree, state_);
+    const int nBase = moveBase ? 6 : 0;
+    const int nFree = static_cast<int>(free.size());
+    const int rows = 6 * static_cast<int>(targets.size()) + (moveBase ? 3 : 0) + nFree;
+    r.setZero(rows);
+    if (J) J->setZero(rows, nBase + nFree);
+    const double wd = directionWeight_;
+    int row = 0;
+    for (const Target& t : targets) {
+      const Fingertip& tip = ik_.fingertips[static_cast<std::size_t>(t.fingertip)];
+      const Transform3D& X = fk.worldTransform(tip.frame);
+      const Vector3D p = X * tip.point;
+      const Vector3D n = X.linear() * tip.normal;
+      r.segment<3>(row) = p - t.position;
+      r.segment<3>(row + 3) = wd * (n - t.direction);
+      if (J) {
+        if (moveBase) {
+          J->block<3, 3>(row, 0).setIdentity();
+          J->block<3, 3>(row, 3) = -skew(p - X_W_base.translation());
+          J->block<3, 3>(row + 3, 3) = -wd * skew(n);
+        }
+        for (const ChainJoint& c : chains_[static_cast<std::size_t>(t.fingertip)]) {
+          const auto col = std::find(free.begin(), free.end(), c.dof);
+          if (col == free.end()) continue;
+          const int k = nBase + static_cast<int>(col - free.begin());
+          const Transform3D& XJ = fk.worldTransform(c.frame);
+          const Vector3D z = XJ.linear().col(2);
+          if (c.revolute) {
+            J->block<3, 1>(row, k) += c.gain * z.cross(p - XJ.translation());
+            J->block<3, 1>(row + 3, k) += wd * c.gain * z.cross(n);
+          } else {
+            J->block<3, 1>(row, k) += c.gain * z;
+          }
+        }
+      }
+      row += 6;
+    }
+    if (moveBase) {
+      const Vector3D a = X_W_base.linear() * ik_.approachAxisInBase;
+      r.segment<3>(row) = ik_.approachWeight * (a - approach);
+      if (J) J->block<3, 3>(row, 3) = -ik_.approachWeight * skew(a);
+      row += 3;
+    }
+    for (int k = 0; k < nFree; ++k) {
+      const auto j = static_cast<Eigen::Index>(free[static_cast<std::size_t>(k)]);
+      r[row + k] = kRegularisation * (q[j] - qRef[j]);
+      if (J) (*J)(row + k, nBase + k) = kRegularisation;
+    }
+    return 0.5 * r.squaredNorm();
+  }
+
+  // Sets the weight of the direction residuals.
+  void setDirectionWeight(double w) { directionWeight_ = w; }
+
+  // Pad point and push direction of a fingertip, world frame.
+  void fingertipAt(const Transform3D& X_W_base, const Q& q, int fingertip, Vector3D& p,
+                   Vector3D& n) {
+    const auto& tree = setup_.workcell().frames();
+    tree.frame(setup_.device().base())
+        .setMovableTransform(state_, X_W_parent_.inverse() * X_W_base);
+    setup_.device().setQ(q, state_);
+    const Fingertip& tip = ik_.fingertips[static_cast<std::size_t>(fingertip)];
+    const Transform3D X = rw::kinematics::worldTransform(tree, state_, tip.frame);
+    p = X * tip.point;
+    n = X.linear() * tip.normal;
+  }
+
+ private:
+  const HandGraspSetup& setup_;
+  const ContactIkSettings& ik_;
+  rw::kinematics::State state_;
+  Transform3D X_W_parent_ = Transform3D::Identity();
+  double directionWeight_;
+  std::vector<std::vector<ChainJoint>> chains_;
+};
+
+// Levenberg-Marquardt over the base pose (if moveBase) and the free joints.
+class Solver {
+ public:
+  Solver(HandModel& model, const HandGraspSetup& setup, const Vector3D& approach)
+      : model_(model),
+        lower_(setup.device().lowerLimits()),
+        upper_(setup.device().upperLimits()),
+        approach_(approach) {}
+
+  double solve(Transform3D& X_W_base, Q& q, const std::vector<Target>& targets,
+               const std::vector<int>& free, bool moveBase) {
+    const Q qRef = q;
+    Eigen::VectorXd r;
+    Eigen::VectorXd rTry;
+    Eigen::MatrixXd J;
+    double cost = model_.evaluate(X_W_base, q, targets, free, qRef, moveBase, approach_, r, &J);
+    double lambda = 1e-3;
+    for (int it = 0; it < kMaxIterations && cost > 1e-16; ++it) {
+      const Eigen::MatrixXd A = J.transpose() * J;
+      const Eigen::VectorXd g = J.transpose() * r;
+      Eigen::MatrixXd damped = A;
+      damped.diagonal() += lambda * (A.diagonal().array() + 1e-9).matrix();
+      Eigen::VectorXd step = damped.ldlt().solve(-g);
+      limitStep(step, moveBase);
+      Transform3D X_try = X_W_base;
+      Q qTry = q;
+      apply(step, free, moveBase, X_try, qTry);
+      const double tryCost =
+          model_.evaluate(X_try, qTry, targets, free, qRef, moveBase, approach_, rTry, nullptr);
+      if (tryCost < cost) {
+        const double gain = cost - tryCost;
+        X_W_base = X_try;
+        q = qTry;
+        cost = model_.evaluate(X_W_base, q, targets, free, qRef, moveBase, approach_, r, &J);
+        lambda = std::max(lambda / 3.0, 1e-9);
+        if (gain < 1e-14 && step.norm() < 1e-9) break;
+      } else {
+        lambda *= 4.0;
+        if (lambda > 1e8) break;
+      }
+    }
+    return cost;
+  }
+
+ private:
+  static void limitStep(Eigen::VectorXd& step, bool moveBase) {
+    double scale = 1.0;
+    const int nBase = moveBase ? 6 : 0;
+    if (moveBase) {
+      const double v = step.head<3>().norm();
+      const double w = step.segment<3>(3).norm();
+      if (v > kMaxTranslationStep) scale = std::min(scale, kMaxTranslationStep / v);
+      if (w > kMaxRotationStep) scale = std::min(scale, kMaxRotationStep / w);
+    }
+    const double joints = step.tail(step.size() - nBase).cwiseAbs().maxCoeff();
+    if (step.size() > nBase && joints > kMaxJointStep)
+      scale = std::min(scale, kMaxJointStep / joints);
+    step *= scale;
+  }
+
+  void apply(const Eigen::VectorXd& step, const std::vector<int>& free, bool moveBase,
+             Transform3D& X, Q& q) const {
+    const int nBase = moveBase ? 6 : 0;
+    if (moveBase) {
+      const Vector3D w = step.segment<3>(3);
+      const double angle = w.norm();
+      Rotation3D R = X.linear();
+      if (angle > 0.0) R = Eigen::AngleAxisd(angle, w / angle).toRotationMatrix() * R;
+      // Re-orthonormalise to keep rounding from accumulating.
+      X.linear() = Eigen::Quaterniond(R).normalized().toRotationMatrix();
+      X.translation() += step.head<3>();
+    }
+    for (std::size_t k = 0; k < free.size(); ++k) {
+      const auto j = static_cast<Eigen::Index>(free[k]);
+      q[j] = std::clamp(q[j] + step[nBase + static_cast<Eigen::Index>(k)], lower_[j], upper_[j]);
+    }
+  }
+
+  HandModel& model_;
+  Q lower_;
+  Q upper_;
+  Vector3D approach_;
+};
+
+// The errors of a solution against its targets.
+struct Errors {
+  double position = 0.0;
+  double direction = 0.0;
+  double approach = 0.0;
+};
+
+Errors measure(HandModel& model, const ContactIkSettings& ik, const Transform3D& X_W_base,
+               const Q& q, const std::vector<Target>& targets, const Vector3D& approach) {
+  Errors e;
+  for (const Target& t : targets) {
+    Vector3D p;
+    Vector3D n;
+    model.fingertipAt(X_W_base, q, t.fingertip, p, n);
+    e.position = std::max(e.position, (p - t.position).norm());
+    e.direction = std::max(e.direction, angleBetween(n, t.direction));
+  }
+  e.approach = angleBetween(X_W_base.linear() * ik.approachAxisInBase, approach);
+  return e;
+}
+
+// The seed base pose: approach axis along `approach`, the fingertips' centroid (at q, base at
+// identity) on the targets' centroid, turned about the approach to fit the fingertips to
+// their targets.
+Transform3D seedPose(HandModel& model, const ContactIkSettings& ik, const Q& q,
+                     const std::vector<Target>& targets, const Vector3D& approach) {
+  std::vector<Vector3D> tips;
+  Vector3D tipMean = Vector3D::Zero();
+  Vector3D targetMean = Vector3D::Zero();
+  for (const Target& t : targets) {
+    Vector3D p;
+    Vector3D n;
+    model.fingertipAt(Transform3D::Identity(), q, t.fingertip, p, n);
+    tips.push_back(p);
+    tipMean += p;
+    targetMean += t.position;
+  }
+  tipMean /= static_cast<double>(targets.size());
+  targetMean /= static_cast<double>(targets.size());
+  const Rotation3D R0 =
+      Eigen::Quaterniond::FromTwoVectors(ik.approachAxisInBase, approach).toRotationMatrix();
+  double s = 0.0;
+  double c = 0.0;
+  for (std::size_t i = 0; i < targets.size(); ++i) {
+    Vector3D m = R0 * (tips[i] - tipMean);
+    Vector3D d = targets[i].position - targetMean;
+    m -= m.dot(approach) * approach;
+    d -= d.dot(approach) * approach;
+    s += approach.dot(m.cross(d));
+    c += m.dot(d);
+  }
+  const double theta = (s == 0.0 && c == 0.0) ? 0.0 : std::atan2(s, c);
+  const Rotation3D R = Eigen::AngleAxisd(theta, approach).toRotationMatrix() * R0;
+  return rw::math::makeTransform(R, targetMean - R * tipMean);
+}
+
+struct Attempt {
+  bool valid = false;
+  double cost = 0.0;
+  // How far the base is behind the contacts' centroid along the approach, less a penalty of
+  // kErrorPenalty per metre of position error: valid attempts with more are preferred.
+  double clearance = 0.0;
+  Errors errors;
+  Transform3D X_W_base = Transform3D::Identity();
+  Q q;
+  int grasp = -1;
+  std::vector<Target> targets;
+  std::vector<int> fingerOfContact;
+};
+
+// One solver run from a seed: two phases, the directions weighted up to find the right basin
+// (finger posture), then as described.
+Attempt runAttempt(HandModel& model, Solver& solver, const ContactIkSettings& ik, const Q& seed,
+                   const std::vector<Target>& targets, const std::vector<int>& joints,
+                   const Vector3D& approach, const Vector3D& centroid) {
+  Attempt at;
+  at.q = seed;
+  at.X_W_base = seedPose(model, ik, seed, targets, approach);
+  model.setDirectionWeight(kBasinDirectionGain * ik.directionWeight);
+  solver.solve(at.X_W_base, at.q, targets, joints, true);
+  model.setDirectionWeight(ik.directionWeight);
+  at.cost = solver.solve(at.X_W_base, at.q, targets, joints, true);
+  at.errors = measure(model, ik, at.X_W_base, at.q, targets, approach);
+  at.valid = at.errors.position <= ik.maxPositionError &&
+             at.errors.direction <= ik.maxDirectionError &&
+             at.errors.approach <= ik.maxApproachError;
+  at.clearance =
+      (centroid - at.X_W_base.translation()).dot(approach) - kErrorPenalty * at.errors.position;
+  at.targets = targets;
+  return at;
+}
+
+bool better(const Attempt& a, const Attempt& best) {
+  if (best.grasp < 0) return true;
+  if (a.valid != best.valid) return a.valid;
+  return a.valid ? a.clearance > best.clearance : a.errors.position < best.errors.position;
+}
+
+std::string describeFailure(const Attempt& a, const ContactIkSettings& ik) {
+  char buffer[256];
+  std::snprintf(buffer, sizeof(buffer),
+                "no hand configuration reaches the contacts: best fingertip deviation %.1f mm "
+                "(limit %.1f mm), direction %.1f deg (limit %.1f), approach %.1f deg (limit %.1f)",
+                a.errors.position * 1e3, ik.maxPositionError * 1e3,
+                a.errors.direction * rw::math::kRad2Deg, ik.maxDirectionError * rw::math::kRad2Deg,
+                a.errors.approach * rw::math::kRad2Deg, ik.maxApproachError * rw::math::kRad2Deg);
+  return buffer;
+}
+
+void checkInput(const HandGraspSetup& setup, const std::vector<DesiredContact>& contacts,
+                const Vector3D& approach) {
+  const ContactIkSettings* ik = setup.contactIk();
+  if (ik == nullptr) {
+    throw std::invalid_argument("hand \"" + setup.deviceName() +
+                                "\" has no contact IK in its grasp description");
+  }
+  const auto n = static_cast<int>(contacts.size());
+  if (std::none_of(ik->grasps.begin(), ik->grasps.end(),
+                   [&](const IkGrasp& g) { return g.contacts == n; })) {
+    throw std::invalid_argument("hand \"" + setup.deviceName() + "\" cannot solve a grasp with " +
+                                std::to_string(n) + " contacts (see its <ContactIK> <Grasp>s)");
+  }
+  for (std::size_t i = 0; i < contacts.size(); ++i) {
+    if (!contacts[i].position.allFinite() || !(contacts[i].direction.norm() > 1e-9)) {
+      throw std::invalid_argument("contact " + std::to_string(i + 1) +
+                                  " has a zero or non-finite direction or position");
+    }
+  }
+  if (!(approach.norm() > 1e-9)) throw std::invalid_argument("the approach direction is zero");
+}
+
+}  // namespace
+
+ContactIkResult solveContactIk(const HandGraspSetup& setup,
+                               const std::vector<DesiredContact>& contacts,
+                               const Vector3D& approach) {
+  checkInput(setup, contacts, approach);
+  const ContactIkSettings& ik = *setup.contactIk();
+  const Vector3D a = approach.normalized();
+  HandModel model(setup);
+  Solver solver(model, setup, a);
+  Attempt best;
+  ContactIkResult result;
+  const auto n = static_cast<int>(contacts.size());
+  Vector3D centroid = Vector3D::Zero();
+  for (const DesiredContact& c : contacts) centroid += c.position / static_cast<double>(n);
+  for (std::size_t gi = 0; gi < ik.grasps.size(); ++gi) {
+    const IkGrasp& g = ik.grasps[gi];
+    if (g.contacts != n) continue;
+    std::vector<int> order(static_cast<std::size_t>(n));
+    std::iota(order.begin(), order.end(), 0);
+    do {
+      std::vector<Target> targets;
+      std::vector<int> fingerOf(static_cast<std::size_t>(n));
+      for (std::size_t k = 0; k < order.size(); ++k) {
+        const DesiredContact& c = contacts[static_cast<std::size_t>(order[k])];
+        targets.push_back({g.fingers[k], c.position, c.direction.normalized()});
+        fingerOf[static_cast<std::size_t>(order[k])] = g.fingers[k];
+      }
+      for (const Q& seed : g.seeds) {
+        Attempt at = runAttempt(model, solver, ik, seed, targets, g.joints, a, centroid);
+        at.grasp = static_cast<int>(gi);
+        at.fingerOfContact = fingerOf;
+        ++result.attempts;
+        if (better(at, best)) best = std::move(at);
+      }
+    } while (std::next_permutation(order.begin(), order.end()));
+  }
+  const IkGrasp& g = ik.grasps[static_cast<std::size_t>(best.grasp)];
+  result.valid = best.valid;
+  if (!best.valid) result.reason = describeFailure(best, ik);
+  result.X_W_base = best.X_W_base;
+  result.X_W_tcp = best.X_W_base * setup.X_base_tcp();
+  result.qContact = best.q;
+  result.positionError = best.errors.position;
+  result.directionError = best.errors.direction;
+  result.approachError = best.errors.approach;
+  result.grasp = best.grasp;
+  result.fingerOfContact = best.fingerOfContact;
+  // Back-off: same base, fingertips `backoff` short of the contacts.
+  std::vector<Target> backed = best.targets;
+  for (Target& t : backed) t.position -= ik.backoff * t.direction;
+  Transform3D X = best.X_W_base;
+  result.qOpen = best.q;
+  if (ik.backoff > 0.0) solver.solve(X, result.qOpen, backed, g.joints, false);
+  result.qClosed = result.qOpen + g.closeOffset;
+  result.tauMax = setup.tauRule().evaluate(result.qOpen);
+  return result;
+}
+
+}  // namespace visgrab::grasp

@@ -1,0 +1,62 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "rw/math/types.hpp"
+
+/// Grasp hypotheses as users give them, and their turning into simulator parameters (paper §2.3).
+namespace visgrab::grasp {
+
+/// The four ways a user can state a grasp (paper §2.3, Figure 1c).
+enum class GraspKind {
+  kRaw,       ///< X_hand, q_open, q_closed, tau_max
+  kPreshape,  ///< a named pre-shape of the hand + X_hand
+  kPoseAndQ,  ///< X_hand + one configuration q (q_open = q, q_closed and tau_max by the hand's
+              ///< rule)
+  kContacts,  ///< 2 or 3 desired contacts (position, push direction) + approach, solved by IK
+};
+
+/// A desired finger contact, in the scene's world (table) frame.
+struct DesiredContact {
+  /// Where the finger should touch, m.
+  rw::math::Vector3D position = rw::math::Vector3D::Zero();
+  /// Direction in which the finger should push (into the object); need not be unit.
+  rw::math::Vector3D direction = rw::math::Vector3D::UnitX();
+};
+
+/// One grasp hypothesis for one scene, before the grasp utilities resolve it.
+struct GraspRequest {
+  /// Scene id (ours or the original database's spelling).
+  std::string sceneId;
+  /// The grasp's id, unique within its scene and method (e.g. "g1", or a line number).
+  std::string id;
+  /// What the analyses group by: the grasp type ("s3EGA1") or, if none, the file's name.
+  std::string method;
+  /// Which fields below are meaningful.
+  GraspKind kind = GraspKind::kRaw;
+  /// Pose of the hand's TCP frame in the world (kRaw, kPreshape, kPoseAndQ).
+  rw::math::Transform3D X_W_tcp = rw::math::Transform3D::Identity();
+  /// kRaw: configuration when placed; kPoseAndQ: the configuration q.
+  rw::math::Q qOpen;
+  /// kRaw: configuration the fingers close towards.
+  rw::math::Q qClosed;
+  /// kRaw: joint torque limits (empty: the hand's default rule).
+  rw::math::Q tauMax;
+  /// kPreshape: the pre-shape's name as the hand's grasp description defines it.
+  std::string preshape;
+  /// kContacts: 2 or 3 contacts, in any order.
+  std::vector<DesiredContact> contacts;
+  /// kContacts: desired direction of travel of the hand towards the object (its approach
+  /// axis), world frame; need not be unit.
+  rw::math::Vector3D approach = -rw::math::Vector3D::UnitZ();
+  /// Where the request was read from (for messages), and its line (0 if unknown).
+  std::string sourceFile;
+  /// See sourceFile.
+  int sourceLine = 0;
+};
+
+/// Name used in files: "raw", "preshape", "pose_q", "contacts".
+const char* kindName(GraspKind kind);
+
+}  // namespace visgrab::grasp

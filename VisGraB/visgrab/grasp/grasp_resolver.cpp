@@ -1,0 +1,116 @@
+#include "visgrab/grasp/grasp_resolver.hpp"
+
+#include <stdexcept>
+#include <utility>
+
+namespace visgrab::grasp {
+
+namespace {
+
+using rw::math::Q;
+
+std::string where(const GraspRequest& r) {
+  std::string out;
+  if (!r.sourceFile.empty()) {
+    out = r.sourceFile + (r.sourceLine > 0 ? ":" + std::to_string(r.sourceLine) : "") + ": ";
+  }
+  return out + "grasp " + (r.id.empty() ? "(no id)" : "\"" + r.id + "\"") + ": ";
+}
+
+ResolvedGrasp inputError(const GraspRequest& r, const std::string& what) {
+  ResolvedGrasp out;
+  out.status = ResolveStatus::kInputError;
+  out.message = where(r) + what;
+  return out;
+}
+
+// Empty if `q` has one finite value per DOF, else what is wrong.
+std::string checkQ(const Q& q, std::string_view name, const HandGraspSetup& setup) {
+  if (q.size() != setup.dof()) {
+    return std::string(name) + " has " + std::to_string(q.size()) + " values, but hand \"" +
+           setup.deviceName() + "\" has " + std::to_string(setup.dof()) + " DOF";
+  }
+  if (!q.allFinite()) return std::string(name) + " has a non-finite value";
+  return {};
+}
+
+ResolvedGrasp ok(const rw::math::Transform3D& X_W_tcp, Q qOpen, Q qClosed, Q tauMax) {
+  ResolvedGrasp out;
+  out.status = ResolveStatus::kOk;
+  out.parameters.X_W_tcp = X_W_tcp;
+  out.parameters.qOpen = std::move(qOpen);
+  out.parameters.qClosed = std::move(qClosed);
+  out.parameters.tauMax = std::move(tauMax);
+  return out;
+}
+
+ResolvedGrasp resolveContacts(const GraspRequest& r, const HandGraspSetup& setup) {
+  ContactIkResult ik;
+  try {
+    ik = solveContactIk(setup, r.contacts, r.approach);
+  } catch (const std::invalid_argument& e) {
+    return inputError(r, e.what());
+  }
+  ResolvedGrasp out = ok(ik.X_W_tcp, ik.qOpen, ik.qClosed, ik.tauMax);
+  if (!ik.valid) {
+    out.status = ResolveStatus::kInvalidContacts;
+    out.message = where(r) + ik.reason;
+  }
+  out.ik = std::move(ik);
+  return out;
+}
+
+}  // namespace
+
+ResolvedGrasp resolve(const GraspRequest& r, const HandGraspSetup& setup) {
+  if (r.kind != GraspKind::kContacts && !r.X_W_tcp.matrix().allFinite()) {
+    return inputError(r, "the hand pose has a non-finite value");
+  }
+  switch (r.kind) {
+    case GraspKind::kRaw: {
+      for (const auto& [q, name] : {std::pair{&r.qOpen, "q_open"}, {&r.qClosed, "q_closed"}}) {
+        if (const std::string e = checkQ(*q, name, setup); !e.empty()) return inputError(r, e);
+      }
+      if (r.tauMax.size() == 0) {
+        return ok(r.X_W_tcp, r.qOpen, r.qClosed, setup.tauRule().evaluate(r.qOpen));
+      }
+      if (const std::string e = checkQ(r.tauMax, "tau_max", setup); !e.empty()) {
+        return inputError(r, e);
+      }
+      if ((r.tauMax.array() < 0.0).any()) return inputError(r, "tau_max has a negative value");
+      return ok(r.X_W_tcp, r.qOpen, r.qClosed, r.tauMax);
+    }
+    case GraspKind::kPreshape: {
+      const PreShape* p = setup.findPreshape(r.preshape);
+      if (p == nullptr) {
+        std::string known;
+        for (const PreShape& s : setup.preshapes()) known += (known.empty() ? "" : ", ") + s.name;
+        return inputError(r, "unknown pre-shape \"" + r.preshape + "\" for hand \"" +
+                                 setup.deviceName() + "\" (known: " + known + ")");
+      }
+      return ok(r.X_W_tcp * p->X_shapeTcp_tcp, p->qOpen, p->qClosed, p->tauMax);
+    }
+    case GraspKind::kPoseAndQ: {
+      if (const std::string e = checkQ(r.qOpen, "q", setup); !e.empty()) return inputError(r, e);
+      return ok(r.X_W_tcp, r.qOpen, r.qOpen + setup.closeOffset(),
+                setup.tauRule().evaluate(r.qOpen));
+    }
+    case GraspKind::kContacts:
+      return resolveContacts(r, setup);
+  }
+  return inputError(r, "unknown grasp kind");
+}
+
+const char* resolveStatusName(ResolveStatus status) {
+  switch (status) {
+    case ResolveStatus::kOk:
+      return "ok";
+    case ResolveStatus::kInvalidContacts:
+      return "invalid_contacts";
+    case ResolveStatus::kInputError:
+      return "input_error";
+  }
+  return "input_error";
+}
+
+}  // namespace visgrab::grasp

@@ -1,0 +1,48 @@
+#pragma once
+
+#include <string>
+
+#include "rwsim/simulator/grasp_trial.hpp"
+#include "visgrab/grasp/contact_ik.hpp"
+#include "visgrab/grasp/grasp_request.hpp"
+#include "visgrab/grasp/hand_grasp_setup.hpp"
+
+namespace visgrab::grasp {
+
+/// How resolving a request ended.
+enum class ResolveStatus {
+  kOk,               ///< `parameters` are ready to simulate
+  kInvalidContacts,  ///< the contact IK found no configuration (outcome "invalid contacts")
+  kInputError,       ///< the request itself is wrong (unknown pre-shape, wrong q length, ...)
+};
+
+/// A request turned into simulator parameters (paper eq. 2-4), or why not.
+struct ResolvedGrasp {
+  /// Ok, invalid contacts or input error.
+  ResolveStatus status = ResolveStatus::kInputError;
+  /// The grasp to simulate (kOk; for kInvalidContacts the IK's best attempt, for display only).
+  rwsim::simulator::GraspParameters parameters;
+  /// Empty when ok; else "FILE:LINE: grasp ID: what is wrong" (FILE:LINE omitted if unknown).
+  std::string message;
+  /// Details of the contact IK (kContacts requests only).
+  std::optional<ContactIkResult> ik;
+
+  /// True when status is kOk.
+  bool ok() const { return status == ResolveStatus::kOk; }
+};
+
+/// Turns a grasp request into simulator parameters with the hand's rules:
+///  - kRaw: the given values; an empty tauMax becomes the torque rule at qOpen;
+///  - kPreshape: the named pre-shape (name or alias) at X_W_tcp (converted from the pre-shape's
+///    own TCP frame if it names one);
+///  - kPoseAndQ: qOpen = q, qClosed = q + the closing offsets, tauMax by the rule at q;
+///  - kContacts: solveContactIk; kInvalidContacts if its best solution is out of the limits.
+/// Wrong lengths, unknown pre-shapes, non-finite values, unsuitable contact counts or zero
+/// directions give kInputError with a message naming request.sourceFile:sourceLine and id.
+/// Never throws for bad requests; const on `setup`, safe from many threads.
+ResolvedGrasp resolve(const GraspRequest& request, const HandGraspSetup& setup);
+
+/// "ok", "invalid_contacts" or "input_error".
+const char* resolveStatusName(ResolveStatus status);
+
+}  // namespace visgrab::grasp

@@ -1,0 +1,339 @@
+#include "visgrab/grasp/hand_grasp_setup.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <utility>
+
+#include "rw/kinematics/frame_tree.hpp"
+#include "rw/loaders/workcell_loader.hpp"
+#include "rw/loaders/xml/text_file.hpp"
+
+namespace visgrab::grasp {
+
+namespace {
+
+using rw::kinematics::FrameId;
+using rw::loaders::xml::DiagnosticSink;
+using rw::math::Q;
+
+std::string inQuotes(std::string_view s) { return "\"" + std::string(s) + "\""; }
+
+Q toQ(const std::vector<double>& v) {
+  return Eigen::Map<const Q>(v.data(), static_cast<Eigen::Index>(v.size()));
+}
+
+double tauFunction(TauFunction f, double angle) {
+  switch (f) {
+    case TauFunction::kOne:
+      return 1.0;
+    case TauFunction::kCos:
+      return std::cos(angle);
+    case TauFunction::kSecant:
+      return 1.0 / std::cos(angle);
+  }
+  return 1.0;
+}
+
+}  // namespace
+
+Q TauRule::evaluate(const Q& qOpen) const {
+  Q tau = base;
+  for (const TauAdjust& a : adjust) {
+    const double angle = qOpen[a.angleIndex];
+    if (!(angle >= a.atLeast && angle < a.below)) continue;
+    const double value =
+        std::max(a.floor, a.gain * base[a.source] * tauFunction(a.function, angle));
+    for (const int j : a.joints) tau[j] = value;
+  }
+  return tau;
+}
+
+/// Second pass of the loader: checks names and lengths against the hand's model.
+class SetupBuilder {
+ public:
+  SetupBuilder(HandGraspSetup& setup, DiagnosticSink& sink) : s_(setup), sink_(sink) {}
+
+  bool build() {
+    const GraspDescription& d = s_.description_;
+    s_.device_ = s_.workcell_->findDevice(d.device);
+    if (s_.device_ == nullptr) {
+      error(d.where,
+            "unknown device " + inQuotes(d.device) + " in workcell " + inQuotes(d.workcell));
+      return false;
+    }
+    s_.defaultState_ = s_.workcell_->defaultState();
+    const auto& base = s_.workcell_->frames().frame(s_.device_->base());
+    if (base.type() != rw::kinematics::FrameType::kMovable) {
+      error(d.where, "the base frame " + inQuotes(base.name()) + " of device " +
+                         inQuotes(d.device) +
+                         " must be Movable (the grasp utilities place the hand by its base)");
+      return false;
+    }
+    if (!resolveTcp(d.tcp, d.where, s_.tcp_)) return false;
+    s_.tcpName_ = s_.workcell_->frames().frame(s_.tcp_).name();
+    s_.X_base_tcp_ = relative(s_.device_->base(), s_.tcp_);
+    buildTauRule(d.tauRule);
+    s_.closeOffset_ = closing(d.closing);
+    for (const PreShapeSpec& p : d.preshapes) buildPreshape(p);
+    if (d.contactIk) buildContactIk(*d.contactIk);
+    return !sink_.hasErrors();
+  }
+
+ private:
+  void error(const SourceLocation& where, std::string message) {
+    sink_.error(where, std::move(message));
+  }
+
+  rw::math::Transform3D relative(FrameId from, FrameId to) const {
+    return rw::kinematics::relativeTransform(s_.workcell_->frames(), s_.defaultState_, from, to);
+  }
+
+  FrameId findFrame(const std::string& name) const {
+    const FrameId scoped = s_.workcell_->findFrame(s_.device_->name() + "." + name);
+    return scoped.valid() ? scoped : s_.workcell_->findFrame(name);
+  }
+
+  // A frame of the device rigidly attached to its base (no joint or movable frame between).
+  bool resolveTcp(const std::string& name, const SourceLocation& where, FrameId& out) {
+    out = findFrame(name);
+    if (!out.valid() || !s_.device_->contains(out)) {
+      error(where, "unknown TCP frame " + inQuotes(name) + " (no such frame in device " +
+                       inQuotes(s_.device_->name()) + ")");
+      return false;
+    }
+    const auto& tree = s_.workcell_->frames();
+    for (FrameId f = out; f != s_.device_->base(); f = tree.frame(f).parent()) {
+      if (tree.frame(f).type() != rw::kinematics::FrameType::kFixed) {
+        error(where, "TCP frame " + inQuotes(name) + " must be rigidly attached to the base, but " +
+                         inQuotes(tree.frame(f).name()) + " moves");
+        return false;
+      }
+    }
+    return true;
+  }
+
+  std::string jointList() const {
+    std::string list;
+    for (const FrameId j : s_.device_->activeJoints()) {
+      const std::string& full = s_.workcell_->frames().frame(j).name();
+      const std::string prefix = s_.device_->name() + ".";
+      list += (list.empty() ? "" : ", ") +
+              (full.rfind(prefix, 0) == 0 ? full.substr(prefix.size()) : full);
+    }
+    return list;
+  }
+
+  // DOF index of an active joint, or -1 (reported).
+  int joint(const std::string& name, const SourceLocation& where) {
+    const FrameId f = findFrame(name);
+    const auto& active = s_.device_->activeJoints();
+    const auto it = std::find(active.begin(), active.end(), f);
+    if (it != active.end()) return static_cast<int>(it - active.begin());
+    const bool dependent = f.valid() && s_.workcell_->frames().frame(f).isDependent();
+    error(where, (dependent ? "joint " + inQuotes(name) + " is dependent, not a DOF"
+                            : "unknown joint " + inQuotes(name)) +
+                     "; the joints of " + inQuotes(s_.device_->name()) + " are " + jointList());
+    return -1;
+  }
+
+  bool length(const std::vector<double>& v, std::string_view what, const SourceLocation& where) {
+    if (static_cast<int>(v.size()) == s_.dof()) return true;
+    error(where, std::string(what) + " has " + std::to_string(v.size()) + " values, expected " +
+                     std::to_string(s_.dof()) + " (one per DOF of " + inQuotes(s_.device_->name()) +
+                     ": " + jointList() + ")");
+    return false;
+  }
+
+  Q closing(const std::vector<CloseOffsetSpec>& offsets) {
+    Q out = Q::Zero(s_.dof());
+    for (const CloseOffsetSpec& o : offsets) {
+      const int j = joint(o.joint, o.where);
+      if (j < 0) continue;
+      const auto& frame = s_.workcell_->frames().frame(s_.device_->activeJoints()[j]);
+      const bool revolute = frame.type() == rw::kinematics::FrameType::kRevolute;
+      out[j] = revolute ? o.value * rw::math::kDeg2Rad : o.value;
+    }
+    return out;
+  }
+
+  void buildTauRule(const TauRuleSpec& spec) {
+    if (!length(spec.base, "<TauMax> base", spec.where)) return;
+    s_.tauRule_.base = toQ(spec.base);
+    for (const TauAdjustSpec& a : spec.adjust) {
+      TauAdjust r;
+      r.angleIndex = joint(a.angleJoint, a.where);
+      r.source = joint(a.source, a.where);
+      if (a.atLeastDeg) r.atLeast = *a.atLeastDeg * rw::math::kDeg2Rad;
+      if (a.belowDeg) r.below = *a.belowDeg * rw::math::kDeg2Rad;
+      r.gain = a.gain;
+      r.function = a.function;
+      r.floor = a.floor;
+      bool ok = r.angleIndex >= 0 && r.source >= 0;
+      for (const std::string& name : a.joints) {
+        r.joints.push_back(joint(name, a.where));
+        ok = ok && r.joints.back() >= 0;
+      }
+      if (ok) s_.tauRule_.adjust.push_back(std::move(r));
+    }
+  }
+
+  void buildPreshape(const PreShapeSpec& p) {
+    const std::string what = "<PreShape name=\"" + p.name + "\"> ";
+    bool ok = length(p.qOpen, what + "qOpen", p.where);
+    ok = length(p.qClosed, what + "qClosed", p.where) && ok;
+    if (p.tauMax) ok = length(*p.tauMax, what + "tauMax", p.where) && ok;
+    std::vector<std::string> all{p.name};
+    all.insert(all.end(), p.aliases.begin(), p.aliases.end());
+    for (const std::string& n : all) {
+      const auto [it, inserted] = names_.emplace(n, p.where.line);
+      if (!inserted) {
+        error(p.where, "pre-shape name " + inQuotes(n) + " is already used (line " +
+                           std::to_string(it->second) + ")");
+        ok = false;
+      }
+    }
+    PreShape shape;
+    shape.name = p.name;
+    shape.aliases = p.aliases;
+    shape.qOpen = toQ(p.qOpen);
+    shape.qClosed = toQ(p.qClosed);
+    if (!p.tcp.empty()) {
+      FrameId frame;
+      if (!resolveTcp(p.tcp, p.where, frame)) return;
+      shape.X_shapeTcp_tcp = relative(frame, s_.tcp_);
+    }
+    if (!ok || s_.tauRule_.base.size() != s_.dof()) return;
+    shape.tauMax = p.tauMax ? toQ(*p.tauMax) : s_.tauRule_.evaluate(shape.qOpen);
+    s_.preshapes_.push_back(std::move(shape));
+  }
+
+  int fingertip(const std::vector<Fingertip>& tips, const std::string& name,
+                const SourceLocation& where) {
+    for (std::size_t i = 0; i < tips.size(); ++i) {
+      if (tips[i].name == name) return static_cast<int>(i);
+    }
+    error(where, "unknown fingertip " + inQuotes(name));
+    return -1;
+  }
+
+  void buildIkGrasp(const IkGraspSpec& g, ContactIkSettings& ik) {
+    IkGrasp out;
+    out.contacts = g.contacts;
+    bool ok = true;
+    if (static_cast<int>(g.fingers.size()) != g.contacts) {
+      error(g.where, "<Grasp contacts=\"" + std::to_string(g.contacts) + "\"> names " +
+                         std::to_string(g.fingers.size()) + " fingers; expected one per contact");
+      ok = false;
+    }
+    for (const std::string& f : g.fingers) {
+      out.fingers.push_back(fingertip(ik.fingertips, f, g.where));
+      ok = ok && out.fingers.back() >= 0;
+    }
+    for (const std::string& j : g.joints) {
+      out.joints.push_back(joint(j, g.where));
+      ok = ok && out.joints.back() >= 0;
+    }
+    if (g.joints.empty()) {
+      for (int j = 0; j < s_.dof(); ++j) out.joints.push_back(j);
+    }
+    std::sort(out.joints.begin(), out.joints.end());
+    out.joints.erase(std::unique(out.joints.begin(), out.joints.end()), out.joints.end());
+    for (const auto& seed : g.seeds) {
+      ok = length(seed, "<Seed> q", g.where) && ok;
+      out.seeds.push_back(toQ(seed));
+    }
+    out.closeOffset = g.closing ? closing(*g.closing) : s_.closeOffset_;
+    if (ok) ik.grasps.push_back(std::move(out));
+  }
+
+  void buildContactIk(const ContactIkSpec& spec) {
+    ContactIkSettings ik;
+    ik.backoff = spec.backoff;
+    ik.maxPositionError = spec.maxPositionError;
+    ik.maxDirectionError = spec.maxDirectionErrorDeg * rw::math::kDeg2Rad;
+    ik.maxApproachError = spec.maxApproachErrorDeg * rw::math::kDeg2Rad;
+    ik.directionWeight = spec.directionWeight;
+    ik.approachWeight = spec.approachWeight;
+    if (!(spec.maxPositionError > 0.0) || spec.backoff < 0.0) {
+      error(spec.where, "<ContactIK> needs maxPositionError > 0 and backoff >= 0");
+    }
+    if (spec.approachAxis.norm() < 1e-9) error(spec.where, "approachAxis must not be zero");
+    ik.approachAxisInBase = (s_.X_base_tcp_.linear() * spec.approachAxis).normalized();
+    for (const FingertipSpec& f : spec.fingertips) {
+      const FrameId frame = findFrame(f.frame);
+      if (!frame.valid() || !s_.device_->contains(frame)) {
+        error(f.where, "unknown fingertip frame " + inQuotes(f.frame) +
+                           " (no such frame in device " + inQuotes(s_.device_->name()) + ")");
+      }
+      if (f.normal.norm() < 1e-9) error(f.where, "the fingertip's normal must not be zero");
+      const bool duplicate =
+          std::any_of(ik.fingertips.begin(), ik.fingertips.end(),
+                      [&](const Fingertip& other) { return other.name == f.name; });
+      if (duplicate) error(f.where, "duplicate fingertip name " + inQuotes(f.name));
+      ik.fingertips.push_back({f.name, frame, f.point, f.normal.normalized()});
+    }
+    for (const IkGraspSpec& g : spec.grasps) buildIkGrasp(g, ik);
+    s_.contactIk_ = std::move(ik);
+  }
+
+  HandGraspSetup& s_;
+  DiagnosticSink& sink_;
+  std::map<std::string, int> names_;
+};
+
+std::unique_ptr<HandGraspSetup> HandGraspSetup::build(
+    GraspDescription description, std::shared_ptr<const rw::models::WorkCell> workcell,
+    DiagnosticSink& sink) {
+  std::unique_ptr<HandGraspSetup> setup(new HandGraspSetup());
+  setup->description_ = std::move(description);
+  setup->workcell_ = std::move(workcell);
+  if (!SetupBuilder(*setup, sink).build()) return nullptr;
+  return setup;
+}
+
+const PreShape* HandGraspSetup::findPreshape(std::string_view name) const {
+  for (const PreShape& p : preshapes_) {
+    if (p.name == name) return &p;
+    if (std::find(p.aliases.begin(), p.aliases.end(), name) != p.aliases.end()) return &p;
+  }
+  return nullptr;
+}
+
+std::unique_ptr<HandGraspSetup> loadHandGraspSetupFromString(
+    std::string_view xml, const std::filesystem::path& virtualFile) {
+  DiagnosticSink sink;
+  auto description = parseGraspDescription(xml, virtualFile, sink);
+  if (!description) throw rw::loaders::LoadError(sink.take());
+  const std::filesystem::path wcFile = virtualFile.parent_path() / description->workcell;
+  std::shared_ptr<const rw::models::WorkCell> workcell;
+  try {
+    workcell = rw::loaders::loadWorkCell(wcFile);
+  } catch (const rw::loaders::LoadError& e) {
+    std::vector<rw::loaders::Diagnostic> all = e.diagnostics();
+    rw::loaders::Diagnostic note;
+    note.file = description->file;
+    note.line = description->where.line;
+    note.column = description->where.column;
+    note.message = "the hand's workcell " + inQuotes(wcFile.string()) + " failed to load";
+    all.insert(all.begin(), note);
+    throw rw::loaders::LoadError(std::move(all));
+  }
+  auto setup = HandGraspSetup::build(std::move(*description), std::move(workcell), sink);
+  if (!setup) throw rw::loaders::LoadError(sink.take());
+  return setup;
+}
+
+std::unique_ptr<HandGraspSetup> loadHandGraspSetup(const std::filesystem::path& file) {
+  std::string text;
+  const std::string why = rw::loaders::xml::readTextFile(file, text);
+  if (!why.empty()) {
+    rw::loaders::Diagnostic d;
+    d.file = file.string();
+    d.message = "cannot read " + file.string() + ": " + why;
+    throw rw::loaders::LoadError({d});
+  }
+  return loadHandGraspSetupFromString(text, file);
+}
+
+}  // namespace visgrab::grasp

@@ -1,0 +1,248 @@
+// The hands' grasp descriptions: loading, the SDH's pre-shapes and torque rule against the
+// reference's numbers, and one file:line error per malformed description.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "grasp_test_support.hpp"
+#include "rw/loaders/diagnostic.hpp"
+#include "visgrab/grasp/hand_grasp_setup.hpp"
+
+namespace {
+
+using rw::math::Q;
+using visgrab::grasp::HandGraspSetup;
+using visgrab::grasp::loadHandGraspSetupFromString;
+using visgrab::test::grasp::makeQ;
+using visgrab::test::grasp::pg70;
+using visgrab::test::grasp::sdh;
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+
+TEST(GraspDescription, SdhLoads) {
+  const HandGraspSetup& s = sdh();
+  EXPECT_EQ(s.deviceName(), "SchunkHand");
+  EXPECT_EQ(s.controllerName(), "GraspController");
+  EXPECT_EQ(s.tcpFrameName(), "SchunkHand.SDHTCP");
+  EXPECT_EQ(s.dof(), 7);
+  EXPECT_NEAR(s.X_base_tcp().translation().z(), 0.15, 1e-12);
+  ASSERT_NE(s.contactIk(), nullptr);
+  EXPECT_EQ(s.contactIk()->fingertips.size(), 3u);
+  EXPECT_EQ(s.contactIk()->grasps.size(), 2u);
+}
+
+TEST(GraspDescription, SdhPreshapesAreVisGraBs) {
+  // Reference §7.1 (radians; q order f1.J2, f1.J3, spread, f2.J2, f2.J3, f3.J2, f3.J3).
+  struct Expected {
+    const char* name;
+    const char* alias;
+    Q open;
+    Q closed;
+  };
+  const Q parClosed = makeQ({-1.571, -1.571, 1.571, 0.0, 0.419, 0.0, 0.419});
+  const Expected expected[] = {
+      {"SDH_PAR", "par", makeQ({-1.571, -1.571, 1.571, -1.048, 0.174, -1.048, 0.174}), parClosed},
+      {"SDH_PAR1", "SDH_PAR1_TABLE", makeQ({-1.571, -1.571, 1.571, -0.296, 0.240, -0.296, 0.240}),
+       parClosed},
+      {"SDH_PAR2", "SDH_PAR2_TABLE", makeQ({-1.571, -1.571, 1.571, -0.1, 0.1, -0.1, 0.1}),
+       parClosed},
+      {"SDH_BALL", "ball", makeQ({-1.048, 0.174, 1.047, -1.048, 0.174, -1.048, 0.174}),
+       makeQ({0.0, 0.349, 1.047, 0.0, 0.349, 0.0, 0.349})},
+      {"SDH_CYL", "cyl", makeQ({-1.048, 0.174, 0.0, -1.048, 0.174, -1.048, 0.174}),
+       makeQ({0.0, 0.349, 0.0, 0.0, 0.349, 0.0, 0.349})},
+  };
+  for (const Expected& e : expected) {
+    SCOPED_TRACE(e.name);
+    const auto* p = sdh().findPreshape(e.name);
+    ASSERT_NE(p, nullptr);
+    EXPECT_EQ(sdh().findPreshape(e.alias), p);
+    EXPECT_EQ(p->qOpen, e.open);
+    EXPECT_EQ(p->qClosed, e.closed);
+  }
+  // Their torque limits by the rule (worked by hand): CYL spread 0 -> fingers 2, 3 get 1.0;
+  // BALL spread 1.047 -> thumb 4 cos(1.047); PAR spread 1.571 -> thumb 0.2.
+  EXPECT_VECTOR_NEAR(sdh().findPreshape("cyl")->tauMax, makeQ({2, 2, 10, 1, 2, 1, 2}), 1e-12);
+  EXPECT_VECTOR_NEAR(sdh().findPreshape("ball")->tauMax,
+                     makeQ({4 * std::cos(1.047), 2, 10, 2, 2, 2, 2}), 1e-12);
+  EXPECT_VECTOR_NEAR(sdh().findPreshape("par")->tauMax, makeQ({0.2, 2, 10, 2, 2, 2, 2}), 1e-12);
+}
+
+// VisGraB's rule (reference §7.1), written out here independently of the description.
+Q visgrabTau(double spread) {
+  Q tau = makeQ({2, 2, 10, 2, 2, 2, 2});
+  if (spread < 45 * kDeg) {
+    tau[3] = tau[5] = tau[0] / (2 * std::cos(spread));
+  } else {
+    tau[0] = std::max(2 * std::cos(spread) * tau[3], 0.2);
+  }
+  return tau;
+}
+
+TEST(GraspDescription, SdhTauRuleMatchesVisGraB) {
+  const auto q = [](double spread) { return makeQ({0.1, 0.2, spread, 0.3, 0.4, 0.5, 0.6}); };
+  const auto& rule = sdh().tauRule();
+  EXPECT_NEAR(rule.evaluate(q(0.0))[3], 1.0, 1e-12);
+  EXPECT_NEAR(rule.evaluate(q(0.0))[5], 1.0, 1e-12);
+  EXPECT_NEAR(rule.evaluate(q(30 * kDeg))[3], 1.1547005, 1e-6);
+  EXPECT_NEAR(rule.evaluate(q(60 * kDeg))[0], 2.0, 1e-12);
+  EXPECT_NEAR(rule.evaluate(q(90 * kDeg))[0], 0.2, 1e-12);
+  for (const double deg : {0.0, 10.0, 30.0, 44.9, 45.0, 50.0, 60.0, 75.0, 90.0}) {
+    SCOPED_TRACE(deg);
+    EXPECT_VECTOR_NEAR(rule.evaluate(q(deg * kDeg)), visgrabTau(deg * kDeg), 1e-12);
+  }
+}
+
+TEST(GraspDescription, SdhClosingRule) {
+  EXPECT_VECTOR_NEAR(sdh().closeOffset(), makeQ({30 * kDeg, 0, 0, 30 * kDeg, 0, 30 * kDeg, 0}),
+                     1e-12);
+}
+
+TEST(GraspDescription, Pg70Loads) {
+  const HandGraspSetup& s = pg70();
+  EXPECT_EQ(s.deviceName(), "PG70");
+  EXPECT_EQ(s.tcpFrameName(), "PG70.TCPPG70");
+  EXPECT_EQ(s.dof(), 1);
+  EXPECT_EQ(s.findPreshape("PG70")->qOpen, makeQ({0.034}));
+  EXPECT_EQ(s.findPreshape("PG70_SMALL")->qOpen, makeQ({0.01}));
+  EXPECT_EQ(s.findPreshape("PG70_SMALL")->qClosed, makeQ({0.0}));
+  EXPECT_EQ(s.findPreshape("PG70")->tauMax, makeQ({40.0}));
+  EXPECT_VECTOR_NEAR(s.closeOffset(), makeQ({-0.02}), 1e-15);
+}
+
+// --- Malformed descriptions: one error each, at the right line ------------------------------
+
+// A small valid SDH description; line numbers: PreShape 2, Closing 3-4, TauMax 6-8,
+// ContactIK 9, Fingertips 10-11, Grasp 12-13.
+std::string description(const std::string& root = "tcp=\"SDHTCP\"",
+                        const std::string& preshape = "qOpen=\"0 0 0 0 0 0 0\"",
+                        const std::string& offsetJoint = "f1.Joint2",
+                        const std::string& adjustJoints = "f2.Joint2 f3.Joint2",
+                        const std::string& tipFrame = "f2.TCP",
+                        const std::string& fingers = "finger2 finger3") {
+  return "<GraspDescription workcell=\"sdh.wc.xml\" device=\"SchunkHand\" "
+         "controller=\"GraspController\" " +
+         root +
+         ">\n"
+         "  <PreShape name=\"P\" " +
+         preshape +
+         " qClosed=\"0 0 0 0 0 0 0\"/>\n"
+         "  <Closing>\n"
+         "    <Offset joint=\"" +
+         offsetJoint +
+         "\" value=\"30\"/>\n"
+         "  </Closing>\n"
+         "  <TauMax base=\"2 2 10 2 2 2 2\">\n"
+         "    <Adjust angleJoint=\"F2Joint1\" below=\"45\" joints=\"" +
+         adjustJoints +
+         "\" source=\"f1.Joint2\" gain=\"0.5\" function=\"secant\"/>\n"
+         "  </TauMax>\n"
+         "  <ContactIK backoff=\"0.01\" maxPositionError=\"0.01\" maxDirectionError=\"30\" "
+         "maxApproachError=\"60\" directionWeight=\"0.01\" approachWeight=\"0.02\" "
+         "approachAxis=\"0 0 1\">\n"
+         "    <Fingertip name=\"finger2\" frame=\"" +
+         tipFrame +
+         "\" point=\"0 0 0.005\" normal=\"0 0 1\"/>\n"
+         "    <Fingertip name=\"finger3\" frame=\"f3.TCP\" point=\"0 0 0.005\" normal=\"0 0 1\"/>\n"
+         "    <Grasp contacts=\"2\" fingers=\"" +
+         fingers +
+         "\">\n"
+         "      <Seed q=\"-1.571 -1.571 1.571 0 0.5 0 0.5\"/></Grasp>\n"
+         "  </ContactIK>\n"
+         "</GraspDescription>\n";
+}
+
+std::filesystem::path virtualFile() {
+  return visgrab::test::sourceDir() / "scenes/hands/sdh/inline.grasp.xml";
+}
+
+TEST(GraspDescription, InlineTemplateLoads) {
+  const auto s = loadHandGraspSetupFromString(description(), virtualFile());
+  EXPECT_EQ(s->preshapes().size(), 1u);
+  EXPECT_EQ(s->contactIk()->grasps.size(), 1u);
+}
+
+struct BadCase {
+  const char* what;
+  std::string xml;
+  int line;
+  const char* message;
+};
+
+TEST(GraspDescription, MalformedGiveOneErrorAtTheirLine) {
+  const BadCase cases[] = {
+      {"missing TCP frame", description("tcp=\"NoSuchTcp\""), 1, "unknown TCP frame \"NoSuchTcp\""},
+      {"wrong q length", description("tcp=\"SDHTCP\"", "qOpen=\"0 0 0\""), 2,
+       "qOpen has 3 values, expected 7"},
+      {"unknown closing joint", description("tcp=\"SDHTCP\"", "qOpen=\"0 0 0 0 0 0 0\"", "f9.J2"),
+       4, "unknown joint \"f9.J2\""},
+      {"dependent joint", description("tcp=\"SDHTCP\"", "qOpen=\"0 0 0 0 0 0 0\"", "F3Joint1"), 4,
+       "joint \"F3Joint1\" is dependent"},
+      {"unknown tau joint",
+       description("tcp=\"SDHTCP\"", "qOpen=\"0 0 0 0 0 0 0\"", "f1.Joint2", "f2.Joint2 bogus"), 7,
+       "unknown joint \"bogus\""},
+      {"unknown fingertip frame",
+       description("tcp=\"SDHTCP\"", "qOpen=\"0 0 0 0 0 0 0\"", "f1.Joint2", "f2.Joint2",
+                   "f2.Nope"),
+       10, "unknown fingertip frame \"f2.Nope\""},
+      {"unknown finger",
+       description("tcp=\"SDHTCP\"", "qOpen=\"0 0 0 0 0 0 0\"", "f1.Joint2", "f2.Joint2", "f2.TCP",
+                   "finger2 pinky"),
+       12, "unknown fingertip \"pinky\""},
+      {"finger count",
+       description("tcp=\"SDHTCP\"", "qOpen=\"0 0 0 0 0 0 0\"", "f1.Joint2", "f2.Joint2", "f2.TCP",
+                   "finger2"),
+       12, "names 1 fingers; expected one per contact"},
+      {"not a number", description("tcp=\"SDHTCP\"", "qOpen=\"0 0 x 0 0 0 0\""), 2,
+       "attribute qOpen"},
+      {"unexpected attribute", description("tcp=\"SDHTCP\" device2=\"x\""), 1, "device2"},
+  };
+  for (const BadCase& c : cases) {
+    SCOPED_TRACE(c.what);
+    try {
+      loadHandGraspSetupFromString(c.xml, virtualFile());
+      ADD_FAILURE() << "loaded";
+    } catch (const rw::loaders::LoadError& e) {
+      int errors = 0;
+      for (const auto& d : e.diagnostics()) {
+        if (d.severity != rw::loaders::Diagnostic::Severity::kError) continue;
+        ++errors;
+        EXPECT_EQ(d.line, c.line) << d.format();
+        EXPECT_NE(d.message.find(c.message), std::string::npos) << d.format();
+        EXPECT_NE(d.format().find("inline.grasp.xml:" + std::to_string(c.line) + ":"),
+                  std::string::npos)
+            << d.format();
+      }
+      EXPECT_EQ(errors, 1) << e.what();
+    }
+  }
+}
+
+TEST(GraspDescription, DuplicatePreshapeName) {
+  std::string xml = description();
+  const std::string line =
+      "  <PreShape name=\"P\" qOpen=\"0 0 0 0 0 0 0\" qClosed=\"0 0 0 0 0 0 0\"/>\n";
+  xml.insert(xml.find("  <Closing>"), line);
+  try {
+    loadHandGraspSetupFromString(xml, virtualFile());
+    ADD_FAILURE() << "loaded";
+  } catch (const rw::loaders::LoadError& e) {
+    ASSERT_EQ(e.diagnostics().size(), 1u) << e.what();
+    EXPECT_EQ(e.diagnostics()[0].line, 3);
+    EXPECT_NE(e.diagnostics()[0].message.find("already used (line 2)"), std::string::npos);
+  }
+}
+
+TEST(GraspDescription, MissingWorkcellNamesTheDescription) {
+  std::string xml = description();
+  xml.replace(xml.find("sdh.wc.xml"), 10, "nope.wc.xml");
+  try {
+    loadHandGraspSetupFromString(xml, virtualFile());
+    ADD_FAILURE() << "loaded";
+  } catch (const rw::loaders::LoadError& e) {
+    EXPECT_NE(std::string(e.what()).find("inline.grasp.xml:1"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
