@@ -1,0 +1,129 @@
+#include "visgrab/taskio/detail/common.hpp"
+
+#include <Eigen/SVD>
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <stdexcept>
+
+#include "rw/loaders/xml/strings.hpp"
+#include "rw/loaders/xml/text_file.hpp"
+#include "rw/loaders/xml/xml_reader.hpp"
+
+namespace visgrab::taskio::detail {
+
+namespace xml = rw::loaders::xml;
+
+std::string formatNumber(double value) {
+  if (value == 0.0) return "0";  // also -0
+  std::array<char, 32> buffer{};
+  const auto [end, ec] = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value);
+  if (ec != std::errc()) return "nan";
+  return std::string(buffer.data(), end);
+}
+
+std::string formatNumbers(const double* values, std::size_t count) {
+  std::string out;
+  for (std::size_t i = 0; i < count; ++i) {
+    if (i > 0) out += ' ';
+    out += formatNumber(values[i]);
+  }
+  return out;
+}
+
+std::string_view localName(std::string_view name) {
+  const auto colon = name.rfind(':');
+  return colon == std::string_view::npos ? name : name.substr(colon + 1);
+}
+
+rw::math::Rotation3D quaternionRotation(double w, double x, double y, double z,
+                                        std::string& error) {
+  error.clear();
+  const double norm = std::sqrt(w * w + x * x + y * y + z * z);
+  if (!std::isfinite(norm) || std::abs(norm - 1.0) > kQuaternionTolerance) {
+    error = "quaternion (w x y z) = (" + formatNumber(w) + " " + formatNumber(x) + " " +
+            formatNumber(y) + " " + formatNumber(z) + ") has norm " + formatNumber(norm) +
+            ", expected a unit quaternion (|q| within 1e-3 of 1)";
+    return rw::math::Rotation3D::Identity();
+  }
+  return Eigen::Quaterniond(w / norm, x / norm, y / norm, z / norm).toRotationMatrix();
+}
+
+double orthonormalityError(const rw::math::Rotation3D& R) {
+  return (R.transpose() * R - rw::math::Rotation3D::Identity()).cwiseAbs().maxCoeff();
+}
+
+rw::math::Rotation3D nearestRotation(const rw::math::Rotation3D& R) {
+  const Eigen::JacobiSVD<rw::math::Rotation3D> svd(R, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  rw::math::Rotation3D U = svd.matrixU();
+  const rw::math::Rotation3D V = svd.matrixV();
+  if ((U * V.transpose()).determinant() < 0) U.col(2) = -U.col(2);
+  return U * V.transpose();
+}
+
+std::shared_ptr<const xml::SourceFile> sourceFile(const std::filesystem::path& file) {
+  return std::make_shared<const xml::SourceFile>(xml::SourceFile{file.string(), {}});
+}
+
+std::vector<xml::XmlElement> parseXmlOrThrow(std::string_view text,
+                                             const std::filesystem::path& file) {
+  xml::DiagnosticSink sink;
+  xml::XmlReader reader(xml::XmlReaderOptions{});
+  auto top = reader.parse(text, sourceFile(file), sink);
+  if (!top || sink.hasErrors()) {
+    if (!sink.hasErrors()) sink.error({sourceFile(file), 0, 0}, "cannot parse the XML");
+    throw rw::loaders::LoadError(sink.take());
+  }
+  return std::move(*top);
+}
+
+const xml::XmlElement* child(const xml::XmlElement& element, std::string_view name) {
+  for (const auto& c : element.children) {
+    if (localName(c.name) == name) return &c;
+  }
+  return nullptr;
+}
+
+void writeElement(std::string& out, const xml::XmlElement& element, int indent) {
+  const std::string pad(static_cast<std::size_t>(indent), ' ');
+  out += pad + "<" + element.name;
+  for (const auto& a : element.attributes) {
+    out += " " + a.name + "=\"" + xml::escapeXml(a.value) + "\"";
+  }
+  const std::string_view text = xml::trimXmlSpace(element.text);
+  if (element.children.empty()) {
+    out += text.empty() ? "/>\n" : ">" + xml::escapeXml(text) + "</" + element.name + ">\n";
+    return;
+  }
+  out += ">";
+  if (!text.empty()) out += xml::escapeXml(text);
+  out += "\n";
+  for (const auto& c : element.children) writeElement(out, c, indent + 2);
+  out += pad + "</" + element.name + ">\n";
+}
+
+rw::loaders::Diagnostic errorAt(const std::string& file, int line, int column,
+                                std::string message) {
+  return rw::loaders::Diagnostic{
+      rw::loaders::Diagnostic::Severity::kError, file, line, column, std::move(message), {}};
+}
+
+std::string readFileOrThrow(const std::filesystem::path& file, std::string_view what) {
+  std::string text;
+  const std::string why = xml::readTextFile(file, text);
+  if (!why.empty()) {
+    throw rw::loaders::LoadError(
+        {errorAt(file.string(), 0, 0, "cannot read " + std::string(what) + ": " + why)});
+  }
+  return text;
+}
+
+void writeFileOrThrow(const std::filesystem::path& file, const std::string& text) {
+  std::ofstream out(file, std::ios::binary | std::ios::trunc);
+  out << text;
+  out.close();
+  if (!out) throw std::runtime_error("cannot write " + file.string());
+}
+
+}  // namespace visgrab::taskio::detail
