@@ -1,0 +1,333 @@
+#include <array>
+#include <string>
+
+#include "visgrab/analysis/detail/format.hpp"
+#include "visgrab/analysis/report.hpp"
+
+namespace visgrab::analysis {
+
+namespace {
+
+using detail::fixed;
+using detail::percent;
+using rwsim::simulator::GraspOutcome;
+using rwsim::simulator::kOutcomeTable;
+
+/// Line colours of the compared methods in Figure 7 (cycled).
+constexpr std::array<std::string_view, 8> kMethodColours = {
+    "#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2", "#17becf"};
+
+std::string_view methodColour(std::size_t column) {
+  return kMethodColours[column % kMethodColours.size()];
+}
+
+std::string num(double value) { return fixed(value, 1); }
+
+/// Indices into Analysis::groups of one table's rows: single standing .. all (7 rows).
+std::array<std::size_t, 7> tableGroups(std::size_t table) {
+  std::array<std::size_t, 7> rows{};
+  for (std::size_t i = 0; i < rows.size(); ++i) rows[i] = table * 7 + i;
+  return rows;
+}
+
+constexpr std::array<std::string_view, 7> kRowNames = {"standing", "lying", "all",       "apart",
+                                                       "close",    "all",   "all scenes"};
+constexpr std::array<std::string_view, 7> kRowKinds = {"single", "single", "single", "double",
+                                                       "double", "double", ""};
+
+std::string methodsLegend(const Analysis& a) {
+  std::string html = "<p class=\"legend\">";
+  for (std::size_t c = 0; c < a.columns.size(); ++c) {
+    html +=
+        "<span><b>" + std::to_string(c + 1) + "</b> " + escapeHtml(a.columns[c].label) + "</span> ";
+  }
+  return html + "</p>\n";
+}
+
+/// Figure 6 for one table: stacked bars, one cluster per condition row, one bar per method.
+std::string distributionSvg(const Analysis& a, std::size_t table) {
+  const std::size_t columns = std::max<std::size_t>(a.columns.size(), 1);
+  const double barWidth = 16.0;
+  const double clusterWidth = static_cast<double>(columns) * (barWidth + 2.0) + 14.0;
+  const double left = 44.0;
+  const double top = 10.0;
+  const double height = 200.0;
+  const double width = left + 7.0 * clusterWidth + 10.0;
+  const double totalHeight = top + height + 46.0;
+  std::string svg = "<svg class=\"plot\" width=\"" + num(width) + "\" height=\"" +
+                    num(totalHeight) + "\" viewBox=\"0 0 " + num(width) + " " + num(totalHeight) +
+                    "\" role=\"img\">\n";
+  svg += "<title>Outcome distribution, " + std::string(table == 0 ? "textured" : "plain") +
+         " table</title>\n";
+  for (int tick = 0; tick <= 4; ++tick) {
+    const double y = top + height - height * tick / 4.0;
+    svg += "<line x1=\"" + num(left - 4) + "\" y1=\"" + num(y) + "\" x2=\"" + num(width - 10) +
+           "\" y2=\"" + num(y) + "\" class=\"grid\"/>\n";
+    svg += "<text x=\"" + num(left - 6) + "\" y=\"" + num(y + 4) + "\" class=\"ytick\">" +
+           fixed(tick / 4.0, 2) + "</text>\n";
+  }
+  const auto rows = tableGroups(table);
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    const double x0 = left + static_cast<double>(r) * clusterWidth + 7.0;
+    for (std::size_t c = 0; c < a.columns.size(); ++c) {
+      const Distribution& d = a.results[rows[r]][c].distribution;
+      const double x = x0 + static_cast<double>(c) * (barWidth + 2.0);
+      double y = top + height;
+      auto segment = [&](double share, std::string_view colour, std::string_view name) {
+        if (share <= 0.0) return;
+        const double h = share * height;
+        y -= h;
+        svg += "<rect x=\"" + num(x) + "\" y=\"" + num(y) + "\" width=\"" + num(barWidth) +
+               "\" height=\"" + num(h) + "\" fill=\"" + std::string(colour) + "\"><title>" +
+               escapeHtml(a.columns[c].label) + ", " + std::string(name) + ": " + fixed(share, 3) +
+               "</title></rect>\n";
+      };
+      for (const auto& info : kOutcomeTable) {
+        segment(d.share[static_cast<std::size_t>(info.outcome)], outcomeColour(info.outcome),
+                outcomeLegend(info.outcome));
+      }
+      segment(d.noGraspShare, kNoGraspColour, "no grasp suggested");
+      svg += "<text x=\"" + num(x + barWidth / 2) + "\" y=\"" + num(top + height + 12) +
+             "\" class=\"xtick\">" + std::to_string(c + 1) + "</text>\n";
+    }
+    const double mid = x0 + static_cast<double>(a.columns.size()) * (barWidth + 2.0) / 2.0;
+    svg += "<text x=\"" + num(mid) + "\" y=\"" + num(top + height + 26) + "\" class=\"xlabel\">" +
+           std::string(kRowNames[r]) + "</text>\n";
+    if (!kRowKinds[r].empty()) {
+      svg += "<text x=\"" + num(mid) + "\" y=\"" + num(top + height + 38) + "\" class=\"xlabel\">" +
+             std::string(kRowKinds[r]) + "</text>\n";
+    }
+  }
+  return svg + "</svg>\n";
+}
+
+std::string outcomeLegendHtml() {
+  std::string html = "<p class=\"legend\">";
+  for (const auto& info : kOutcomeTable) {
+    html += "<span><i style=\"background:" + std::string(outcomeColour(info.outcome)) + "\"></i>" +
+            std::string(outcomeLegend(info.outcome)) + "</span> ";
+  }
+  html += "<span><i style=\"background:" + std::string(kNoGraspColour) +
+          "\"></i>no grasp suggested</span></p>\n";
+  return html;
+}
+
+/// Figure 7 for one group: success rate against attempts, one line per method (exact expectation)
+/// with the randomized trials' estimate as dots.
+std::string attemptsSvg(const Analysis& a, std::size_t group) {
+  const double left = 44.0;
+  const double top = 24.0;
+  const double plotWidth = 300.0;
+  const double height = 180.0;
+  const double width = left + plotWidth + 12.0;
+  const double totalHeight = top + height + 36.0;
+  const int n = std::max(a.maxAttempts, 1);
+  auto xOf = [&](int k) {
+    return left + (n == 1 ? plotWidth / 2 : plotWidth * (k - 1) / static_cast<double>(n - 1));
+  };
+  auto yOf = [&](double v) { return top + height - height * v; };
+  std::string svg = "<svg class=\"plot\" width=\"" + num(width) + "\" height=\"" +
+                    num(totalHeight) + "\" viewBox=\"0 0 " + num(width) + " " + num(totalHeight) +
+                    "\" role=\"img\">\n";
+  svg += "<title>Success rate against attempts, " + escapeHtml(a.groups[group].name) + "</title>\n";
+  svg += "<text x=\"" + num(left) + "\" y=\"14\" class=\"ptitle\">" +
+         escapeHtml(a.groups[group].name) + "</text>\n";
+  for (int tick = 0; tick <= 4; ++tick) {
+    const double y = yOf(tick / 4.0);
+    svg += "<line x1=\"" + num(left) + "\" y1=\"" + num(y) + "\" x2=\"" + num(left + plotWidth) +
+           "\" y2=\"" + num(y) + "\" class=\"grid\"/>\n";
+    svg += "<text x=\"" + num(left - 6) + "\" y=\"" + num(y + 4) + "\" class=\"ytick\">" +
+           fixed(tick / 4.0, 2) + "</text>\n";
+  }
+  const int step = std::max(1, n / 10);
+  for (int k = 1; k <= n; k += step) {
+    svg += "<text x=\"" + num(xOf(k)) + "\" y=\"" + num(top + height + 14) + "\" class=\"xtick\">" +
+           std::to_string(k) + "</text>\n";
+  }
+  svg += "<text x=\"" + num(left + plotWidth / 2) + "\" y=\"" + num(top + height + 30) +
+         "\" class=\"xlabel\">number of attempts</text>\n";
+  for (std::size_t c = 0; c < a.columns.size(); ++c) {
+    const AttemptsCurve& curve = a.results[group][c].attempts;
+    std::string points;
+    for (std::size_t k = 0; k < curve.exact.size(); ++k) {
+      points += (points.empty() ? "" : " ") + num(xOf(static_cast<int>(k) + 1)) + "," +
+                num(yOf(curve.exact[k]));
+    }
+    const std::string colour(methodColour(c));
+    svg += "<polyline points=\"" + points + "\" fill=\"none\" stroke=\"" + colour +
+           "\" stroke-width=\"2\"><title>" + escapeHtml(a.columns[c].label) +
+           " (exact)</title></polyline>\n";
+    for (std::size_t k = 0; k < curve.randomized.size(); ++k) {
+      svg += "<circle cx=\"" + num(xOf(static_cast<int>(k) + 1)) + "\" cy=\"" +
+             num(yOf(curve.randomized[k])) + "\" r=\"2.5\" fill=\"" + colour + "\"><title>" +
+             escapeHtml(a.columns[c].label) + ", " + std::to_string(k + 1) +
+             " attempts: " + fixed(curve.exact[k], 3) + " exact, " + fixed(curve.randomized[k], 3) +
+             " randomized</title></circle>\n";
+    }
+  }
+  return svg + "</svg>\n";
+}
+
+std::string methodLegendLines(const Analysis& a) {
+  std::string html = "<p class=\"legend\">";
+  for (std::size_t c = 0; c < a.columns.size(); ++c) {
+    html += "<span><i style=\"background:" + std::string(methodColour(c)) + "\"></i>" +
+            escapeHtml(a.columns[c].label) + "</span> ";
+  }
+  return html + "(lines: exact expectation; dots: randomized trials)</p>\n";
+}
+
+/// Table 1 or 2 for one table (texture): rows as in the paper, two values per method.
+template <typename Cells>
+std::string conditionTable(const Analysis& a, std::size_t table, std::string_view first,
+                           std::string_view second, Cells cells) {
+  std::string html = "<table>\n<thead><tr><th colspan=\"2\"></th>";
+  for (const MethodColumn& c : a.columns) {
+    html += "<th colspan=\"2\">" + escapeHtml(c.label) + "</th>";
+  }
+  html += "</tr>\n<tr><th colspan=\"2\"></th>";
+  for (std::size_t c = 0; c < a.columns.size(); ++c) {
+    html += "<th>" + std::string(first) + "</th><th>" + std::string(second) + "</th>";
+  }
+  html += "</tr></thead>\n<tbody>\n";
+  const auto rows = tableGroups(table);
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    html +=
+        "<tr><th>" + std::string(kRowKinds[r]) + "</th><th>" + std::string(kRowNames[r]) + "</th>";
+    for (std::size_t c = 0; c < a.columns.size(); ++c) {
+      const auto [x, y] = cells(a.results[rows[r]][c]);
+      html += "<td>" + x + "</td><td>" + y + "</td>";
+    }
+    html += "</tr>\n";
+  }
+  return html + "</tbody>\n</table>\n";
+}
+
+std::string objectTables(const Analysis& a, std::size_t table) {
+  std::string html = "<h3>Single-object scenes</h3>\n<table>\n<thead><tr><th></th>";
+  for (const MethodColumn& c : a.columns) {
+    html += "<th colspan=\"2\">" + escapeHtml(c.label) + "</th>";
+  }
+  html += "</tr>\n<tr><th>object</th>";
+  for (std::size_t c = 0; c < a.columns.size(); ++c) html += "<th>s</th><th>l</th>";
+  html += "</tr></thead>\n<tbody>\n";
+  for (std::size_t i = 0; i < database::kObjectCount; ++i) {
+    html += "<tr><th title=\"" + std::string(database::objectName(static_cast<int>(i) + 1)) +
+            "\">" + std::to_string(i + 1) + "</th>";
+    for (std::size_t c = 0; c < a.columns.size(); ++c) {
+      for (std::size_t k = 0; k < 2; ++k) {
+        const SuccessCount& s = a.objectTables[table][c].single[i][k];
+        html += "<td title=\"" + std::to_string(s.successes) + " of " + std::to_string(s.grasps) +
+                "\">" + percent(s.percent()) + "</td>";
+      }
+    }
+    html += "</tr>\n";
+  }
+  html += "</tbody>\n</table>\n<h3>Double-object scenes</h3>\n<table>\n<thead><tr><th></th>";
+  for (const MethodColumn& c : a.columns) {
+    html += "<th colspan=\"2\">" + escapeHtml(c.label) + "</th>";
+  }
+  html += "</tr>\n<tr><th>pair</th>";
+  for (std::size_t c = 0; c < a.columns.size(); ++c) html += "<th>f</th><th>c</th>";
+  html += "</tr></thead>\n<tbody>\n";
+  for (std::size_t i = 0; i < database::kPairCount; ++i) {
+    const database::ObjectPair& p = database::kObjectPairs[i];
+    html += "<tr><th title=\"" + std::to_string(p.first) + "-" + std::to_string(p.second) + "\">" +
+            std::string(1, p.letter) + "</th>";
+    for (std::size_t c = 0; c < a.columns.size(); ++c) {
+      for (std::size_t k = 0; k < 2; ++k) {
+        const SuccessCount& s = a.objectTables[table][c].pairs[i][k];
+        html += "<td title=\"" + std::to_string(s.successes) + " of " + std::to_string(s.grasps) +
+                "\">" + percent(s.percent()) + "<br/><small>" + std::to_string(p.first) + ": " +
+                percent(s.percentOf(0)) + ", " + std::to_string(p.second) + ": " +
+                percent(s.percentOf(1)) + "</small></td>";
+      }
+    }
+    html += "</tr>\n";
+  }
+  return html + "</tbody>\n</table>\n";
+}
+
+constexpr std::string_view kStyle =
+    "body{font-family:sans-serif;margin:1.5em;color:#222}"
+    "table{border-collapse:collapse;margin:0.5em 0 1.5em}"
+    "th,td{border:1px solid #ccc;padding:2px 6px;text-align:right}"
+    "thead th{text-align:center}"
+    ".legend span{margin-right:1em;white-space:nowrap}"
+    ".legend i{display:inline-block;width:0.9em;height:0.9em;margin-right:0.3em;"
+    "vertical-align:middle}"
+    ".plot{margin:0.3em 1em 0.3em 0}"
+    ".grid{stroke:#ddd;stroke-width:1}"
+    ".ytick{font-size:10px;text-anchor:end}"
+    ".xtick,.xlabel{font-size:10px;text-anchor:middle}"
+    ".ptitle{font-size:12px;font-weight:bold}"
+    "small{color:#666}";
+
+}  // namespace
+
+std::string htmlReport(const Analysis& a) {
+  std::string html =
+      "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\"/>\n"
+      "<title>VisGraB results</title>\n<style>" +
+      std::string(kStyle) + "</style>\n</head>\n<body>\n<h1>VisGraB results</h1>\n";
+  html += "<p>Success: stable grasp or object slipped. Randomized trials: " +
+          std::to_string(a.options.randomTrials) + ", seed " + std::to_string(a.options.seed) +
+          ". Definitions: docs/report.md.</p>\n";
+  html +=
+      "<table>\n<thead><tr><th>#</th><th>run</th><th>method</th><th>rejected grasps</th>"
+      "</tr></thead>\n<tbody>\n";
+  for (std::size_t c = 0; c < a.columns.size(); ++c) {
+    const MethodColumn& m = a.columns[c];
+    html += "<tr><td>" + std::to_string(c + 1) + "</td><td>" + escapeHtml(a.runLabels[m.run]) +
+            "</td><td>" + escapeHtml(m.label) + "</td><td>" + std::to_string(m.rejected) +
+            "</td></tr>\n";
+  }
+  html += "</tbody>\n</table>\n";
+
+  html +=
+      "<h2>Figure 6: grasp results</h2>\n<p>Distribution of all grasps over all scenes (each "
+      "scene weighted equally); grey: proportion of scenes without a suggested grasp.</p>\n";
+  html += outcomeLegendHtml() + methodsLegend(a);
+  for (std::size_t t = 0; t < 2; ++t) {
+    html += "<figure><figcaption>" + std::string(t == 0 ? "Textured" : "Non-textured (plain)") +
+            " background</figcaption>\n" + distributionSvg(a, t) + "</figure>\n";
+  }
+
+  html += "<h2>Table 1: grasp quality of the successful grasps</h2>\n";
+  for (std::size_t t = 0; t < 2; ++t) {
+    html += "<h3>" + std::string(t == 0 ? "Textured" : "Non-textured") + " background</h3>\n";
+    html += conditionTable(a, t, "Q<sub>lift</sub>", "Q<sub>GWS</sub>", [](const GroupResult& r) {
+      return std::make_pair(fixed(r.quality.meanQLift, 2), fixed(r.quality.meanQGws, 2));
+    });
+  }
+
+  html += "<h2>Figure 7: success rate against the number of attempts</h2>\n" +
+          methodLegendLines(a) + "<div>\n";
+  for (const std::size_t g :
+       {std::size_t{2}, std::size_t{5}, std::size_t{9}, std::size_t{12}, a.groups.size() - 1}) {
+    html += attemptsSvg(a, g);
+  }
+  html += "</div>\n";
+
+  html +=
+      "<h2>Table 2: scenes with a successful grasp (p) and attempts until the first success "
+      "(ga)</h2>\n<p>ga: expected attempts when the scene's grasps are tried in random order, "
+      "(n+1)/(k+1), averaged over the scenes with a success.</p>\n";
+  for (std::size_t t = 0; t < 2; ++t) {
+    html += "<h3>" + std::string(t == 0 ? "Textured" : "Non-textured") + " background</h3>\n";
+    html += conditionTable(a, t, "p", "ga", [](const GroupResult& r) {
+      return std::make_pair(fixed(r.firstSuccess.p, 2), fixed(r.firstSuccess.ga, 2));
+    });
+  }
+
+  for (std::size_t t = 0; t < 2; ++t) {
+    html += std::string("<h2>Table ") + (t == 0 ? "3" : "4") + ": successful grasps per object, " +
+            (t == 0 ? "textured" : "non-textured") +
+            " scenes</h2>\n<p>s standing, l lying; f far (apart), c close; pairs also by the "
+            "object held.</p>\n" +
+            objectTables(a, t);
+  }
+  return html + "</body>\n</html>\n";
+}
+
+}  // namespace visgrab::analysis

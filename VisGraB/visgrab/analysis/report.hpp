@@ -1,0 +1,39 @@
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "visgrab/analysis/analysis.hpp"
+#include "visgrab/results/trial_record.hpp"
+
+namespace visgrab::analysis {
+
+/// Colour (CSS hex) of an outcome in the plots; kNoGraspColour for "no grasp suggested".
+std::string_view outcomeColour(rwsim::simulator::GraspOutcome outcome);
+/// Grey of the "no grasp suggested" share (paper Figure 6).
+inline constexpr std::string_view kNoGraspColour = "#a6a6a6";
+/// Legend text of an outcome ("stable grasp", "object slipped", ...; paper §2.4).
+std::string_view outcomeLegend(rwsim::simulator::GraspOutcome outcome);
+
+/// `text` with &, <, >, " and ' replaced by entities (for HTML and SVG).
+std::string escapeHtml(std::string_view text);
+
+/// Writes the CSV tables into `outDir`: distribution.csv (Figure 6), quality.csv (Table 1),
+/// attempts.csv (Figure 7), first_success.csv (Table 2), objects.csv (Tables 3-4); each
+/// atomically. Undefined values (NaN) are empty fields. @throws std::runtime_error.
+void writeCsvTables(const Analysis& analysis, const std::filesystem::path& outDir);
+
+/// The report as Markdown (tables of all five analyses, definitions in short).
+std::string markdownReport(const Analysis& analysis);
+
+/// The report as one self-contained HTML page (inline SVG plots, no external resources).
+std::string htmlReport(const Analysis& analysis);
+
+/// Analyses `runs` and writes the CSV tables, report.md and report.html into `outDir`.
+/// @throws std::runtime_error if a file cannot be written, std::invalid_argument for bad options.
+void writeReport(const std::vector<results::RunResults>& runs, const std::filesystem::path& outDir,
+                 const AnalysisOptions& options = {});
+
+}  // namespace visgrab::analysis

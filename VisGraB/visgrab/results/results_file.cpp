@@ -1,0 +1,424 @@
+#include "visgrab/results/results_file.hpp"
+
+#include <algorithm>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+#include <tuple>
+#include <unordered_map>
+#include <utility>
+
+#include "visgrab/database/atomic_file.hpp"
+#include "visgrab/results/csv.hpp"
+
+namespace visgrab::results {
+
+namespace fs = std::filesystem;
+using rw::loaders::Diagnostic;
+using rw::loaders::LoadError;
+
+namespace {
+
+constexpr std::string_view kTrialsColumns =
+    "scene,method,grasp,rank,outcome,robwork_code,q_lift,q_gws,object,simulated_time,detail";
+constexpr std::string_view kRunColumns = "record,id,texture,kind,arrangement,objects,pose,count";
+constexpr std::size_t kTrialFieldCount = 11;
+constexpr std::size_t kRunFieldCount = 8;
+
+[[noreturn]] void fail(const std::string& file, int line, const std::string& message) {
+  Diagnostic d;
+  d.file = file;
+  d.line = line;
+  d.message = message;
+  throw LoadError({d});
+}
+
+std::string versionLine(std::string_view what) {
+  return "# visgrab " + std::string(what) + " " + std::to_string(kResultsFormatVersion);
+}
+
+/// The lines of `text`: each with its 1-based number; `torn` tells whether the last one had no
+/// line break. A '\r' before the break is removed.
+struct Lines {
+  std::vector<std::string_view> lines;
+  bool torn = false;
+  std::size_t completeBytes = 0;
+};
+
+Lines splitLines(std::string_view text) {
+  Lines out;
+  std::size_t start = 0;
+  while (start < text.size()) {
+    const std::size_t end = text.find('\n', start);
+    if (end == std::string_view::npos) {
+      out.torn = true;
+      out.lines.push_back(text.substr(start));
+      break;
+    }
+    std::string_view line = text.substr(start, end - start);
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    out.lines.push_back(line);
+    start = end + 1;
+    out.completeBytes = start;
+  }
+  return out;
+}
+
+void checkHeader(const Lines& lines, std::string_view what, std::string_view columns,
+                 const std::string& file) {
+  const std::size_t complete = lines.lines.size() - (lines.torn ? 1 : 0);
+  const std::string expected = versionLine(what);
+  if (complete < 1) fail(file, 1, "missing header line '" + expected + "'");
+  const std::string_view first = lines.lines[0];
+  const std::string prefix = "# visgrab " + std::string(what) + " ";
+  if (first.substr(0, prefix.size()) != prefix) {
+    fail(file, 1,
+         "expected the header line '" + expected + "', found '" + std::string(first) + "'");
+  }
+  if (first != expected) {
+    fail(file, 1,
+         "format version '" + std::string(first.substr(prefix.size())) +
+             "' is not supported (expected " + std::to_string(kResultsFormatVersion) + ")");
+  }
+  if (complete < 2 || lines.lines[1] != columns) {
+    fail(file, 2, "expected the column line '" + std::string(columns) + "'");
+  }
+}
+
+std::string joinObjects(const std::vector<int>& objects) {
+  std::string text;
+  for (const int id : objects) {
+    if (!text.empty()) text += ' ';
+    text += std::to_string(id);
+  }
+  return text;
+}
+
+database::SceneConditions parseConditions(const std::vector<std::string>& f,
+                                          const std::string& file, int line) {
+  const auto texture = database::textureFromString(f[2]);
+  const auto kind = database::sceneKindFromString(f[3]);
+  const auto arrangement = database::arrangementFromString(f[4]);
+  if (!texture) fail(file, line, "unknown texture '" + f[2] + "' (expected plain or textured)");
+  if (!kind) fail(file, line, "unknown scene kind '" + f[3] + "' (expected single or double)");
+  if (!arrangement) {
+    fail(file, line, "unknown arrangement '" + f[4] + "' (expected standing, lying, apart, close)");
+  }
+  database::SceneConditions c;
+  c.texture = *texture;
+  c.kind = *kind;
+  std::istringstream objects(f[5]);
+  std::string token;
+  try {
+    while (objects >> token) c.objects.push_back(parseInt(token));
+    c.pose = parseInt(f[6]);
+  } catch (const std::invalid_argument& e) {
+    fail(file, line, e.what());
+  }
+  const std::string why = database::validate(c);
+  if (!why.empty()) fail(file, line, "invalid scene conditions: " + why);
+  if (c.arrangement() != *arrangement) {
+    fail(file, line,
+         "arrangement '" + f[4] + "' does not match pose " + f[6] + " (expected '" +
+             std::string(database::toString(c.arrangement())) + "')");
+  }
+  return c;
+}
+
+std::optional<database::SceneConditions> conditionsFromId(const std::string& id) {
+  if (auto c = database::parseSceneId(id)) return c;
+  return database::parseOriginalId(id);
+}
+
+/// Position of a database scene id in database order; past every database scene otherwise.
+int databaseOrder(const std::string& id) {
+  const auto c = database::parseSceneId(id);
+  return c ? database::sceneIndex(*c) : database::kSceneCount;
+}
+
+std::string readWholeFile(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) fail(path.string(), 0, "cannot open the file");
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  return buffer.str();
+}
+
+}  // namespace
+
+std::string trialsHeader() {
+  return versionLine("trials") + "\n" + std::string(kTrialsColumns) + "\n";
+}
+
+std::string formatTrialLine(const TrialRecord& t) {
+  std::string line;
+  line += csvField(t.sceneId) + ',';
+  line += csvField(t.method) + ',';
+  line += csvField(t.graspId) + ',';
+  line += std::to_string(t.rank) + ',';
+  line += std::string(rwsim::simulator::outcomeName(t.outcome)) + ',';
+  line += std::to_string(rwsim::simulator::robworkCode(t.outcome)) + ',';
+  line += formatDouble(t.qLift) + ',';
+  line += formatDouble(t.qGws) + ',';
+  line += std::to_string(t.object) + ',';
+  line += formatDouble(t.simulatedTime) + ',';
+  line += csvField(t.detail, true) + '\n';
+  return line;
+}
+
+std::string formatRunFile(const RunResults& run) {
+  std::string text = versionLine("run") + "\n" + std::string(kRunColumns) + "\n";
+  for (const RunScene& scene : run.scenes) {
+    text += "scene," + csvField(scene.id);
+    if (scene.conditions) {
+      const auto& c = *scene.conditions;
+      text += ',' + std::string(database::toString(c.texture)) + ',' +
+              std::string(database::toString(c.kind)) + ',' +
+              std::string(database::toString(c.arrangement())) + ',' + joinObjects(c.objects) +
+              ',' + std::to_string(c.pose) + ",\n";
+    } else {
+      text += ",,,,,,\n";
+    }
+  }
+  for (const std::string& method : run.methods) text += "method," + csvField(method) + ",,,,,,\n";
+  for (const auto& [method, count] : run.rejected) {
+    text += "rejected," + csvField(method) + ",,,,,," + std::to_string(count) + "\n";
+  }
+  return text;
+}
+
+TrialsFile parseTrials(std::string_view text, const std::string& file) {
+  TrialsFile out;
+  const Lines lines = splitLines(text);
+  const std::size_t complete = lines.lines.size() - (lines.torn ? 1 : 0);
+  if (complete < 2) {
+    // Not even the header was written completely (a kill right after creating the file) or the
+    // file is empty: nothing to read; the writer starts the file afresh.
+    out.tornLastLine = lines.torn;
+    out.completeBytes = 0;
+    if (!trialsHeader().starts_with(text)) checkHeader(lines, "trials", kTrialsColumns, file);
+    return out;
+  }
+  checkHeader(lines, "trials", kTrialsColumns, file);
+  out.tornLastLine = lines.torn;
+  out.completeBytes = lines.completeBytes;
+  std::map<std::tuple<std::string, std::string, std::string>, int> seen;
+  for (std::size_t i = 2; i < complete; ++i) {
+    const int lineNo = static_cast<int>(i) + 1;
+    const std::string_view line = lines.lines[i];
+    if (line.empty()) fail(file, lineNo, "empty line (expected a trial)");
+    std::vector<std::string> f;
+    try {
+      f = splitCsvLine(line);
+    } catch (const std::invalid_argument& e) {
+      fail(file, lineNo, e.what());
+    }
+    if (f.size() != kTrialFieldCount) {
+      fail(file, lineNo,
+           std::to_string(f.size()) + " fields, expected " + std::to_string(kTrialFieldCount) +
+               " (" + std::string(kTrialsColumns) + ")");
+    }
+    TrialRecord t;
+    t.sceneId = f[0];
+    t.method = f[1];
+    t.graspId = f[2];
+    if (t.sceneId.empty()) fail(file, lineNo, "empty scene id");
+    if (t.method.empty()) fail(file, lineNo, "empty method");
+    const auto outcome = rwsim::simulator::outcomeFromName(f[4]);
+    if (!outcome) fail(file, lineNo, "unknown outcome '" + f[4] + "'");
+    t.outcome = *outcome;
+    try {
+      t.rank = parseInt(f[3]);
+      const int code = parseInt(f[5]);
+      if (code != rwsim::simulator::robworkCode(t.outcome)) {
+        fail(file, lineNo,
+             "RobWork code " + f[5] + " does not match outcome '" + f[4] + "' (expected " +
+                 std::to_string(rwsim::simulator::robworkCode(t.outcome)) + ")");
+      }
+      t.qLift = parseDouble(f[6]);
+      t.qGws = parseDouble(f[7]);
+      t.object = parseInt(f[8]);
+      t.simulatedTime = parseDouble(f[9]);
+    } catch (const std::invalid_argument& e) {
+      fail(file, lineNo, e.what());
+    }
+    if (t.rank < 0) fail(file, lineNo, "negative rank " + f[3]);
+    if (t.object < 0 || t.object > database::kObjectCount) {
+      fail(file, lineNo, "object " + f[8] + " is not 0..18");
+    }
+    t.detail = f[10];
+    const auto [it, inserted] =
+        seen.emplace(std::make_tuple(t.sceneId, t.method, t.graspId), lineNo);
+    if (!inserted) {
+      fail(file, lineNo,
+           "trial (" + t.sceneId + ", " + t.method + ", " + t.graspId +
+               ") is given twice (first at line " + std::to_string(it->second) + ")");
+    }
+    out.trials.push_back(std::move(t));
+    out.lines.push_back(lineNo);
+  }
+  return out;
+}
+
+RunResults parseRunFile(std::string_view text, const std::string& file) {
+  RunResults run;
+  const Lines lines = splitLines(text);
+  if (lines.torn) {
+    fail(file, static_cast<int>(lines.lines.size()), "the last line has no line break");
+  }
+  checkHeader(lines, "run", kRunColumns, file);
+  std::map<std::string, int> seenScenes;
+  std::map<std::string, int> seenMethods;
+  for (std::size_t i = 2; i < lines.lines.size(); ++i) {
+    const int lineNo = static_cast<int>(i) + 1;
+    std::vector<std::string> f;
+    try {
+      f = splitCsvLine(lines.lines[i]);
+    } catch (const std::invalid_argument& e) {
+      fail(file, lineNo, e.what());
+    }
+    if (f.size() != kRunFieldCount) {
+      fail(file, lineNo,
+           std::to_string(f.size()) + " fields, expected " + std::to_string(kRunFieldCount) + " (" +
+               std::string(kRunColumns) + ")");
+    }
+    if (f[1].empty()) fail(file, lineNo, "empty id");
+    if (f[0] == "scene") {
+      RunScene scene;
+      scene.id = f[1];
+      const bool known =
+          !f[2].empty() || !f[3].empty() || !f[4].empty() || !f[5].empty() || !f[6].empty();
+      if (known) scene.conditions = parseConditions(f, file, lineNo);
+      const auto [it, inserted] = seenScenes.emplace(scene.id, lineNo);
+      if (!inserted) {
+        fail(file, lineNo,
+             "scene '" + scene.id + "' is given twice (first at line " +
+                 std::to_string(it->second) + ")");
+      }
+      run.scenes.push_back(std::move(scene));
+    } else if (f[0] == "method") {
+      const auto [it, inserted] = seenMethods.emplace(f[1], lineNo);
+      if (!inserted) {
+        fail(file, lineNo,
+             "method '" + f[1] + "' is given twice (first at line " + std::to_string(it->second) +
+                 ")");
+      }
+      run.methods.push_back(f[1]);
+    } else if (f[0] == "rejected") {
+      int count = 0;
+      try {
+        count = parseInt(f[7]);
+      } catch (const std::invalid_argument& e) {
+        fail(file, lineNo, e.what());
+      }
+      if (count < 0) fail(file, lineNo, "negative rejected count " + f[7]);
+      run.rejected.emplace_back(f[1], count);
+    } else {
+      fail(file, lineNo, "unknown record '" + f[0] + "' (expected scene, method or rejected)");
+    }
+  }
+  return run;
+}
+
+void sortTrials(std::vector<TrialRecord>& trials, const std::vector<RunScene>& scenes,
+                const std::vector<std::string>& methods) {
+  // Listed scenes by position; unlisted ones after them, database scenes in database order first.
+  constexpr std::size_t kUnlisted = std::numeric_limits<std::size_t>::max() / 2;
+  std::unordered_map<std::string, std::size_t> scenePos;
+  for (std::size_t i = 0; i < scenes.size(); ++i) scenePos.emplace(scenes[i].id, i);
+  std::unordered_map<std::string, std::size_t> methodPos;
+  for (std::size_t i = 0; i < methods.size(); ++i) methodPos.emplace(methods[i], i);
+  auto scenePosition = [&](const std::string& id) -> std::size_t {
+    if (const auto it = scenePos.find(id); it != scenePos.end()) return it->second;
+    if (const auto c = database::parseSceneId(id)) {
+      return kUnlisted + static_cast<std::size_t>(database::sceneIndex(*c));
+    }
+    return std::numeric_limits<std::size_t>::max();
+  };
+  auto methodPosition = [&](const std::string& name) {
+    const auto it = methodPos.find(name);
+    return it == methodPos.end() ? methodPos.size() : it->second;
+  };
+  std::stable_sort(trials.begin(), trials.end(), [&](const TrialRecord& a, const TrialRecord& b) {
+    if (a.sceneId != b.sceneId) {
+      const std::size_t pa = scenePosition(a.sceneId);
+      const std::size_t pb = scenePosition(b.sceneId);
+      return pa != pb ? pa < pb : a.sceneId < b.sceneId;
+    }
+    if (a.method != b.method) {
+      const std::size_t pa = methodPosition(a.method);
+      const std::size_t pb = methodPosition(b.method);
+      return pa != pb ? pa < pb : a.method < b.method;
+    }
+    if (a.rank != b.rank) return a.rank < b.rank;
+    return a.graspId < b.graspId;
+  });
+}
+
+RunResults readResults(const fs::path& dir, std::vector<Diagnostic>* warnings) {
+  const fs::path runPath = dir / kRunFileName;
+  const fs::path trialsPath = dir / kTrialsFileName;
+  RunResults run;
+  const bool haveRun = fs::exists(runPath);
+  if (haveRun) run = parseRunFile(readWholeFile(runPath), runPath.string());
+  if (!fs::exists(trialsPath)) fail(trialsPath.string(), 0, "no trials file in the result folder");
+  const std::string text = readWholeFile(trialsPath);
+  TrialsFile trials = parseTrials(text, trialsPath.string());
+  if (trials.tornLastLine && warnings) {
+    Diagnostic d;
+    d.severity = Diagnostic::Severity::kWarning;
+    d.file = trialsPath.string();
+    d.line = static_cast<int>(std::count(text.begin(), text.end(), '\n')) + 1;
+    d.message = "the last line has no line break (a write cut off by a kill): dropped";
+    warnings->push_back(d);
+  }
+  const std::size_t listedScenes = run.scenes.size();
+  std::unordered_map<std::string, std::size_t> sceneIndex;
+  for (std::size_t i = 0; i < run.scenes.size(); ++i) sceneIndex.emplace(run.scenes[i].id, i);
+  for (std::size_t i = 0; i < trials.trials.size(); ++i) {
+    TrialRecord& t = trials.trials[i];
+    auto it = sceneIndex.find(t.sceneId);
+    if (it == sceneIndex.end()) {
+      if (haveRun && warnings) {
+        Diagnostic d;
+        d.severity = Diagnostic::Severity::kWarning;
+        d.file = trialsPath.string();
+        d.line = trials.lines[i];
+        d.message = "scene '" + t.sceneId + "' is not listed in " + std::string(kRunFileName);
+        warnings->push_back(d);
+      }
+      run.scenes.push_back({t.sceneId, conditionsFromId(t.sceneId)});
+      it = sceneIndex.emplace(t.sceneId, run.scenes.size() - 1).first;
+    }
+    t.conditions = run.scenes[it->second].conditions;
+    if (std::find(run.methods.begin(), run.methods.end(), t.method) == run.methods.end()) {
+      run.methods.push_back(t.method);
+    }
+  }
+  // Scenes known only from trials.csv: database order, then by id (not the order trials
+  // finished in).
+  std::stable_sort(run.scenes.begin() + static_cast<std::ptrdiff_t>(listedScenes), run.scenes.end(),
+                   [](const RunScene& a, const RunScene& b) {
+                     const auto ka = std::make_pair(databaseOrder(a.id), std::cref(a.id));
+                     return ka < std::make_pair(databaseOrder(b.id), std::cref(b.id));
+                   });
+  run.trials = std::move(trials.trials);
+  sortTrials(run.trials, run.scenes, run.methods);
+  fs::path name = dir;
+  if (!name.has_filename()) name = name.parent_path();
+  run.label = name.filename().string();
+  return run;
+}
+
+void writeResults(const fs::path& dir, const RunResults& run) {
+  std::vector<TrialRecord> trials = run.trials;
+  sortTrials(trials, run.scenes, run.methods);
+  std::string text = trialsHeader();
+  for (const TrialRecord& t : trials) text += formatTrialLine(t);
+  database::writeFileAtomically(dir / kRunFileName, formatRunFile(run));
+  database::writeFileAtomically(dir / kTrialsFileName, text);
+}
+
+}  // namespace visgrab::results

@@ -1,0 +1,138 @@
+#include "visgrab/results/results_writer.hpp"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <utility>
+
+#include "visgrab/database/atomic_file.hpp"
+#include "visgrab/results/results_file.hpp"
+
+namespace visgrab::results {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string readFile(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error("cannot read " + path.string());
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  return buffer.str();
+}
+
+}  // namespace
+
+ResultsWriter::ResultsWriter(fs::path dir) : ResultsWriter(std::move(dir), Options{}) {}
+
+ResultsWriter::ResultsWriter(fs::path dir, Options options)
+    : dir_(std::move(dir)), options_(options) {
+  std::error_code ec;
+  fs::create_directories(dir_, ec);
+  if (ec) throw std::runtime_error("cannot create " + dir_.string() + ": " + ec.message());
+  const fs::path runPath = dir_ / kRunFileName;
+  if (fs::exists(runPath)) {
+    RunResults run = parseRunFile(readFile(runPath), runPath.string());
+    scenes_ = std::move(run.scenes);
+    methods_ = std::move(run.methods);
+  }
+  const fs::path trialsPath = dir_ / kTrialsFileName;
+  std::size_t keep = 0;
+  if (fs::exists(trialsPath)) {
+    TrialsFile file = parseTrials(readFile(trialsPath), trialsPath.string());
+    droppedTorn_ = file.tornLastLine;
+    keep = file.completeBytes;
+    resumed_ = file.trials.size();
+    for (TrialRecord& t : file.trials) {
+      keys_.emplace(t.sceneId, t.method, t.graspId);
+      trials_.push_back(std::move(t));
+    }
+  }
+  fd_ = ::open(trialsPath.c_str(), O_WRONLY | O_CREAT | O_CLOEXEC, 0644);
+  if (fd_ < 0) {
+    throw std::runtime_error("cannot open " + trialsPath.string() + ": " + std::strerror(errno));
+  }
+  // Cut off a torn last line (or a torn header) so that appended lines start on a fresh line.
+  if (::ftruncate(fd_, static_cast<off_t>(keep)) != 0 ||
+      ::lseek(fd_, static_cast<off_t>(keep), SEEK_SET) < 0) {
+    const std::string why = std::strerror(errno);
+    ::close(fd_);
+    fd_ = -1;
+    throw std::runtime_error("cannot truncate " + trialsPath.string() + ": " + why);
+  }
+  if (keep == 0) writeAll(trialsHeader());
+}
+
+ResultsWriter::~ResultsWriter() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
+bool ResultsWriter::contains(std::string_view scene, std::string_view method,
+                             std::string_view graspId) const {
+  std::lock_guard lock(mutex_);
+  return keys_.find(std::make_tuple(scene, method, graspId)) != keys_.end();
+}
+
+std::vector<TrialRecord> ResultsWriter::trials() const {
+  std::lock_guard lock(mutex_);
+  return trials_;
+}
+
+void ResultsWriter::writeAll(std::string_view bytes) {
+  std::size_t written = 0;
+  while (written < bytes.size()) {
+    const ssize_t n = ::write(fd_, bytes.data() + written, bytes.size() - written);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      throw std::runtime_error("cannot write " + (dir_ / kTrialsFileName).string() + ": " +
+                               std::strerror(errno));
+    }
+    written += static_cast<std::size_t>(n);
+  }
+  if (options_.syncEachTrial && ::fdatasync(fd_) != 0) {
+    throw std::runtime_error("cannot sync " + (dir_ / kTrialsFileName).string() + ": " +
+                             std::strerror(errno));
+  }
+}
+
+void ResultsWriter::append(const TrialRecord& trial) {
+  const std::string line = formatTrialLine(trial);
+  std::lock_guard lock(mutex_);
+  if (fd_ < 0) throw std::logic_error("ResultsWriter::append after finalize()");
+  Key key(trial.sceneId, trial.method, trial.graspId);
+  if (keys_.count(key) != 0) {
+    throw std::logic_error("trial (" + trial.sceneId + ", " + trial.method + ", " + trial.graspId +
+                           ") is already in the results");
+  }
+  writeAll(line);
+  keys_.insert(std::move(key));
+  trials_.push_back(trial);
+}
+
+void ResultsWriter::writeRun(const RunResults& run) {
+  const std::string text = formatRunFile(run);
+  std::lock_guard lock(mutex_);
+  database::writeFileAtomically(dir_ / kRunFileName, text);
+  scenes_ = run.scenes;
+  methods_ = run.methods;
+}
+
+void ResultsWriter::finalize() {
+  std::lock_guard lock(mutex_);
+  if (fd_ < 0) return;
+  std::vector<TrialRecord> sorted = trials_;
+  sortTrials(sorted, scenes_, methods_);
+  std::string text = trialsHeader();
+  for (const TrialRecord& t : sorted) text += formatTrialLine(t);
+  database::writeFileAtomically(dir_ / kTrialsFileName, text);
+  ::close(fd_);
+  fd_ = -1;
+}
+
+}  // namespace visgrab::results

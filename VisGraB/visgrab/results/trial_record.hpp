@@ -1,0 +1,73 @@
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "rwsim/simulator/grasp_trial.hpp"
+#include "visgrab/database/scene_set.hpp"
+
+/// Results of a benchmark run: one record per simulated (or rejected) grasp.
+namespace visgrab::results {
+
+/// What happened to one grasp of one scene.
+struct TrialRecord {
+  /// Scene id (our spelling, e.g. "textured/single/cocacola/03").
+  std::string sceneId;
+  /// The scene's conditions (nullopt for an original-database scene whose conditions are unknown).
+  std::optional<database::SceneConditions> conditions;
+  /// What the analyses compare: the grasp type or the grasp file's name.
+  std::string method;
+  /// The grasp's id within its scene and method.
+  std::string graspId;
+  /// Position of the grasp among its scene's grasps of this method, 0-based, in the order the
+  /// user gave them (the analyses' "attempts").
+  int rank = 0;
+  /// Outcome (kInvalidContacts when the grasp utilities rejected the contacts).
+  rwsim::simulator::GraspOutcome outcome = rwsim::simulator::GraspOutcome::kSimulationFailure;
+  /// Paper eq. 5 (0 unless held).
+  double qLift = 0.0;
+  /// Paper eq. 6-7 (0 unless held).
+  double qGws = 0.0;
+  /// Id (1..18) of the object the hand held or touched most (in a pair: the one grasped, as the
+  /// paper reports "the object closest to the hand"); 0 when no object was touched.
+  int object = 0;
+  /// Simulated time, s.
+  double simulatedTime = 0.0;
+  /// Free text (failure details).
+  std::string detail;
+};
+
+/// True for the outcomes the paper counts as a successful grasp (§2.4: "stable grasp" or
+/// "object slipped": the object is in the hand after lifting).
+inline bool isSuccess(rwsim::simulator::GraspOutcome outcome) {
+  return outcome == rwsim::simulator::GraspOutcome::kStable ||
+         outcome == rwsim::simulator::GraspOutcome::kSlipped;
+}
+
+/// A scene that was part of a run, with or without grasps (a method that suggests no grasp for
+/// a scene is part of the analyses: the paper's grey "no grasp suggested" share).
+struct RunScene {
+  /// Scene id.
+  std::string id;
+  /// Conditions (nullopt when unknown).
+  std::optional<database::SceneConditions> conditions;
+};
+
+/// Everything a run produced: the analyses' input.
+struct RunResults {
+  /// The scenes the run covered, in database order.
+  std::vector<RunScene> scenes;
+  /// The methods compared, in the order first seen.
+  std::vector<std::string> methods;
+  /// One record per grasp, in (scene, method, rank) order.
+  std::vector<TrialRecord> trials;
+  /// Grasps rejected before simulation because their input was malformed (bad numbers, unknown
+  /// scene or pre-shape, ...), per method.
+  std::vector<std::pair<std::string, int>> rejected;
+  /// Name of the run when several are compared side by side (readResults: the folder's name);
+  /// may be empty.
+  std::string label;
+};
+
+}  // namespace visgrab::results

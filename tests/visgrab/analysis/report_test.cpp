@@ -1,0 +1,162 @@
+#include "visgrab/analysis/report.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cctype>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "support/test_support.hpp"
+#include "test_runs.hpp"
+
+namespace visgrab::analysis {
+namespace {
+
+std::string readText(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+/// A small well-formedness checker for the report's HTML: every tag closed in order (void
+/// elements self-closed with "/>"), attribute values quoted, no raw '<' or '>' in text, every
+/// '&' starts an entity. Returns "" or what is wrong.
+std::string checkWellFormed(const std::string& html) {
+  const std::set<std::string> entities = {"&amp;", "&lt;", "&gt;", "&quot;", "&#39;"};
+  std::vector<std::string> stack;
+  std::size_t i = 0;
+  if (html.rfind("<!DOCTYPE html>", 0) != 0) return "no doctype";
+  i = html.find('>') + 1;
+  while (i < html.size()) {
+    const char c = html[i];
+    if (c == '&') {
+      const std::size_t end = html.find(';', i);
+      if (end == std::string::npos || entities.count(html.substr(i, end - i + 1)) == 0) {
+        return "bare '&' at " + std::to_string(i);
+      }
+      i = end + 1;
+      continue;
+    }
+    if (c == '>') return "bare '>' at " + std::to_string(i);
+    if (c != '<') {
+      ++i;
+      continue;
+    }
+    // A tag: scan to its '>' outside quoted attribute values.
+    std::size_t j = i + 1;
+    bool quoted = false;
+    while (j < html.size() && (quoted || html[j] != '>')) {
+      if (html[j] == '"') quoted = !quoted;
+      if (!quoted && html[j] == '<') return "'<' inside a tag at " + std::to_string(j);
+      ++j;
+    }
+    if (j >= html.size()) return "unterminated tag at " + std::to_string(i);
+    std::string tag = html.substr(i + 1, j - i - 1);
+    i = j + 1;
+    const bool closing = !tag.empty() && tag[0] == '/';
+    const bool selfClosing = !tag.empty() && tag.back() == '/';
+    std::size_t n = closing ? 1 : 0;
+    std::string name;
+    while (n < tag.size() && (std::isalnum(static_cast<unsigned char>(tag[n])) != 0)) {
+      name += tag[n++];
+    }
+    if (name.empty()) return "tag without a name: <" + tag + ">";
+    if (closing) {
+      if (stack.empty() || stack.back() != name) {
+        return "</" + name + "> closes <" + (stack.empty() ? "" : stack.back()) + ">";
+      }
+      stack.pop_back();
+    } else if (!selfClosing) {
+      if (name == "meta" || name == "br" || name == "line") {
+        return "void element <" + name + "> not self-closed";
+      }
+      stack.push_back(name);
+    }
+    if (name == "style" && !closing) {
+      const std::size_t end = html.find("</style>", i);
+      if (end == std::string::npos) return "unclosed style";
+      i = end;
+    }
+  }
+  if (!stack.empty()) return "unclosed <" + stack.back() + ">";
+  return "";
+}
+
+TEST(ReportTest, CheckerCatchesMistakes) {
+  EXPECT_EQ(checkWellFormed("<!DOCTYPE html>\n<p>a &amp; b<br/></p>"), "");
+  EXPECT_NE(checkWellFormed("<!DOCTYPE html>\n<p>a & b</p>"), "");
+  EXPECT_NE(checkWellFormed("<!DOCTYPE html>\n<p><b>x</p></b>"), "");
+  EXPECT_NE(checkWellFormed("<!DOCTYPE html>\n<p>x"), "");
+  EXPECT_NE(checkWellFormed("<!DOCTYPE html>\n<p>1 < 2</p>"), "");
+}
+
+TEST(ReportTest, EscapesHtml) {
+  EXPECT_EQ(escapeHtml("a<b & \"c\" 'd'>"), "a&lt;b &amp; &quot;c&quot; &#39;d&#39;&gt;");
+}
+
+class ReportFilesTest : public ::testing::Test {
+ protected:
+  void SetUp() override { writeReport({test_runs::runA(), test_runs::runB()}, dir.path()); }
+  test::TempDir dir;
+};
+
+TEST_F(ReportFilesTest, HtmlIsWellFormedSelfContainedAndHasTheNumbers) {
+  const std::string html = readText(dir.path() / "report.html");
+  EXPECT_EQ(checkWellFormed(html), "");
+  EXPECT_NE(html.find("<svg"), std::string::npos);
+  EXPECT_NE(html.find("<rect"), std::string::npos);
+  EXPECT_NE(html.find("<polyline"), std::string::npos);
+  for (const char* external : {"<script", "<link", "src=", "href=", "url(", "@import"}) {
+    EXPECT_EQ(html.find(external), std::string::npos) << external;
+  }
+  // The method name with markup characters is escaped, never raw.
+  EXPECT_NE(html.find("x&lt;&amp;&gt;&quot;"), std::string::npos);
+  EXPECT_EQ(html.find("x<&>"), std::string::npos);
+  // Table 2, textured single standing, runA: p = 0.50, ga = 5/3 = 1.67 (analysis_test.cpp).
+  EXPECT_NE(html.find("<td>0.50</td><td>1.67</td>"), std::string::npos);
+  // Table 1, textured single standing, runA: Q_lift 0.70, Q_GWS 0.30.
+  EXPECT_NE(html.find("<td>0.70</td><td>0.30</td>"), std::string::npos);
+  // Figure 6: the grey share of textured single standing for runA is 0.500.
+  EXPECT_NE(html.find("runA: A, no grasp suggested: 0.500"), std::string::npos);
+  EXPECT_NE(html.find("fill=\"#a6a6a6\""), std::string::npos);
+  // Table 3: cocacola standing 50 %; pair e far 33 %, held object 14: 33 %.
+  EXPECT_NE(html.find("title=\"2 of 4\">50 %</td>"), std::string::npos);
+  EXPECT_NE(html.find("33 %<br/><small>5: 0 %, 14: 33 %</small>"), std::string::npos);
+}
+
+TEST_F(ReportFilesTest, MarkdownAndCsvHaveTheNumbers) {
+  const std::string md = readText(dir.path() / "report.md");
+  EXPECT_NE(md.find("| textured, single, standing | runA: A | 0.50 | 1.67 |"), std::string::npos);
+  EXPECT_NE(md.find("| textured, all | runA: A | 0.60 | 1.72 |"), std::string::npos);
+  EXPECT_NE(md.find("x<&>\""), std::string::npos);
+
+  const std::string first = readText(dir.path() / "first_success.csv");
+  EXPECT_EQ(first.rfind("group,method,scenes,scenes_with_success,p,ga,", 0), 0u);
+  // p = 3/5, ga = 31/18 for textured all.
+  EXPECT_NE(first.find("textured-all,runA: A,5,3,0.6,1.7222222222222223,"), std::string::npos)
+      << first;
+  const std::string attempts = readText(dir.path() / "attempts.csv");
+  EXPECT_NE(attempts.find("textured-single-standing,runA: A,2,0.4166666666666667,"),
+            std::string::npos);
+  const std::string distribution = readText(dir.path() / "distribution.csv");
+  EXPECT_NE(distribution.find("textured-single-standing,runA: A,2,1,4,"), std::string::npos);
+  const std::string objects = readText(dir.path() / "objects.csv");
+  EXPECT_NE(objects.find("textured,runA: A,double,e,cocacola+saltcylinder,apart,3,1,"),
+            std::string::npos);
+  EXPECT_TRUE(std::filesystem::exists(dir.path() / "quality.csv"));
+}
+
+TEST_F(ReportFilesTest, ReportIsDeterministic) {
+  test::TempDir other;
+  writeReport({test_runs::runA(), test_runs::runB()}, other.path());
+  for (const char* file : {"report.html", "report.md", "attempts.csv", "distribution.csv"}) {
+    EXPECT_EQ(readText(dir.path() / file), readText(other.path() / file)) << file;
+  }
+}
+
+}  // namespace
+}  // namespace visgrab::analysis

@@ -1,0 +1,212 @@
+#include "visgrab/results/results_file.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "support/test_support.hpp"
+#include "visgrab/results/csv.hpp"
+
+namespace visgrab::results {
+namespace {
+
+using database::SceneConditions;
+using database::Texture;
+using rwsim::simulator::GraspOutcome;
+
+std::string readText(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+TrialRecord makeTrial(const std::string& scene, const std::string& method, const std::string& id,
+                      int rank, GraspOutcome outcome) {
+  TrialRecord t;
+  t.sceneId = scene;
+  t.method = method;
+  t.graspId = id;
+  t.rank = rank;
+  t.outcome = outcome;
+  return t;
+}
+
+RunResults smallRun() {
+  RunResults run;
+  const SceneConditions a = SceneConditions::single(Texture::kTextured, 5, 3);
+  const SceneConditions b = SceneConditions::pairScene(Texture::kPlain, 'e', 6);
+  run.scenes = {{database::sceneIdOf(a), a}, {database::sceneIdOf(b), b}, {"my/odd,scene", {}}};
+  run.methods = {"s2EGA1", "s3EGA1"};
+  run.rejected = {{"s3EGA1", 4}};
+  TrialRecord t1 = makeTrial(run.scenes[0].id, "s2EGA1", "g0", 0, GraspOutcome::kStable);
+  t1.qLift = 0.1 + 0.2;  // not exactly representable in short decimal: must round-trip exactly
+  t1.qGws = 1.0 / 3.0;
+  t1.object = 5;
+  t1.simulatedTime = 2.5;
+  t1.detail = "line one\nline \"two\", with \\ backslash";
+  TrialRecord t2 = makeTrial(run.scenes[1].id, "s3EGA1", "g,7", 1, GraspOutcome::kInCollision);
+  t2.detail = "hand.finger1 vs table (RobWork 12)";
+  TrialRecord t3 = makeTrial(run.scenes[2].id, "s2EGA1", "x", 0, GraspOutcome::kTimeout);
+  run.trials = {t1, t2, t3};
+  return run;
+}
+
+TEST(CsvTest, FieldsRoundTripThroughOneLine) {
+  const std::vector<std::string> fields = {"plain", "a,b", "say \"hi\"", "x\ny\r\\z", "", " pad "};
+  std::string line;
+  for (const auto& f : fields) line += (line.empty() ? "" : ",") + csvField(f);
+  EXPECT_EQ(line.find('\n'), std::string::npos);
+  EXPECT_EQ(splitCsvLine(line), fields);
+  EXPECT_EQ(csvField("", true), "\"\"");
+}
+
+TEST(CsvTest, MalformedLinesSayTheColumn) {
+  EXPECT_THROW(splitCsvLine("a,\"open"), std::invalid_argument);
+  EXPECT_THROW(splitCsvLine("\"a\"b"), std::invalid_argument);
+  try {
+    // a b , " x \ : the bad escape starts at the 6th character.
+    splitCsvLine("ab,\"x\\q\"");
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("column 6"), std::string::npos) << e.what();
+  }
+}
+
+TEST(CsvTest, DoublesRoundTripExactly) {
+  for (const double v : {0.0, 0.1 + 0.2, 1.0 / 3.0, -2.5e-17, 1e300}) {
+    EXPECT_EQ(parseDouble(formatDouble(v)), v);
+  }
+  EXPECT_TRUE(std::isnan(parseDouble(formatDouble(std::nan("")))));
+  EXPECT_THROW(parseDouble("1.5x"), std::invalid_argument);
+  EXPECT_THROW(parseInt(""), std::invalid_argument);
+}
+
+TEST(ResultsFileTest, RoundTripKeepsEveryField) {
+  test::TempDir dir;
+  const RunResults run = smallRun();
+  writeResults(dir.path(), run);
+  const RunResults back = readResults(dir.path());
+  ASSERT_EQ(back.scenes.size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(back.scenes[i].id, run.scenes[i].id);
+    EXPECT_EQ(back.scenes[i].conditions, run.scenes[i].conditions);
+  }
+  EXPECT_EQ(back.methods, run.methods);
+  EXPECT_EQ(back.rejected, run.rejected);
+  EXPECT_EQ(back.label, dir.path().filename().string());
+  ASSERT_EQ(back.trials.size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) {
+    const TrialRecord& a = run.trials[i];
+    const TrialRecord& b = back.trials[i];
+    EXPECT_EQ(b.sceneId, a.sceneId);
+    EXPECT_EQ(b.method, a.method);
+    EXPECT_EQ(b.graspId, a.graspId);
+    EXPECT_EQ(b.rank, a.rank);
+    EXPECT_EQ(b.outcome, a.outcome);
+    EXPECT_EQ(b.qLift, a.qLift);
+    EXPECT_EQ(b.qGws, a.qGws);
+    EXPECT_EQ(b.object, a.object);
+    EXPECT_EQ(b.simulatedTime, a.simulatedTime);
+    EXPECT_EQ(b.detail, a.detail);
+    EXPECT_EQ(b.conditions, run.scenes[i].conditions);
+  }
+  // The file itself: version line, columns, one line per trial with the RobWork code.
+  const std::string text = readText(dir.path() / "trials.csv");
+  EXPECT_EQ(text.rfind("# visgrab trials 1\nscene,method,grasp,rank,outcome,robwork_code,", 0), 0u);
+  EXPECT_NE(text.find(",in_collision,2,"), std::string::npos);
+  EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 5);
+}
+
+TEST(ResultsFileTest, TornLastLineIsDroppedWithAWarning) {
+  test::TempDir dir;
+  writeResults(dir.path(), smallRun());
+  // A kill in the middle of writing the next line: no line break at the end.
+  {
+    std::ofstream out(dir.path() / "trials.csv", std::ios::app | std::ios::binary);
+    out << "textured/single/cocacola/03,s3EGA1,g9,0,stab";
+  }
+  std::vector<rw::loaders::Diagnostic> warnings;
+  const RunResults back = readResults(dir.path(), &warnings);
+  EXPECT_EQ(back.trials.size(), 3u);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_EQ(warnings[0].line, 6);
+  EXPECT_NE(warnings[0].message.find("dropped"), std::string::npos);
+}
+
+TEST(ResultsFileTest, TornLineThatLooksCompleteIsStillDropped) {
+  // A line cut inside its last number parses, but it has no line break: it is dropped.
+  const std::string text = trialsHeader() + "s,m,g,0,stable,1,0.9,0.5,5,1.2,\"\"";
+  const TrialsFile file = parseTrials(text, "trials.csv");
+  EXPECT_TRUE(file.trials.empty());
+  EXPECT_TRUE(file.tornLastLine);
+  EXPECT_EQ(file.completeBytes, trialsHeader().size());
+}
+
+void expectLoadError(const std::string& text, const std::string& where, const std::string& what) {
+  try {
+    parseTrials(text, "r/trials.csv");
+    FAIL() << "no error for " << where;
+  } catch (const rw::loaders::LoadError& e) {
+    const std::string message = e.what();
+    EXPECT_EQ(message.rfind(where + ": error: ", 0), 0u) << message;
+    EXPECT_NE(message.find(what), std::string::npos) << message;
+  }
+}
+
+TEST(ResultsFileTest, CorruptLinesGiveFileAndLine) {
+  const std::string h = trialsHeader();
+  const std::string good = "s,m,g,0,stable,1,0.9,0.5,5,1.2,\"\"\n";
+  expectLoadError(h + good + "s,m,g2,0,stable,1,0.9\n" + good, "r/trials.csv:4", "7 fields");
+  expectLoadError(h + good + "s,m,g2,0,wobbly,1,0,0,0,0,\"\"\n", "r/trials.csv:4",
+                  "unknown outcome 'wobbly'");
+  expectLoadError(h + good + "s,m,g2,0,stable,3,0,0,0,0,\"\"\n", "r/trials.csv:4",
+                  "RobWork code 3 does not match");
+  expectLoadError(h + good + "s,m,g2,zero,stable,1,0,0,0,0,\"\"\n", "r/trials.csv:4",
+                  "'zero' is not an integer");
+  expectLoadError(h + good + "s,m,g2,0,stable,1,0,0,0,0,\"open\n", "r/trials.csv:4", "not closed");
+  expectLoadError(h + good + good, "r/trials.csv:4", "given twice (first at line 3)");
+  expectLoadError(h + "\n" + good, "r/trials.csv:3", "empty line");
+  expectLoadError("# visgrab trials 7\n" + good, "r/trials.csv:1", "version '7'");
+  expectLoadError("scene,method\n" + good, "r/trials.csv:1", "header line");
+}
+
+TEST(ResultsFileTest, CorruptRunFileGivesFileAndLine) {
+  test::TempDir dir;
+  writeResults(dir.path(), smallRun());
+  test::writeFile(dir.path() / "run.csv",
+                  "# visgrab run 1\nrecord,id,texture,kind,arrangement,objects,pose,count\n"
+                  "scene,a,textured,single,standing,5,3,\n"
+                  "scene,b,textured,single,standing,5,7,\n");
+  try {
+    readResults(dir.path());
+    FAIL();
+  } catch (const rw::loaders::LoadError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("run.csv:4: error: arrangement 'standing' does not match pose 7"),
+              std::string::npos)
+        << message;
+  }
+}
+
+TEST(ResultsFileTest, MissingRunFileDerivesScenesFromIds) {
+  test::TempDir dir;
+  writeResults(dir.path(), smallRun());
+  std::filesystem::remove(dir.path() / "run.csv");
+  const RunResults back = readResults(dir.path());
+  ASSERT_EQ(back.scenes.size(), 3u);
+  // Database scenes first in database order (plain before textured), then the unknown one.
+  EXPECT_EQ(back.scenes[0].id, "plain/double/cocacola_saltcylinder/06");
+  ASSERT_TRUE(back.scenes[0].conditions);
+  EXPECT_EQ(back.scenes[0].conditions->objects, (std::vector<int>{5, 14}));
+  EXPECT_EQ(back.scenes[1].id, "textured/single/cocacola/03");
+  EXPECT_FALSE(back.scenes[2].conditions);
+  EXPECT_EQ(back.trials[0].sceneId, "plain/double/cocacola_saltcylinder/06");
+  EXPECT_EQ(back.trials[0].conditions, back.scenes[0].conditions);
+}
+
+}  // namespace
+}  // namespace visgrab::results
