@@ -6,6 +6,7 @@
 
 #include "command_line.hpp"
 #include "db_commands.hpp"
+#include "run_commands.hpp"
 #include "sim_commands.hpp"
 #include "wc_commands.hpp"
 
@@ -14,6 +15,7 @@ int main(int argc, char** argv) {
     std::vector<visgrab::app::Command> commands = visgrab::app::workcellCommands();
     for (auto& c : visgrab::app::simulationCommands()) commands.push_back(std::move(c));
     for (auto& c : visgrab::app::databaseCommands()) commands.push_back(std::move(c));
+    for (auto& c : visgrab::app::runCommands()) commands.push_back(std::move(c));
     const std::vector<std::string> args(argv + 1, argv + argc);
     return visgrab::app::dispatch(commands, args);
   } catch (const std::exception& e) {

@@ -1,0 +1,265 @@
+#include "visgrab/runner/benchmark_runner.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <exception>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <stdexcept>
+#include <thread>
+
+#include "rwsim/loaders/dynamic_workcell_loader.hpp"
+#include "rwsim/simulator/grasp_trial.hpp"
+#include "visgrab/database/database.hpp"
+#include "visgrab/database/scene_filter.hpp"
+#include "visgrab/grasp/grasp_resolver.hpp"
+#include "visgrab/grasp/hand_grasp_setup.hpp"
+#include "visgrab/results/results_file.hpp"
+#include "visgrab/results/results_writer.hpp"
+#include "visgrab/taskio/grasp_file.hpp"
+
+namespace visgrab::runner {
+
+namespace {
+
+namespace fs = std::filesystem;
+using rw::loaders::Diagnostic;
+using rwsim::simulator::GraspOutcome;
+
+/// One grasp to run: its request and its rank among its scene's grasps of its method.
+struct Job {
+  const grasp::GraspRequest* request = nullptr;
+  int rank = 0;
+};
+
+/// A scene with its grasps, in (method first seen, rank) order.
+struct SceneWork {
+  const database::SceneEntry* entry = nullptr;
+  std::vector<Job> jobs;
+};
+
+Diagnostic rejection(const grasp::GraspRequest& r, const std::string& message) {
+  Diagnostic d;
+  d.file = r.sourceFile;
+  d.line = r.sourceLine;
+  d.message = "grasp " + r.id + ": " + message;
+  return d;
+}
+
+taskio::GraspFileContents readAllGrasps(const std::vector<fs::path>& paths) {
+  taskio::GraspFileContents all;
+  for (const auto& p : paths) {
+    std::error_code ec;
+    auto one = fs::is_directory(p, ec) ? taskio::readGraspFolder(p) : taskio::readGraspFile(p);
+    for (auto& r : one.requests) all.requests.push_back(std::move(r));
+    for (auto& d : one.rejected) all.rejected.push_back(std::move(d));
+    for (auto& d : one.warnings) all.warnings.push_back(std::move(d));
+  }
+  return all;
+}
+
+std::vector<const database::SceneEntry*> selectScenes(const database::Database& db,
+                                                      const std::string& filterText) {
+  try {
+    return db.filter(filterText.empty() ? database::SceneFilter()
+                                        : database::SceneFilter::parse(filterText));
+  } catch (const database::FilterError& e) {
+    throw std::invalid_argument(std::string("scene filter: ") + e.what());
+  }
+}
+
+int objectIdOf(const rwsim::dynamics::DynamicWorkCell& dwc, int body) {
+  if (body < 0) return 0;
+  const std::string& name = dwc.bodies()[static_cast<std::size_t>(body)].name;
+  return database::objectIdByName(name).value_or(0);
+}
+
+/// Runs one scene's pending jobs; appends each trial as it finishes.
+class SceneRunner {
+ public:
+  SceneRunner(const SceneWork& work, const grasp::HandGraspSetup& hand)
+      : work_(&work), hand_(&hand) {
+    dwc_ = rwsim::loaders::loadDynamicWorkCell(work.entry->dynamicWorkcell);
+    rwsim::simulator::GraspTrialSetup setup;
+    setup.hand = hand.deviceName();
+    setup.controller = hand.controllerName();
+    setup.tcpFrame = hand.tcpFrameName();
+    setup.simulator = rwsim::simulator::optionsFromEngineProperties(*dwc_);
+    trial_ = std::make_unique<rwsim::simulator::GraspTrial>(*dwc_, setup);
+  }
+
+  /// The trial record of `job`, or nullopt (and `rejected` set) for a grasp rejected as input.
+  std::optional<results::TrialRecord> run(const Job& job, Diagnostic& rejected) const {
+    const grasp::GraspRequest& r = *job.request;
+    const grasp::ResolvedGrasp resolved = grasp::resolve(r, *hand_);
+    if (resolved.status == grasp::ResolveStatus::kInputError) {
+      rejected = rejection(r, resolved.message);
+      return std::nullopt;
+    }
+    results::TrialRecord record;
+    record.sceneId = work_->entry->id;
+    record.conditions = work_->entry->conditions;
+    record.method = r.method;
+    record.graspId = r.id;
+    record.rank = job.rank;
+    if (resolved.status == grasp::ResolveStatus::kInvalidContacts) {
+      record.outcome = GraspOutcome::kInvalidContacts;
+      record.detail = resolved.message;
+      return record;
+    }
+    const auto result = trial_->run(resolved.parameters, dwc_->workcell().defaultState());
+    record.outcome = result.outcome;
+    record.qLift = result.qLift;
+    record.qGws = result.qGws;
+    record.object = objectIdOf(*dwc_, result.object);
+    record.simulatedTime = result.simulatedTime;
+    record.detail = result.detail;
+    return record;
+  }
+
+ private:
+  const SceneWork* work_;
+  const grasp::HandGraspSetup* hand_;
+  std::unique_ptr<rwsim::dynamics::DynamicWorkCell> dwc_;
+  std::unique_ptr<rwsim::simulator::GraspTrial> trial_;
+};
+
+}  // namespace
+
+RunSummary runBenchmark(const RunOptions& options,
+                        const std::function<void(const RunProgress&)>& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  const database::Database db = database::Database::openAny(options.database);
+  const auto selected = selectScenes(db, options.scenes);
+  const auto hand = grasp::loadHandGraspSetup(options.hand);
+  const taskio::GraspFileContents grasps = readAllGrasps(options.grasps);
+  if (!options.resume && fs::exists(options.out / results::kTrialsFileName)) {
+    throw std::runtime_error(options.out.string() +
+                             " already holds results; resume them (--resume) or choose another "
+                             "folder");
+  }
+
+  RunSummary summary;
+  summary.rejected = grasps.rejected;
+  results::RunResults run;
+  std::map<std::string, std::size_t> sceneOrder;
+  for (const auto* s : selected) {
+    sceneOrder.emplace(s->id, run.scenes.size());
+    run.scenes.push_back({s->id, s->conditions});
+  }
+  // Group the grasps by scene; rank them per (scene, method) in file order.
+  std::vector<SceneWork> work(run.scenes.size());
+  std::map<std::pair<std::string, std::string>, int> ranks;
+  std::map<std::string, int> rejectedPerMethod;
+  for (const auto& r : grasps.requests) {
+    if (!db.contains(r.sceneId)) {
+      const auto close = db.closestIds(r.sceneId);
+      std::string hint = close.empty() ? "" : " (did you mean " + close.front() + "?)";
+      summary.rejected.push_back(rejection(r, "unknown scene \"" + r.sceneId + "\"" + hint));
+      ++rejectedPerMethod[r.method];
+      continue;
+    }
+    const auto& entry = db.scene(r.sceneId);
+    const auto it = sceneOrder.find(entry.id);
+    if (it == sceneOrder.end()) continue;  // filtered out
+    if (std::find(run.methods.begin(), run.methods.end(), r.method) == run.methods.end()) {
+      run.methods.push_back(r.method);
+    }
+    SceneWork& w = work[it->second];
+    w.entry = &entry;
+    w.jobs.push_back({&r, ranks[{entry.id, r.method}]++});
+  }
+  // Within a scene: methods in the order first seen, then rank.
+  for (auto& w : work) {
+    std::stable_sort(w.jobs.begin(), w.jobs.end(), [&](const Job& a, const Job& b) {
+      const auto ia = std::find(run.methods.begin(), run.methods.end(), a.request->method);
+      const auto ib = std::find(run.methods.begin(), run.methods.end(), b.request->method);
+      return ia < ib;
+    });
+  }
+
+  results::ResultsWriter writer(options.out);
+  summary.resumed = static_cast<int>(writer.resumedCount());
+  std::vector<const SceneWork*> pending;
+  RunProgress state;
+  for (const auto& w : work) {
+    const auto left = std::count_if(w.jobs.begin(), w.jobs.end(), [&](const Job& j) {
+      return !writer.contains(w.entry->id, j.request->method, j.request->id);
+    });
+    if (left == 0) continue;
+    pending.push_back(&w);
+    state.trialsTotal += static_cast<int>(left);
+  }
+  state.scenesTotal = static_cast<int>(pending.size());
+  for (const auto& [method, n] : rejectedPerMethod) run.rejected.emplace_back(method, n);
+  writer.writeRun(run);
+
+  std::mutex mutex;
+  std::atomic<std::size_t> next{0};
+  auto report = [&]() {
+    state.elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (progress) progress(state);
+  };
+  auto worker = [&]() {
+    for (std::size_t i = next++; i < pending.size(); i = next++) {
+      const SceneWork& w = *pending[i];
+      std::unique_ptr<SceneRunner> runner;
+      std::string failure;
+      try {
+        runner = std::make_unique<SceneRunner>(w, *hand);
+      } catch (const std::exception& e) {
+        failure = e.what();
+      }
+      for (const Job& job : w.jobs) {
+        const auto& r = *job.request;
+        if (writer.contains(w.entry->id, r.method, r.id)) continue;
+        Diagnostic rejected;
+        std::optional<results::TrialRecord> record;
+        if (runner) {
+          record = runner->run(job, rejected);
+        } else {
+          rejected = rejection(r, "scene " + w.entry->id + " cannot be simulated: " + failure);
+        }
+        if (record) writer.append(*record);
+        const std::lock_guard lock(mutex);
+        if (!record) {
+          summary.rejected.push_back(rejected);
+          ++rejectedPerMethod[r.method];
+        }
+        ++state.trialsDone;
+        report();
+      }
+      const std::lock_guard lock(mutex);
+      ++state.scenesDone;
+      report();
+    }
+  };
+  const int threads = std::max(
+      1,
+      std::min<int>(options.threads, static_cast<int>(std::max<std::size_t>(1, pending.size()))));
+  std::vector<std::thread> pool;
+  for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
+  worker();
+  for (auto& t : pool) t.join();
+
+  run.rejected.clear();
+  for (const auto& [method, n] : rejectedPerMethod) run.rejected.emplace_back(method, n);
+  writer.writeRun(run);
+  writer.finalize();
+  for (const auto& t : writer.trials()) {
+    ++summary.outcomes[std::string(rwsim::simulator::outcomeName(t.outcome))];
+    ++summary.trials;
+  }
+  summary.trials -= summary.resumed;
+  summary.scenes = static_cast<int>(run.scenes.size());
+  summary.methods = static_cast<int>(run.methods.size());
+  std::stable_sort(summary.rejected.begin(), summary.rejected.end(),
+                   [](const Diagnostic& a, const Diagnostic& b) {
+                     return std::tie(a.file, a.line) < std::tie(b.file, b.line);
+                   });
+  return summary;
+}
+
+}  // namespace visgrab::runner

@@ -1,0 +1,72 @@
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "rw/loaders/diagnostic.hpp"
+
+/// The headless benchmark run: every grasp of every scene through the simulator.
+namespace visgrab::runner {
+
+/// What `visgrab run` needs.
+struct RunOptions {
+  /// A generated database folder or an original VisGraB manifest.
+  std::filesystem::path database;
+  /// Grasp files or folders of grasp files (any format taskio reads).
+  std::vector<std::filesystem::path> grasps;
+  /// The result folder (trials.csv, run.csv).
+  std::filesystem::path out;
+  /// The hand's grasp description (e.g. scenes/hands/sdh/sdh.grasp.xml).
+  std::filesystem::path hand;
+  /// Only the scenes this filter selects (docs/database-format.md); empty: all.
+  std::string scenes;
+  /// Worker threads (each runs whole scenes; the results do not depend on the count).
+  int threads = 1;
+  /// Continue an interrupted run in `out` (without it, an existing trials.csv is an error).
+  bool resume = false;
+};
+
+/// Progress after each finished trial.
+struct RunProgress {
+  /// Scenes finished (all their grasps done).
+  int scenesDone = 0;
+  /// Scenes with grasps to run.
+  int scenesTotal = 0;
+  /// Trials finished in this run.
+  int trialsDone = 0;
+  /// Trials this run has to do (without those found done when resuming).
+  int trialsTotal = 0;
+  /// Seconds since the run started.
+  double elapsed = 0.0;
+};
+
+/// What a run did.
+struct RunSummary {
+  /// Trials simulated (or classified as invalid contacts) in this run.
+  int trials = 0;
+  /// Trials found already done in `out` (resume).
+  int resumed = 0;
+  /// Grasps rejected before simulation: malformed input, unknown scenes or pre-shapes.
+  std::vector<rw::loaders::Diagnostic> rejected;
+  /// Trials per outcome name, this run and resumed together.
+  std::map<std::string, int> outcomes;
+  /// Scenes of the run and methods seen.
+  int scenes = 0;
+  /// See scenes.
+  int methods = 0;
+};
+
+/// Runs every grasp of `options.grasps` on its scene of the database, in `threads` worker
+/// threads, writing each finished trial to out/trials.csv at once (so a killed run loses
+/// nothing and `resume` continues it), then out/run.csv and the trials in canonical order.
+/// Per-grasp problems (bad input, unknown scene, unknown pre-shape) are rejected with a
+/// diagnostic and counted; the other grasps run. Deterministic whatever the thread count.
+/// @throws rw::loaders::LoadError for an unreadable database, grasp file or hand description,
+/// std::runtime_error for an existing result folder without `resume` or a failed write.
+RunSummary runBenchmark(const RunOptions& options,
+                        const std::function<void(const RunProgress&)>& progress = {});
+
+}  // namespace visgrab::runner

@@ -1,0 +1,222 @@
+#include "run_commands.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+#include <string>
+#include <thread>
+
+#include "rw/loaders/diagnostic.hpp"
+#include "visgrab/analysis/report.hpp"
+#include "visgrab/database/scene_filter.hpp"
+#include "visgrab/database/scene_set.hpp"
+#include "visgrab/generator/generator.hpp"
+#include "visgrab/results/results_file.hpp"
+#include "visgrab/runner/benchmark_runner.hpp"
+
+namespace visgrab::app {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path dataFolder(const Arguments& a) {
+  if (const auto d = a.option("data")) return *d;
+  if (const char* env = std::getenv("VISGRAB_DATA"); env != nullptr && *env != '\0') return env;
+  return VISGRAB_SCENES_DIR;
+}
+
+int threadsOption(const Arguments& a) {
+  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  const auto v = a.option("threads");
+  if (!v) return static_cast<int>(cores);
+  try {
+    std::size_t used = 0;
+    const int n = std::stoi(*v, &used);
+    if (used == v->size() && n >= 1) return n;
+  } catch (const std::exception&) {
+  }
+  throw UsageError("--threads needs an integer >= 1, got \"" + *v + "\"");
+}
+
+std::string clock(double seconds) {
+  const int s = static_cast<int>(seconds + 0.5);
+  char text[32];
+  std::snprintf(text, sizeof text, "%dm%02ds", s / 60, s % 60);
+  return text;
+}
+
+void printProgress(const runner::RunProgress& p) {
+  const double rate = p.elapsed > 0.0 ? p.trialsDone / p.elapsed : 0.0;
+  const double left = rate > 0.0 ? (p.trialsTotal - p.trialsDone) / rate : 0.0;
+  const int width = 30;
+  const int filled = p.trialsTotal > 0 ? width * p.trialsDone / p.trialsTotal : width;
+  std::string bar(static_cast<std::size_t>(filled), '#');
+  bar.resize(static_cast<std::size_t>(width), '.');
+  std::fprintf(stderr, "\r[%s] scenes %d/%d  trials %d/%d  %.1f trials/s  %s left   ", bar.c_str(),
+               p.scenesDone, p.scenesTotal, p.trialsDone, p.trialsTotal, rate, clock(left).c_str());
+  if (p.scenesDone == p.scenesTotal && p.trialsDone == p.trialsTotal) std::fputc('\n', stderr);
+  std::fflush(stderr);
+}
+
+int runRun(const std::vector<std::string>& args) {
+  Arguments a(args, {"resume", "quiet"});
+  a.rejectUnknown({"db", "grasps", "out", "threads", "resume", "hand", "scenes", "data", "quiet"});
+  a.requirePositionals(0, "no positional arguments (grasp files go after --grasps)");
+  runner::RunOptions options;
+  const auto db = a.option("db");
+  const auto grasps = a.option("grasps");
+  const auto out = a.option("out");
+  if (!db) throw UsageError("--db DIR (a generated database or an original manifest) is required");
+  if (!grasps) throw UsageError("--grasps FILE|DIR is required");
+  if (!out) throw UsageError("--out RESULTS is required");
+  options.database = *db;
+  options.grasps = {*grasps};
+  options.out = *out;
+  options.hand = a.option("hand").value_or((dataFolder(a) / "hands/sdh/sdh.grasp.xml").string());
+  options.scenes = a.option("scenes").value_or("");
+  options.threads = threadsOption(a);
+  options.resume = a.flag("resume");
+  const bool quiet = a.flag("quiet");
+  const auto summary = runner::runBenchmark(
+      options, quiet ? std::function<void(const runner::RunProgress&)>{} : printProgress);
+  for (const auto& d : summary.rejected) std::cerr << d.format() << "\n";
+  std::cout << summary.trials << " trials run, " << summary.resumed << " resumed, "
+            << summary.rejected.size() << " grasps rejected; " << summary.scenes << " scenes, "
+            << summary.methods << " methods\n";
+  for (const auto& [outcome, n] : summary.outcomes)
+    std::cout << "  " << outcome << " " << n << "\n";
+  std::cout << "results in " << options.out.string() << "\n";
+  return 0;
+}
+
+int runAnalyze(const std::vector<std::string>& args) {
+  Arguments a(args, {});
+  a.rejectUnknown({"out"});
+  const auto out = a.option("out");
+  if (!out) throw UsageError("--out REPORT is required");
+  if (a.positionals().empty()) throw UsageError("at least one RESULTS folder is required");
+  std::vector<results::RunResults> runs;
+  for (const auto& dir : a.positionals()) {
+    std::vector<rw::loaders::Diagnostic> warnings;
+    runs.push_back(results::readResults(dir, &warnings));
+    for (const auto& w : warnings) std::cerr << w.format() << "\n";
+  }
+  analysis::writeReport(runs, *out);
+  std::cout << "report in " << *out << " (report.html, report.md, CSV tables)\n";
+  return 0;
+}
+
+void printGenerationProgress(const generator::GenerationProgress& p) {
+  std::fprintf(stderr, "\rgenerating the database: %d/%d scenes  %s  ", p.done, p.total,
+               p.lastId.c_str());
+  if (p.done == p.total) std::fputc('\n', stderr);
+  std::fflush(stderr);
+}
+
+// Generates the database at `dir` (the scenes `filter` selects) unless its index exists.
+void ensureDatabase(const fs::path& dir, const std::string& filter, int threads,
+                    const fs::path& data, bool quiet) {
+  if (fs::exists(dir / "index.xml")) return;
+  std::cerr << "visgrab benchmark: no database at " << dir.string() << "; generating it\n";
+  database::SceneFilter parsed;
+  try {
+    parsed = filter.empty() ? database::SceneFilter() : database::SceneFilter::parse(filter);
+  } catch (const database::FilterError& e) {
+    throw UsageError(std::string("--scenes: ") + e.what());
+  }
+  std::vector<database::SceneConditions> scenes;
+  for (const auto& s : database::enumerateScenes()) {
+    if (parsed.matches(database::sceneIdOf(s), &s)) scenes.push_back(s);
+  }
+  generator::GeneratorOptions options;
+  options.out = dir;
+  options.objectSpec = data / "objects" / "objects.xml";
+  options.handFolder = data / "hands" / "sdh";
+  options.materials = data / "materials.xml";
+  options.threads = threads;
+  const auto report = generator::generateDatabase(
+      scenes, options,
+      quiet ? std::function<void(const generator::GenerationProgress&)>{}
+            : printGenerationProgress);
+  for (const auto& f : report.failures) std::cerr << "failed: " << f << "\n";
+  if (!report.failures.empty()) throw std::runtime_error("the database could not be generated");
+}
+
+int runBenchmarkCommand(const std::vector<std::string>& args) {
+  Arguments a(args, {"resume", "quiet"});
+  a.rejectUnknown({"db", "grasps", "out", "threads", "resume", "hand", "scenes", "data", "quiet"});
+  a.requirePositionals(0, "no positional arguments (grasp files go after --grasps)");
+  const auto grasps = a.option("grasps");
+  const auto out = a.option("out");
+  if (!grasps)
+    throw UsageError("--grasps FILE|DIR is required (the baseline method is not there yet)");
+  if (!out) throw UsageError("--out DIR is required");
+  const fs::path data = dataFolder(a);
+  const fs::path db = a.option("db").value_or("database");
+  const int threads = threadsOption(a);
+  const bool quiet = a.flag("quiet");
+  const std::string scenes = a.option("scenes").value_or("");
+  ensureDatabase(db, scenes, threads, data, quiet);
+  runner::RunOptions options;
+  options.database = db;
+  options.grasps = {*grasps};
+  options.out = fs::path(*out) / "results";
+  options.hand = a.option("hand").value_or((data / "hands/sdh/sdh.grasp.xml").string());
+  options.scenes = scenes;
+  options.threads = threads;
+  options.resume = a.flag("resume");
+  const auto summary = runner::runBenchmark(
+      options, quiet ? std::function<void(const runner::RunProgress&)>{} : printProgress);
+  for (const auto& d : summary.rejected) std::cerr << d.format() << "\n";
+  std::cout << summary.trials << " trials run, " << summary.resumed << " resumed, "
+            << summary.rejected.size() << " grasps rejected\n";
+  const fs::path reportDir = fs::path(*out) / "report";
+  analysis::writeReport({results::readResults(options.out)}, reportDir);
+  std::cout << "report in " << (reportDir / "report.html").string() << "\n";
+  return 0;
+}
+
+template <class F>
+std::function<int(const std::vector<std::string>&)> guarded(F run) {
+  return [run](const std::vector<std::string>& args) {
+    try {
+      return run(args);
+    } catch (const UsageError&) {
+      throw;
+    } catch (const rw::loaders::LoadError& e) {
+      std::cerr << e.what() << "\n";
+      return 1;
+    } catch (const std::exception& e) {
+      std::cerr << "error: " << e.what() << "\n";
+      return 1;
+    }
+  };
+}
+
+}  // namespace
+
+std::vector<Command> runCommands() {
+  return {
+      {"run", "",
+       "--db DIR|MANIFEST --grasps FILE|DIR --out RESULTS [--threads N] [--resume] "
+       "[--hand GRASP.xml] [--scenes FILTER] [--quiet]",
+       "Run every grasp of every scene through the simulator; each finished trial is written at "
+       "once (RESULTS/trials.csv), so --resume continues a killed run.",
+       guarded(runRun)},
+      {"benchmark", "",
+       "--grasps FILE|DIR --out DIR [--db DIR] [--threads N] [--resume] [--hand GRASP.xml] "
+       "[--scenes FILTER] [--quiet]",
+       "Run and analyze in one: generate the database (default ./database) if it is missing, run "
+       "the grasps (DIR/results), write the report (DIR/report/report.html).",
+       guarded(runBenchmarkCommand)},
+      {"analyze", "", "RESULTS... --out REPORT",
+       "The paper's five analyses of one or more result folders (methods side by side): CSV "
+       "tables, report.md, report.html with SVG plots.",
+       guarded(runAnalyze)},
+  };
+}
+
+}  // namespace visgrab::app

@@ -1,0 +1,12 @@
+#pragma once
+
+#include <vector>
+
+#include "command_line.hpp"
+
+namespace visgrab::app {
+
+/// `visgrab run | analyze`: grasps through the simulator, results into the paper's analyses.
+std::vector<Command> runCommands();
+
+}  // namespace visgrab::app
