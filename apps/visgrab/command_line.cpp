@@ -1,7 +1,11 @@
 #include "command_line.hpp"
 
+#include "rw/loaders/diagnostic.hpp"
+
 #include <algorithm>
+#include <cstdlib>
 #include <iostream>
+#include <thread>
 
 namespace visgrab::app {
 
@@ -48,6 +52,47 @@ void Arguments::rejectUnknown(const std::vector<std::string>& known) const {
 void Arguments::requirePositionals(std::size_t n, const std::string& what) const {
   if (positionals_.size() < n) throw UsageError("missing " + what);
   if (positionals_.size() > n) throw UsageError("unexpected argument '" + positionals_[n] + "'");
+}
+
+int integerOption(const Arguments& a, const std::string& name, int def, int lo) {
+  const auto v = a.option(name);
+  if (!v) return def;
+  try {
+    std::size_t used = 0;
+    const int n = std::stoi(*v, &used);
+    if (used == v->size() && n >= lo) return n;
+  } catch (const std::exception&) {
+  }
+  throw UsageError("--" + name + " needs an integer >= " + std::to_string(lo) + ", got \"" + *v +
+                   "\"");
+}
+
+int threadsOption(const Arguments& a) {
+  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  return integerOption(a, "threads", static_cast<int>(cores), 1);
+}
+
+std::filesystem::path dataFolder(const Arguments& a) {
+  if (const auto d = a.option("data")) return *d;
+  if (const char* env = std::getenv("VISGRAB_DATA"); env != nullptr && *env != '\0') return env;
+  return VISGRAB_SCENES_DIR;
+}
+
+std::function<int(const std::vector<std::string>&)> guarded(
+    std::function<int(const std::vector<std::string>&)> run) {
+  return [run = std::move(run)](const std::vector<std::string>& args) {
+    try {
+      return run(args);
+    } catch (const UsageError&) {
+      throw;
+    } catch (const rw::loaders::LoadError& e) {
+      std::cerr << e.what() << "\n";
+      return 1;
+    } catch (const std::exception& e) {
+      std::cerr << "error: " << e.what() << "\n";
+      return 1;
+    }
+  };
 }
 
 namespace {

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <filesystem>
 #include <functional>
 #include <optional>
 #include <stdexcept>
@@ -50,6 +51,22 @@ struct Command {
   /// Runs the command; returns the process exit code.
   std::function<int(const std::vector<std::string>& args)> run;
 };
+
+/// The value of option `name` as an integer >= `lo`, or `def` when not given.
+/// @throws UsageError naming the option for anything else.
+int integerOption(const Arguments& a, const std::string& name, int def, int lo);
+
+/// --threads N (default: the number of cores). @throws UsageError unless N >= 1.
+int threadsOption(const Arguments& a);
+
+/// The folder with the project's scene data (objects, hands, materials): --data, else
+/// $VISGRAB_DATA, else the source tree's scenes/ folder this binary was built from.
+std::filesystem::path dataFolder(const Arguments& a);
+
+/// `run` with the commands' error policy: a UsageError goes on to dispatch (exit 2); a load
+/// error prints its file:line diagnostics and any other exception its message, exit 1.
+std::function<int(const std::vector<std::string>&)> guarded(
+    std::function<int(const std::vector<std::string>&)> run);
 
 /// Runs the command line (argv without the program name) against `commands`.
 /// Exit codes: the command's own, 2 for usage errors.

@@ -19,14 +19,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// The folder holding the project's scene data (objects, hands, materials): --data, else
-// $VISGRAB_DATA, else the source tree's scenes/ folder this binary was built from.
-fs::path dataFolder(const Arguments& a) {
-  if (const auto d = a.option("data")) return *d;
-  if (const char* env = std::getenv("VISGRAB_DATA"); env != nullptr && *env != '\0') return env;
-  return VISGRAB_SCENES_DIR;
-}
-
 database::SceneFilter parseFilter(const Arguments& a) {
   std::vector<std::string> texts;
   if (const auto f = a.option("scenes")) texts.push_back(*f);
@@ -35,19 +27,6 @@ database::SceneFilter parseFilter(const Arguments& a) {
   } catch (const database::FilterError& e) {
     throw UsageError(std::string("--scenes: ") + e.what());
   }
-}
-
-int integerOption(const Arguments& a, const std::string& name, int def, int lo) {
-  const auto v = a.option(name);
-  if (!v) return def;
-  try {
-    std::size_t used = 0;
-    const int n = std::stoi(*v, &used);
-    if (used == v->size() && n >= lo) return n;
-  } catch (const std::exception&) {
-  }
-  throw UsageError("--" + name + " needs an integer >= " + std::to_string(lo) + ", got \"" + *v +
-                   "\"");
 }
 
 std::string duration(double seconds) {
@@ -92,8 +71,7 @@ int runGenerate(const std::vector<std::string>& args) {
   options.objectSpec = data / "objects" / "objects.xml";
   options.handFolder = data / "hands" / "sdh";
   options.materials = data / "materials.xml";
-  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
-  options.threads = integerOption(a, "threads", static_cast<int>(cores), 1);
+  options.threads = threadsOption(a);
   options.seed = static_cast<std::uint64_t>(integerOption(a, "seed", 1, 0));
   std::cerr << "visgrab db generate: " << scenes.size() << " scenes into " << *out << " with "
             << options.threads << " thread(s), seed " << options.seed << "\n";
@@ -132,24 +110,6 @@ int runShow(const std::vector<std::string>& args) {
   const database::Database db = openDatabase(a);
   std::cout << database::Database::details(db.scene(a.positionals()[0]));
   return 0;
-}
-
-// Load errors of the index or a manifest exit with 1 and the diagnostics, as `wc check` does.
-template <class F>
-std::function<int(const std::vector<std::string>&)> guarded(F run) {
-  return [run](const std::vector<std::string>& args) {
-    try {
-      return run(args);
-    } catch (const UsageError&) {
-      throw;
-    } catch (const rw::loaders::LoadError& e) {
-      std::cerr << e.what() << "\n";
-      return 1;
-    } catch (const std::exception& e) {
-      std::cerr << "error: " << e.what() << "\n";
-      return 1;
-    }
-  };
 }
 
 }  // namespace

@@ -22,25 +22,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-fs::path dataFolder(const Arguments& a) {
-  if (const auto d = a.option("data")) return *d;
-  if (const char* env = std::getenv("VISGRAB_DATA"); env != nullptr && *env != '\0') return env;
-  return VISGRAB_SCENES_DIR;
-}
-
-int threadsOption(const Arguments& a) {
-  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
-  const auto v = a.option("threads");
-  if (!v) return static_cast<int>(cores);
-  try {
-    std::size_t used = 0;
-    const int n = std::stoi(*v, &used);
-    if (used == v->size() && n >= 1) return n;
-  } catch (const std::exception&) {
-  }
-  throw UsageError("--threads needs an integer >= 1, got \"" + *v + "\"");
-}
-
 std::string clock(double seconds) {
   const int s = static_cast<int>(seconds + 0.5);
   char text[32];
@@ -177,23 +158,6 @@ int runBenchmarkCommand(const std::vector<std::string>& args) {
   analysis::writeReport({results::readResults(options.out)}, reportDir);
   std::cout << "report in " << (reportDir / "report.html").string() << "\n";
   return 0;
-}
-
-template <class F>
-std::function<int(const std::vector<std::string>&)> guarded(F run) {
-  return [run](const std::vector<std::string>& args) {
-    try {
-      return run(args);
-    } catch (const UsageError&) {
-      throw;
-    } catch (const rw::loaders::LoadError& e) {
-      std::cerr << e.what() << "\n";
-      return 1;
-    } catch (const std::exception& e) {
-      std::cerr << "error: " << e.what() << "\n";
-      return 1;
-    }
-  };
 }
 
 }  // namespace

@@ -55,6 +55,27 @@ TEST(DbCli, GeneratesListsAndShowsAScene) {
   EXPECT_NE(unknown.output.find("plain/single/cocacola/01"), std::string::npos) << unknown.output;
 }
 
+TEST(DbCli, BenchmarkGeneratesTheDatabaseRunsTheGraspsAndWritesTheReport) {
+  visgrab::test::TempDir dir;
+  const auto grasps = visgrab::test::writeFile(
+      dir.path() / "grasps.txt",
+      "# one SDH_CYL grasp over the table centre, hand pointing down\n"
+      "plain/single/cocacola/01, mine, g1, preshape, 0,0,0.06, 0,0,1,0, SDH_CYL\n"
+      "plain/single/cocacola/01, mine, g2, preshape, 0,0,0.06, 0,0,1,0, NO_SUCH_SHAPE\n");
+  const RunResult r =
+      visgrab("benchmark --db " + shellQuoted(dir.path() / "db") +
+              " --scenes 'plain,single,cocacola,pose=1' --grasps " + shellQuoted(grasps) +
+              " --out " + shellQuoted(dir.path() / "out") + " --threads 1 --quiet");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("generating it"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("1 trials run, 0 resumed, 1 grasps rejected"), std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("NO_SUCH_SHAPE"), std::string::npos) << r.output;
+  EXPECT_TRUE(std::filesystem::is_regular_file(dir.path() / "db/index.xml"));
+  EXPECT_TRUE(std::filesystem::is_regular_file(dir.path() / "out/results/trials.csv"));
+  EXPECT_TRUE(std::filesystem::is_regular_file(dir.path() / "out/report/report.html"));
+}
+
 TEST(DbCli, BadArgumentsAreUsageErrors) {
   visgrab::test::TempDir dir;
   const RunResult noOut = visgrab("db generate --scenes cocacola");

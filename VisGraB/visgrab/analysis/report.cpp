@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "rw/loaders/xml/strings.hpp"
 #include "visgrab/analysis/detail/format.hpp"
 #include "visgrab/database/atomic_file.hpp"
 #include "visgrab/results/csv.hpp"
@@ -73,27 +74,13 @@ std::string_view outcomeLegend(GraspOutcome outcome) {
 }
 
 std::string escapeHtml(std::string_view text) {
+  // XML's four entities, and the apostrophe for attributes quoted with it.
   std::string out;
-  out.reserve(text.size());
-  for (const char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      case '\'':
-        out += "&#39;";
-        break;
-      default:
-        out += c;
+  for (const char c : rw::loaders::xml::escapeXml(text)) {
+    if (c == '\'') {
+      out += "&#39;";
+    } else {
+      out += c;
     }
   }
   return out;
