@@ -143,6 +143,9 @@ RunSummary runBenchmark(const RunOptions& options,
 
   RunSummary summary;
   summary.rejected = grasps.rejected;
+  std::map<std::string, int> rejectedPerMethod;
+  // Grasps the reader could not parse have no reliable method: they count under their file.
+  for (const auto& d : grasps.rejected) ++rejectedPerMethod[fs::path(d.file).filename().string()];
   results::RunResults run;
   std::map<std::string, std::size_t> sceneOrder;
   for (const auto* s : selected) {
@@ -152,7 +155,6 @@ RunSummary runBenchmark(const RunOptions& options,
   // Group the grasps by scene; rank them per (scene, method) in file order.
   std::vector<SceneWork> work(run.scenes.size());
   std::map<std::pair<std::string, std::string>, int> ranks;
-  std::map<std::string, int> rejectedPerMethod;
   for (const auto& r : grasps.requests) {
     if (!db.contains(r.sceneId)) {
       const auto close = db.closestIds(r.sceneId);

@@ -63,7 +63,8 @@ struct RunSummary {
 /// threads, writing each finished trial to out/trials.csv at once (so a killed run loses
 /// nothing and `resume` continues it), then out/run.csv and the trials in canonical order.
 /// Per-grasp problems (bad input, unknown scene, unknown pre-shape) are rejected with a
-/// diagnostic and counted; the other grasps run. Deterministic whatever the thread count.
+/// diagnostic and counted in run.csv (per method; grasps the reader could not parse under their
+/// file's name); the other grasps run. Deterministic whatever the thread count.
 /// @throws rw::loaders::LoadError for an unreadable database, grasp file or hand description,
 /// std::runtime_error for an existing result folder without `resume` or a failed write.
 RunSummary runBenchmark(const RunOptions& options,
