@@ -65,6 +65,12 @@ struct Simulator::Impl {
   std::vector<dJointFeedback> feedback;
   std::vector<dJointID> contactJoints;
   std::vector<SolvedBodyContact> solved;
+  // Body pairs joined by a device joint (sorted), and whether the detector checks any of them
+  // (one made by the Simulator excludes them up front; a caller's detector may not).
+  std::vector<std::pair<int, int>> connected;
+  bool filterConnected = false;
+  // options.stepMethod decided once.
+  bool quickStep = false;
   // Last step's tangential contact force per body pair, to orient friction pyramids.
   std::map<std::pair<int, int>, Vector3D> lastTangentialForce;
 
@@ -160,13 +166,16 @@ void Simulator::Impl::stepOnce() {
   detector->detect(poses, geometric);
   // Bodies joined by a device joint never touch each other: model geometry overlaps at joints
   // (RobWork's SDH2 hulls by 2.7 cm), as MuJoCo filters parent-child pairs.
-  std::erase_if(geometric, [&](const contacts::BodyContact& bc) {
-    return ode->jointConnected(bc.bodyA, bc.bodyB);
-  });
+  if (filterConnected) {
+    std::erase_if(geometric, [&](const contacts::BodyContact& bc) {
+      const std::pair<int, int> key(std::min(bc.bodyA, bc.bodyB), std::max(bc.bodyA, bc.bodyB));
+      return std::binary_search(connected.begin(), connected.end(), key);
+    });
+  }
   createContactJoints();
   driveMotors();
   driveKinematicBodies();
-  if (options.stepMethod == "WorldQuickStep") {
+  if (quickStep) {
     dWorldQuickStep(ode->world(), options.timeStep);
   } else {
     dWorldStep(ode->world(), options.timeStep);
@@ -362,6 +371,15 @@ Simulator::Simulator(const dynamics::DynamicWorkCell& dwc,
   detail::prepareOdeForThisThread();
   options.contacts = detector->options();
   impl_->options = std::move(options);
+  impl_->quickStep = impl_->options.stepMethod == "WorldQuickStep";
+  impl_->connected = dynamics::jointConnectedBodyPairs(dwc);
+  for (const auto& pair : detector->candidatePairs()) {
+    const std::pair<int, int> key(std::min(pair.first, pair.second),
+                                  std::max(pair.first, pair.second));
+    if (std::binary_search(impl_->connected.begin(), impl_->connected.end(), key)) {
+      impl_->filterConnected = true;
+    }
+  }
   impl_->detector = std::move(detector);
   impl_->init(dwc);
   reset(dwc.workcell().defaultState());

@@ -153,7 +153,6 @@ OdeWorld::OdeWorld(const dynamics::DynamicWorkCell& dwc, const rw::kinematics::S
   try {
     createBodies(dwc, state);
     createDevices(dwc, state);
-    std::sort(connected_.begin(), connected_.end());
   } catch (...) {
     destroy();
     throw;
@@ -230,7 +229,6 @@ void OdeWorld::createDevices(const dynamics::DynamicWorkCell& dwc,
                                     ": its link body must be rigid");
       }
       const int parent = dwc.bodyAbove(joints[j]);
-      if (parent >= 0) connected_.emplace_back(std::min(link, parent), std::max(link, parent));
       attachJoint(sim.joints.back(), link, parent, fk.worldTransform(joints[j]),
                   tree.frame(joints[j]).isPassive());
     }
@@ -254,11 +252,6 @@ void OdeWorld::attachJoint(SimJoint& sj, int link, int parent, const Transform3D
     dJointSetSliderAxis(sj.id, z.x(), z.y(), z.z());
   }
   setMotor(sj, 0.0, passive ? 0.0 : sj.forceLimit);
-}
-
-bool OdeWorld::jointConnected(int a, int b) const {
-  const std::pair<int, int> key(std::min(a, b), std::max(a, b));
-  return std::binary_search(connected_.begin(), connected_.end(), key);
 }
 
 Transform3D OdeWorld::framePose(const SimBody& body) const {

@@ -105,8 +105,6 @@ class OdeWorld {
   /// Marks the world as left inconsistent by an ODE error thrown out of a step: its ODE objects
   /// are then leaked instead of destroyed (destroying them would trip ODE's own assertions).
   void poison() { poisoned_ = true; }
-  /// True when a device joint connects the two bodies (link and parent body).
-  bool jointConnected(int a, int b) const;
 
   /// World pose of a body's frame.
   rw::math::Transform3D framePose(const SimBody& body) const;
@@ -133,7 +131,6 @@ class OdeWorld {
   bool poisoned_ = false;
   std::vector<SimBody> bodies_;
   std::vector<SimDevice> devices_;
-  std::vector<std::pair<int, int>> connected_;  // sorted (smaller, larger) body pairs
 };
 
 /// Pose of an ODE body's own frame (its centre of mass).
