@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "rw/loaders/xml/strings.hpp"
+#include "rw/loaders/xml/xml_tree.hpp"
 
 namespace visgrab::database {
 
@@ -14,27 +15,6 @@ constexpr std::string_view kExpected =
     "expected plain, textured, single, double, standing, lying, apart, close, an object name, "
     "all, an id glob (with / * ?) or KEY=VALUE with KEY one of texture, kind, arrangement, "
     "object, pair, pose, id";
-
-std::string_view trim(std::string_view text) {
-  const auto first = text.find_first_not_of(" \t\r\n");
-  if (first == std::string_view::npos) return {};
-  const auto last = text.find_last_not_of(" \t\r\n");
-  return text.substr(first, last - first + 1);
-}
-
-std::vector<std::string_view> split(std::string_view text, char separator) {
-  std::vector<std::string_view> parts;
-  std::size_t start = 0;
-  while (true) {
-    const std::size_t at = text.find(separator, start);
-    if (at == std::string_view::npos) {
-      parts.push_back(text.substr(start));
-      return parts;
-    }
-    parts.push_back(text.substr(start, at - start));
-    start = at + 1;
-  }
-}
 
 std::optional<Texture> textureWord(std::string_view w) {
   if (w == "non-textured" || w == "nontextured") return Texture::kPlain;
@@ -103,11 +83,11 @@ bool globMatch(std::string_view pattern, std::string_view text) {
 
 SceneFilter::Term SceneFilter::parseTerm(std::string_view text, std::string_view whole) {
   Term term;
-  std::string_view word = trim(text);
+  std::string_view word = rw::loaders::xml::trimXmlSpace(text);
   if (word.empty()) fail(whole, "empty term (two separators in a row, or one at an end)");
   if (word.front() == '!') {
     term.negated = true;
-    word = trim(word.substr(1));
+    word = rw::loaders::xml::trimXmlSpace(word.substr(1));
     if (word.empty()) fail(whole, "'!' must be followed by a term");
   }
   const auto equals = word.find('=');
@@ -135,8 +115,8 @@ SceneFilter::Term SceneFilter::parseTerm(std::string_view text, std::string_view
     }
     return term;
   }
-  const std::string_view key = trim(word.substr(0, equals));
-  const std::string_view value = trim(word.substr(equals + 1));
+  const std::string_view key = rw::loaders::xml::trimXmlSpace(word.substr(0, equals));
+  const std::string_view value = rw::loaders::xml::trimXmlSpace(word.substr(equals + 1));
   const auto badValue = [&](std::string_view expected) {
     fail(whole, "bad value \"" + std::string(value) + "\" for " + std::string(key) +
                     "=; expected " + std::string(expected));
@@ -184,11 +164,11 @@ SceneFilter::Term SceneFilter::parseTerm(std::string_view text, std::string_view
 
 SceneFilter SceneFilter::parse(std::string_view text) {
   SceneFilter filter;
-  if (trim(text).empty()) return filter;
+  if (rw::loaders::xml::trimXmlSpace(text).empty()) return filter;
   bool all = false;
-  for (std::string_view alternative : split(text, ';')) {
+  for (std::string_view alternative : rw::loaders::xml::split(text, ';')) {
     Conjunction conjunction;
-    for (std::string_view term : split(alternative, ',')) {
+    for (std::string_view term : rw::loaders::xml::split(alternative, ',')) {
       conjunction.push_back(parseTerm(term, text));
     }
     const bool everything = std::all_of(conjunction.begin(), conjunction.end(), [](const Term& t) {

@@ -4,6 +4,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "rw/loaders/xml/strings.hpp"
+
 namespace visgrab::database {
 
 namespace {
@@ -40,20 +42,6 @@ std::optional<int> parsePose(std::string_view text) {
   if (ec != std::errc() || end != text.data() + text.size()) return std::nullopt;
   if (value < 1 || value > kPosesPerSubject) return std::nullopt;
   return value;
-}
-
-std::vector<std::string_view> split(std::string_view text, char separator) {
-  std::vector<std::string_view> parts;
-  std::size_t start = 0;
-  while (true) {
-    const std::size_t at = text.find(separator, start);
-    if (at == std::string_view::npos) {
-      parts.push_back(text.substr(start));
-      return parts;
-    }
-    parts.push_back(text.substr(start, at - start));
-    start = at + 1;
-  }
 }
 
 // The folder name of the scene's object(s): "cocacola" or "cocacola_saltcylinder".
@@ -222,7 +210,7 @@ std::string sceneIdOf(const SceneConditions& c) {
 }
 
 std::optional<SceneConditions> parseSceneId(std::string_view id) {
-  const auto parts = split(id, '/');
+  const auto parts = rw::loaders::xml::split(id, '/');
   if (parts.size() != 4) return std::nullopt;
   const auto texture = textureFromString(parts[0]);
   const auto kind = sceneKindFromString(parts[1]);
@@ -240,7 +228,7 @@ std::string originalIdOf(const SceneConditions& c) {
 }
 
 std::optional<SceneConditions> parseOriginalId(std::string_view id) {
-  const auto parts = split(id, '/');
+  const auto parts = rw::loaders::xml::split(id, '/');
   if (parts.size() != 3 || parts[2].substr(0, 4) != "img_") return std::nullopt;
   const auto texture = fromTable<Texture>(kOriginalTextureNames, parts[0]);
   const auto pose = parsePose(parts[2].substr(4));

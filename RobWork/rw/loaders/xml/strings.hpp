@@ -3,6 +3,7 @@
 #include <cstddef>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace rw::loaders::xml {
 
@@ -11,5 +12,8 @@ std::string escapeXml(std::string_view text);
 
 /// Levenshtein distance between two strings (for "did you mean" suggestions in messages).
 std::size_t editDistance(std::string_view a, std::string_view b);
+
+/// The parts of `text` between the `separator`s (n separators give n + 1 parts, empty ones too).
+std::vector<std::string_view> split(std::string_view text, char separator);
 
 }  // namespace rw::loaders::xml
