@@ -1,7 +1,9 @@
+#include <algorithm>
 #include <array>
 #include <string>
 
 #include "visgrab/analysis/detail/format.hpp"
+#include "visgrab/analysis/paper_tables.hpp"
 #include "visgrab/analysis/report.hpp"
 
 namespace visgrab::analysis {
@@ -177,17 +179,23 @@ std::string methodLegendLines(const Analysis& a) {
   return html + "(lines: exact expectation; dots: randomized trials)</p>\n";
 }
 
-/// Table 1 or 2 for one table (texture): rows as in the paper, two values per method.
+/// Table 1 or 2 for one table (texture): rows as in the paper, two values per method, and for a
+/// method named like one of the paper's grasp types the paper's two values beside them.
 template <typename Cells>
-std::string conditionTable(const Analysis& a, std::size_t table, std::string_view first,
-                           std::string_view second, Cells cells) {
+std::string conditionTable(const Analysis& a, std::size_t table, PaperTable paperTable,
+                           std::string_view first, std::string_view second, Cells cells) {
   std::string html = "<table>\n<thead><tr><th colspan=\"2\"></th>";
   for (const MethodColumn& c : a.columns) {
-    html += "<th colspan=\"2\">" + escapeHtml(c.label) + "</th>";
+    html += std::string("<th colspan=\"") + (isPaperMethod(c.method) ? "4" : "2") + "\">" +
+            escapeHtml(c.label) + "</th>";
   }
   html += "</tr>\n<tr><th colspan=\"2\"></th>";
-  for (std::size_t c = 0; c < a.columns.size(); ++c) {
+  for (const MethodColumn& c : a.columns) {
     html += "<th>" + std::string(first) + "</th><th>" + std::string(second) + "</th>";
+    if (isPaperMethod(c.method)) {
+      html += "<th class=\"paper\">paper " + std::string(first) +
+              "</th><th class=\"paper\">paper " + std::string(second) + "</th>";
+    }
   }
   html += "</tr></thead>\n<tbody>\n";
   const auto rows = tableGroups(table);
@@ -197,10 +205,32 @@ std::string conditionTable(const Analysis& a, std::size_t table, std::string_vie
     for (std::size_t c = 0; c < a.columns.size(); ++c) {
       const auto [x, y] = cells(a.results[rows[r]][c]);
       html += "<td>" + x + "</td><td>" + y + "</td>";
+      if (isPaperMethod(a.columns[c].method)) {
+        const auto values = paperValues(paperTable, a.groups[rows[r]].key, a.columns[c].method);
+        for (std::size_t k = 0; k < 2; ++k) {
+          html +=
+              "<td class=\"paper\">" + (values ? fixed((*values)[k], 2) : std::string()) + "</td>";
+        }
+      }
     }
     html += "</tr>\n";
   }
   return html + "</tbody>\n</table>\n";
+}
+
+bool hasPaperColumns(const Analysis& a) {
+  return std::any_of(a.columns.begin(), a.columns.end(),
+                     [](const MethodColumn& c) { return isPaperMethod(c.method); });
+}
+
+/// The "Comparing with the paper" note (docs/paper-comparison.md) as a heading and paragraphs.
+std::string comparisonNoteHtml() {
+  const PaperComparisonNote& note = paperComparisonNote();
+  std::string html = "<h3>" + escapeHtml(note.heading) + "</h3>\n";
+  for (const std::string& paragraph : note.paragraphs) {
+    html += "<p class=\"note\">" + escapeHtml(paragraph) + "</p>\n";
+  }
+  return html;
 }
 
 std::string objectTables(const Analysis& a, std::size_t table) {
@@ -261,7 +291,9 @@ constexpr std::string_view kStyle =
     ".ytick{font-size:10px;text-anchor:end}"
     ".xtick,.xlabel{font-size:10px;text-anchor:middle}"
     ".ptitle{font-size:12px;font-weight:bold}"
-    "small{color:#666}";
+    "small{color:#666}"
+    ".paper{color:#555;background:#f4f4f4;font-style:italic}"
+    ".note{max-width:50em}";
 
 }  // namespace
 
@@ -296,9 +328,14 @@ std::string htmlReport(const Analysis& a) {
   html += "<h2>Table 1: grasp quality of the successful grasps</h2>\n";
   for (std::size_t t = 0; t < 2; ++t) {
     html += "<h3>" + std::string(t == 0 ? "Textured" : "Non-textured") + " background</h3>\n";
-    html += conditionTable(a, t, "Q<sub>lift</sub>", "Q<sub>GWS</sub>", [](const GroupResult& r) {
-      return std::make_pair(fixed(r.quality.meanQLift, 2), fixed(r.quality.meanQGws, 2));
-    });
+    html += conditionTable(a, t, PaperTable::kQuality, "Q<sub>lift</sub>", "Q<sub>GWS</sub>",
+                           [](const GroupResult& r) {
+                             return std::make_pair(fixed(r.quality.meanQLift, 2),
+                                                   fixed(r.quality.meanQGws, 2));
+                           });
+  }
+  if (hasPaperColumns(a)) {
+    html += "<p>" + escapeHtml(paperColumnsNote(PaperTable::kQuality)) + "</p>\n";
   }
 
   html += "<h2>Figure 7: success rate against the number of attempts</h2>\n" +
@@ -315,9 +352,13 @@ std::string htmlReport(const Analysis& a) {
       "(n+1)/(k+1), averaged over the scenes with a success.</p>\n";
   for (std::size_t t = 0; t < 2; ++t) {
     html += "<h3>" + std::string(t == 0 ? "Textured" : "Non-textured") + " background</h3>\n";
-    html += conditionTable(a, t, "p", "ga", [](const GroupResult& r) {
+    html += conditionTable(a, t, PaperTable::kFirstSuccess, "p", "ga", [](const GroupResult& r) {
       return std::make_pair(fixed(r.firstSuccess.p, 2), fixed(r.firstSuccess.ga, 2));
     });
+  }
+  if (hasPaperColumns(a)) {
+    html += "<p>" + escapeHtml(paperColumnsNote(PaperTable::kFirstSuccess)) + "</p>\n" +
+            comparisonNoteHtml();
   }
 
   for (std::size_t t = 0; t < 2; ++t) {

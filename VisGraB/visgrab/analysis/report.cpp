@@ -1,9 +1,12 @@
 #include "visgrab/analysis/report.hpp"
 
+#include <algorithm>
+#include <array>
 #include <stdexcept>
 
 #include "rw/loaders/xml/strings.hpp"
 #include "visgrab/analysis/detail/format.hpp"
+#include "visgrab/analysis/paper_tables.hpp"
 #include "visgrab/database/atomic_file.hpp"
 #include "visgrab/results/csv.hpp"
 
@@ -63,6 +66,76 @@ std::string mdRule(std::size_t columns) {
   return text + "\n";
 }
 
+/// The paper's two values for a group and column: numbers as printed in the paper (2 decimals),
+/// or two empty strings where it has none.
+std::array<std::string, 2> paperCells(PaperTable table, const std::string& group,
+                                      const MethodColumn& column) {
+  const auto values = paperValues(table, group, column.method);
+  if (!values) return {};
+  return {detail::fixed((*values)[0], 2), detail::fixed((*values)[1], 2)};
+}
+
+/// The paper's two values as CSV fields (empty where it has none).
+std::array<std::string, 2> paperCsvFields(PaperTable table, const std::string& group,
+                                          const MethodColumn& column) {
+  const auto values = paperValues(table, group, column.method);
+  if (!values) return {};
+  return {results::formatDouble((*values)[0]), results::formatDouble((*values)[1])};
+}
+
+/// Tables 1 and 2 of the Markdown report, with the paper's values beside the methods named like
+/// its grasp types, and the note on comparing with the paper.
+std::string markdownTables12(const Analysis& a) {
+  using detail::fixed;
+  const bool paper = std::any_of(a.columns.begin(), a.columns.end(),
+                                 [](const MethodColumn& c) { return isPaperMethod(c.method); });
+  std::string md = "\n## Grasp quality of the successful grasps (Table 1)\n\n";
+  std::vector<std::string> head = {"group", "method", "successes", "Q_lift", "Q_GWS"};
+  if (paper) head.insert(head.end(), {"paper Q_lift", "paper Q_GWS"});
+  md += mdRow(head) + mdRule(head.size());
+  for (std::size_t g = 0; g < a.groups.size(); ++g) {
+    for (std::size_t c = 0; c < a.columns.size(); ++c) {
+      const QualityMeans& q = a.results[g][c].quality;
+      std::vector<std::string> row = {a.groups[g].name, a.columns[c].label,
+                                      std::to_string(q.successes), fixed(q.meanQLift, 2),
+                                      fixed(q.meanQGws, 2)};
+      if (paper) {
+        const auto cells = paperCells(PaperTable::kQuality, a.groups[g].key, a.columns[c]);
+        row.insert(row.end(), cells.begin(), cells.end());
+      }
+      md += mdRow(row);
+    }
+  }
+  if (paper) md += "\n" + paperColumnsNote(PaperTable::kQuality) + "\n";
+  md +=
+      "\n## Scenes with a success and attempts to the first success (Table 2)\n\n"
+      "ga: expected attempts under random order, (n+1)/(k+1), averaged over the scenes with "
+      "a success.\n\n";
+  head = {"group", "method", "p", "ga"};
+  if (paper) head.insert(head.end(), {"paper p", "paper ga"});
+  head.insert(head.end(), {"ga (randomized)", "ga (given order)"});
+  md += mdRow(head) + mdRule(head.size());
+  for (std::size_t g = 0; g < a.groups.size(); ++g) {
+    for (std::size_t c = 0; c < a.columns.size(); ++c) {
+      const FirstSuccess& f = a.results[g][c].firstSuccess;
+      std::vector<std::string> row = {a.groups[g].name, a.columns[c].label, fixed(f.p, 2),
+                                      fixed(f.ga, 2)};
+      if (paper) {
+        const auto cells = paperCells(PaperTable::kFirstSuccess, a.groups[g].key, a.columns[c]);
+        row.insert(row.end(), cells.begin(), cells.end());
+      }
+      row.insert(row.end(), {fixed(f.gaRandomized, 2), fixed(f.gaGivenOrder, 2)});
+      md += mdRow(row);
+    }
+  }
+  if (paper) {
+    const PaperComparisonNote& note = paperComparisonNote();
+    md += "\n" + paperColumnsNote(PaperTable::kFirstSuccess) + "\n\n### " + note.heading + "\n";
+    for (const std::string& paragraph : note.paragraphs) md += "\n" + paragraph + "\n";
+  }
+  return md;
+}
+
 }  // namespace
 
 std::string_view outcomeColour(GraspOutcome outcome) {
@@ -93,10 +166,11 @@ void writeCsvTables(const Analysis& a, const std::filesystem::path& outDir) {
   for (const auto& info : kOutcomeTable) header.push_back("share_" + std::string(info.name));
   header.push_back("share_no_grasp");
   std::string distribution = line(header);
-  std::string quality = line({"group", "method", "successes", "mean_q_lift", "mean_q_gws"});
+  std::string quality = line(
+      {"group", "method", "successes", "mean_q_lift", "mean_q_gws", "paper_q_lift", "paper_q_gws"});
   std::string attempts = line({"group", "method", "attempts", "exact", "randomized"});
   std::string first = line({"group", "method", "scenes", "scenes_with_success", "p", "ga",
-                            "ga_randomized", "ga_given_order"});
+                            "ga_randomized", "ga_given_order", "paper_p", "paper_ga"});
   for (std::size_t g = 0; g < a.groups.size(); ++g) {
     for (std::size_t c = 0; c < a.columns.size(); ++c) {
       const GroupResult& r = a.results[g][c];
@@ -110,16 +184,19 @@ void writeCsvTables(const Analysis& a, const std::filesystem::path& outDir) {
       for (const double s : d.share) row.push_back(csvNumber(s));
       row.push_back(csvNumber(d.noGraspShare));
       distribution += line(row);
-      quality += line({key, label, std::to_string(r.quality.successes),
-                       csvNumber(r.quality.meanQLift), csvNumber(r.quality.meanQGws)});
+      const auto paperQuality = paperCsvFields(PaperTable::kQuality, key, a.columns[c]);
+      quality +=
+          line({key, label, std::to_string(r.quality.successes), csvNumber(r.quality.meanQLift),
+                csvNumber(r.quality.meanQGws), paperQuality[0], paperQuality[1]});
       for (std::size_t n = 0; n < r.attempts.exact.size(); ++n) {
         attempts += line({key, label, std::to_string(n + 1), csvNumber(r.attempts.exact[n]),
                           csvNumber(r.attempts.randomized[n])});
       }
       const FirstSuccess& f = r.firstSuccess;
+      const auto paperFirst = paperCsvFields(PaperTable::kFirstSuccess, key, a.columns[c]);
       first += line({key, label, std::to_string(f.scenes), std::to_string(f.scenesWithSuccess),
                      csvNumber(f.p), csvNumber(f.ga), csvNumber(f.gaRandomized),
-                     csvNumber(f.gaGivenOrder)});
+                     csvNumber(f.gaGivenOrder), paperFirst[0], paperFirst[1]});
     }
   }
   std::string objects = line({"table", "method", "kind", "subject", "name", "arrangement", "grasps",
@@ -186,28 +263,7 @@ std::string markdownReport(const Analysis& a) {
       md += mdRow(row);
     }
   }
-  // Tables 1 and 2.
-  md += "\n## Grasp quality of the successful grasps (Table 1)\n\n";
-  md += mdRow({"group", "method", "successes", "Q_lift", "Q_GWS"}) + mdRule(5);
-  for (std::size_t g = 0; g < a.groups.size(); ++g) {
-    for (std::size_t c = 0; c < a.columns.size(); ++c) {
-      const QualityMeans& q = a.results[g][c].quality;
-      md += mdRow({a.groups[g].name, a.columns[c].label, std::to_string(q.successes),
-                   fixed(q.meanQLift, 2), fixed(q.meanQGws, 2)});
-    }
-  }
-  md +=
-      "\n## Scenes with a success and attempts to the first success (Table 2)\n\n"
-      "ga: expected attempts under random order, (n+1)/(k+1), averaged over the scenes with "
-      "a success.\n\n";
-  md += mdRow({"group", "method", "p", "ga", "ga (randomized)", "ga (given order)"}) + mdRule(6);
-  for (std::size_t g = 0; g < a.groups.size(); ++g) {
-    for (std::size_t c = 0; c < a.columns.size(); ++c) {
-      const FirstSuccess& f = a.results[g][c].firstSuccess;
-      md += mdRow({a.groups[g].name, a.columns[c].label, fixed(f.p, 2), fixed(f.ga, 2),
-                   fixed(f.gaRandomized, 2), fixed(f.gaGivenOrder, 2)});
-    }
-  }
+  md += markdownTables12(a);
   // Figure 7.
   md +=
       "\n## Success rate against attempts (Figure 7)\n\nExact expectation (randomized "

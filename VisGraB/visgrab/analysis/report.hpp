@@ -22,10 +22,12 @@ std::string escapeHtml(std::string_view text);
 
 /// Writes the CSV tables into `outDir`: distribution.csv (Figure 6), quality.csv (Table 1),
 /// attempts.csv (Figure 7), first_success.csv (Table 2), objects.csv (Tables 3-4); each
-/// atomically. Undefined values (NaN) are empty fields. @throws std::runtime_error.
+/// atomically. quality.csv and first_success.csv also give the paper's values (paperValues()),
+/// empty where it has none. Undefined values (NaN) are empty fields. @throws std::runtime_error.
 void writeCsvTables(const Analysis& analysis, const std::filesystem::path& outDir);
 
-/// The report as Markdown (tables of all five analyses, definitions in short).
+/// The report as Markdown (tables of all five analyses, definitions in short; Tables 1 and 2 with
+/// the paper's values beside the methods named like its grasp types, and the note on comparing).
 std::string markdownReport(const Analysis& analysis);
 
 /// The report as one self-contained HTML page (inline SVG plots, no external resources).

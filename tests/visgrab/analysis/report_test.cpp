@@ -150,6 +150,105 @@ TEST_F(ReportFilesTest, MarkdownAndCsvHaveTheNumbers) {
   EXPECT_TRUE(std::filesystem::exists(dir.path() / "quality.csv"));
 }
 
+TEST_F(ReportFilesTest, NoPaperColumnsWithoutThePapersMethods) {
+  const std::string md = readText(dir.path() / "report.md");
+  const std::string html = readText(dir.path() / "report.html");
+  EXPECT_EQ(md.find("paper"), std::string::npos);
+  EXPECT_EQ(html.find("class=\"paper\""), std::string::npos);
+  EXPECT_EQ(html.find("Comparing with the paper"), std::string::npos);
+  // The CSV columns are always there, empty.
+  const std::string first = readText(dir.path() / "first_success.csv");
+  EXPECT_NE(first.find(",ga_given_order,paper_p,paper_ga\n"), std::string::npos);
+  EXPECT_NE(first.find("\ntextured-single-all,runA: A,3,2,"), std::string::npos);
+  const std::string quality = readText(dir.path() / "quality.csv");
+  EXPECT_EQ(
+      quality.rfind("group,method,successes,mean_q_lift,mean_q_gws,paper_q_lift,paper_q_gws\n", 0),
+      0u);
+}
+
+/// One textured single standing scene where "s3EGA1" (named like the paper's grasp type) and
+/// "mine" (not) each have one stable grasp: s3EGA1 (0.9, 0.4), mine (0.5, 0.2).
+results::RunResults paperNamedRun() {
+  results::RunResults run;
+  run.label = "run";
+  const auto s1 =
+      test_runs::scene(database::SceneConditions::single(database::Texture::kTextured, 5, 1));
+  run.scenes = {s1};
+  run.methods = {"s3EGA1", "mine"};
+  run.trials = {
+      test_runs::trial(s1, "s3EGA1", 0, rwsim::simulator::GraspOutcome::kStable, 0.9, 0.4, 5),
+      test_runs::trial(s1, "mine", 0, rwsim::simulator::GraspOutcome::kStable, 0.5, 0.2, 5)};
+  return run;
+}
+
+TEST(ReportPaperColumnsTest, PaperValuesBesideOursOnlyForThePapersMethods) {
+  test::TempDir dir;
+  writeReport({paperNamedRun()}, dir.path());
+
+  // Markdown: Table 2 and Table 1 with the paper's columns; s3EGA1 textured single has p = 0.84,
+  // ga = 2.60 in the paper (single all), 0.88, 2.18 (single standing); Q 0.72, 0.59 (standing).
+  const std::string md = readText(dir.path() / "report.md");
+  EXPECT_NE(md.find("| group | method | p | ga | paper p | paper ga | ga (randomized) | ga (given "
+                    "order) |"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("| textured, single, all | s3EGA1 | 1.00 | 1.00 | 0.84 | 2.60 | 1.00 | 1.00 |"),
+            std::string::npos);
+  EXPECT_NE(md.find("| textured, single, standing | s3EGA1 | 1.00 | 1.00 | 0.88 | 2.18 |"),
+            std::string::npos);
+  EXPECT_NE(md.find("| textured, single, all | mine | 1.00 | 1.00 |  |  | 1.00 | 1.00 |"),
+            std::string::npos);
+  // Rows the paper does not have: none.
+  EXPECT_NE(md.find("| textured, all | s3EGA1 | 1.00 | 1.00 |  |  |"), std::string::npos);
+  EXPECT_NE(md.find("| overall | s3EGA1 | 1.00 | 1.00 |  |  |"), std::string::npos);
+  EXPECT_NE(md.find("| group | method | successes | Q_lift | Q_GWS | paper Q_lift | paper Q_GWS |"),
+            std::string::npos);
+  EXPECT_NE(md.find("| textured, single, standing | s3EGA1 | 1 | 0.90 | 0.40 | 0.72 | 0.59 |"),
+            std::string::npos);
+  EXPECT_NE(md.find("| textured, single, standing | mine | 1 | 0.50 | 0.20 |  |  |"),
+            std::string::npos);
+  EXPECT_NE(md.find("\n### Comparing with the paper\n"), std::string::npos);
+  EXPECT_NE(md.find("not the paper's real camera images"), std::string::npos);
+
+  // HTML: four columns for s3EGA1 (ours, then the paper's), two for mine.
+  const std::string html = readText(dir.path() / "report.html");
+  EXPECT_EQ(checkWellFormed(html), "");
+  EXPECT_NE(html.find("<th colspan=\"4\">s3EGA1</th><th colspan=\"2\">mine</th>"),
+            std::string::npos);
+  EXPECT_NE(html.find("<th>p</th><th>ga</th><th class=\"paper\">paper p</th>"
+                      "<th class=\"paper\">paper ga</th><th>p</th><th>ga</th></tr>"),
+            std::string::npos);
+  // Table 2, textured single all; Table 1, textured single standing.
+  EXPECT_NE(html.find("<th>single</th><th>all</th><td>1.00</td><td>1.00</td>"
+                      "<td class=\"paper\">0.84</td><td class=\"paper\">2.60</td>"
+                      "<td>1.00</td><td>1.00</td></tr>"),
+            std::string::npos);
+  EXPECT_NE(html.find("<th>single</th><th>standing</th><td>0.90</td><td>0.40</td>"
+                      "<td class=\"paper\">0.72</td><td class=\"paper\">0.59</td>"
+                      "<td>0.50</td><td>0.20</td></tr>"),
+            std::string::npos);
+  // The table's "all scenes" row has empty paper cells.
+  EXPECT_NE(html.find("<th></th><th>all scenes</th><td>1.00</td><td>1.00</td>"
+                      "<td class=\"paper\"></td><td class=\"paper\"></td>"),
+            std::string::npos);
+  EXPECT_NE(html.find("<h3>Comparing with the paper</h3>"), std::string::npos);
+  EXPECT_NE(html.find("not the paper&#39;s real camera images"), std::string::npos);
+
+  // CSV: the paper's values where it has them, empty fields elsewhere.
+  const std::string first = readText(dir.path() / "first_success.csv");
+  EXPECT_NE(first.find("\ntextured-single-all,s3EGA1,1,1,1,1,1,1,0.84,2.6\n"), std::string::npos)
+      << first;
+  EXPECT_NE(first.find("\ntextured-single-all,mine,1,1,1,1,1,1,,\n"), std::string::npos);
+  EXPECT_NE(first.find("\ntextured-all,s3EGA1,1,1,1,1,1,1,,\n"), std::string::npos);
+  // The paper's plain rows even where this run has no scene (our values undefined).
+  EXPECT_NE(first.find("\nplain-single-all,s3EGA1,0,0,,,,,0.88,3.15\n"), std::string::npos);
+  const std::string quality = readText(dir.path() / "quality.csv");
+  EXPECT_NE(quality.find("\ntextured-single-standing,s3EGA1,1,0.9,0.4,0.72,0.59\n"),
+            std::string::npos)
+      << quality;
+  EXPECT_NE(quality.find("\ntextured-single-standing,mine,1,0.5,0.2,,\n"), std::string::npos);
+}
+
 TEST_F(ReportFilesTest, ReportIsDeterministic) {
   test::TempDir other;
   writeReport({test_runs::runA(), test_runs::runB()}, other.path());
