@@ -4,6 +4,7 @@
 #include <utility>
 #include <vector>
 
+#include "baseline_commands.hpp"
 #include "command_line.hpp"
 #include "db_commands.hpp"
 #include "run_commands.hpp"
@@ -16,6 +17,7 @@ int main(int argc, char** argv) {
     for (auto& c : visgrab::app::simulationCommands()) commands.push_back(std::move(c));
     for (auto& c : visgrab::app::databaseCommands()) commands.push_back(std::move(c));
     for (auto& c : visgrab::app::runCommands()) commands.push_back(std::move(c));
+    for (auto& c : visgrab::app::baselineCommands()) commands.push_back(std::move(c));
     const std::vector<std::string> args(argv + 1, argv + argc);
     return visgrab::app::dispatch(commands, args);
   } catch (const std::exception& e) {

@@ -8,6 +8,7 @@
 #include <string>
 #include <thread>
 
+#include "baseline_commands.hpp"
 #include "rw/loaders/diagnostic.hpp"
 #include "visgrab/analysis/report.hpp"
 #include "visgrab/database/scene_filter.hpp"
@@ -130,10 +131,7 @@ int runBenchmarkCommand(const std::vector<std::string>& args) {
   Arguments a(args, {"resume", "quiet"});
   a.rejectUnknown({"db", "grasps", "out", "threads", "resume", "hand", "scenes", "data", "quiet"});
   a.requirePositionals(0, "no positional arguments (grasp files go after --grasps)");
-  const auto grasps = a.option("grasps");
   const auto out = a.option("out");
-  if (!grasps)
-    throw UsageError("--grasps FILE|DIR is required (the baseline method is not there yet)");
   if (!out) throw UsageError("--out DIR is required");
   const fs::path data = dataFolder(a);
   const fs::path db = a.option("db").value_or("database");
@@ -141,9 +139,20 @@ int runBenchmarkCommand(const std::vector<std::string>& args) {
   const bool quiet = a.flag("quiet");
   const std::string scenes = a.option("scenes").value_or("");
   ensureDatabase(db, scenes, threads, data, quiet);
+  fs::path grasps = a.option("grasps").value_or("");
+  if (grasps.empty()) {
+    // No method given: the baseline's grasps, made once (an existing file is complete: it is
+    // written atomically) and reused by --resume.
+    grasps = fs::path(*out) / "grasps" / "baseline.csv";
+    if (!fs::exists(grasps) || !a.flag("resume")) {
+      if (!quiet)
+        std::cerr << "visgrab benchmark: baseline grasps into " << grasps.string() << "\n";
+      writeBaselineGrasps(db, scenes, grasps, threads, quiet);
+    }
+  }
   runner::RunOptions options;
   options.database = db;
-  options.grasps = {*grasps};
+  options.grasps = {grasps};
   options.out = fs::path(*out) / "results";
   options.hand = a.option("hand").value_or((data / "hands/sdh/sdh.grasp.xml").string());
   options.scenes = scenes;
@@ -171,10 +180,11 @@ std::vector<Command> runCommands() {
        "once (RESULTS/trials.csv), so --resume continues a killed run.",
        guarded(runRun)},
       {"benchmark", "",
-       "--grasps FILE|DIR --out DIR [--db DIR] [--threads N] [--resume] [--hand GRASP.xml] "
+       "--out DIR [--grasps FILE|DIR] [--db DIR] [--threads N] [--resume] [--hand GRASP.xml] "
        "[--scenes FILTER] [--quiet]",
-       "Run and analyze in one: generate the database (default ./database) if it is missing, run "
-       "the grasps (DIR/results), write the report (DIR/report/report.html).",
+       "Run and analyze in one: generate the database (default ./database) if it is missing, make "
+       "the baseline's grasps (DIR/grasps/baseline.csv) unless --grasps gives a method's, run "
+       "them (DIR/results), write the report (DIR/report/report.html).",
        guarded(runBenchmarkCommand)},
       {"analyze", "", "RESULTS... --out REPORT",
        "The paper's five analyses of one or more result folders (methods side by side): CSV "

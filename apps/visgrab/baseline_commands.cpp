@@ -1,0 +1,131 @@
+#include "baseline_commands.hpp"
+
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <map>
+#include <opencv2/imgcodecs.hpp>
+
+#include "visgrab/database/atomic_file.hpp"
+#include "visgrab/database/database.hpp"
+#include "visgrab/database/scene_filter.hpp"
+#include "visgrab/taskio/grasp_list.hpp"
+#include "visgrab/vision/baseline.hpp"
+
+namespace visgrab::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::vector<const database::SceneEntry*> selectScenes(const database::Database& db,
+                                                      const std::string& filter) {
+  if (filter.empty()) return db.filter(database::SceneFilter());
+  try {
+    return db.filter(database::SceneFilter::parse(filter));
+  } catch (const database::FilterError& e) {
+    throw UsageError(std::string("--scenes: ") + e.what());
+  }
+}
+
+// Runs the baseline and writes the grasp list; the shared part of `baseline` and `benchmark`.
+int runAndWrite(const fs::path& dbPath, const std::string& filter, const fs::path& out,
+                const vision::BaselineOptions& options, bool quiet) {
+  const auto db = database::Database::openAny(dbPath);
+  const auto scenes = selectScenes(db, filter);
+  if (scenes.empty()) throw UsageError("--scenes selects no scene of " + dbPath.string());
+  const auto start = std::chrono::steady_clock::now();
+  auto progress = [&](const vision::BaselineProgress& p) {
+    const double elapsed =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::fprintf(stderr, "\rbaseline: %d/%d scenes  %.1f scenes/s  %s   ", p.done, p.total,
+                 p.done / std::max(elapsed, 1e-9), p.lastId.c_str());
+    if (p.done == p.total) std::fputc('\n', stderr);
+    std::fflush(stderr);
+  };
+  const auto results = vision::baselineGrasps(
+      db, scenes, options,
+      quiet ? std::function<void(const vision::BaselineProgress&)>{}
+            : std::function<void(const vision::BaselineProgress&)>(progress));
+  std::vector<grasp::GraspRequest> all;
+  std::map<std::string, int> perType;
+  int failed = 0;
+  for (const auto& r : results) {
+    if (!r.error.empty()) {
+      ++failed;
+      std::cerr << "baseline: " << r.sceneId << ": no grasps: " << r.error << "\n";
+    }
+    for (const auto& g : r.grasps) {
+      ++perType[g.method];
+      all.push_back(g);
+    }
+  }
+  if (out.has_parent_path()) fs::create_directories(out.parent_path());
+  database::writeFileAtomically(out, taskio::formatGraspList(all));
+  if (!quiet) {
+    std::cerr << "baseline: " << all.size() << " grasps for " << scenes.size() << " scenes (";
+    bool first = true;
+    for (const auto& [type, n] : perType) {
+      std::cerr << (first ? "" : ", ") << type << " " << n;
+      first = false;
+    }
+    std::cerr << ")" << (failed ? ", " + std::to_string(failed) + " scenes failed" : "") << "\n";
+  }
+  return static_cast<int>(all.size());
+}
+
+int runBaseline(const std::vector<std::string>& args) {
+  Arguments a(args, {"quiet"});
+  a.rejectUnknown({"db", "out", "scenes", "threads", "per-type", "debug", "quiet"});
+  a.requirePositionals(0, "no positional arguments");
+  const auto db = a.option("db");
+  const auto out = a.option("out");
+  if (!db) throw UsageError("--db DIR|MANIFEST is required");
+  if (!out) throw UsageError("--out GRASPS (the grasp list file to write) is required");
+  vision::BaselineOptions options;
+  options.threads = threadsOption(a);
+  options.grasps.perType = integerOption(a, "per-type", options.grasps.perType, 1);
+  const std::string filter = a.option("scenes").value_or("");
+  if (const auto debug = a.option("debug")) {
+    // Pictures of what the baseline saw, one per scene (sequential: meant for a few scenes).
+    const auto database = database::Database::openAny(*db);
+    for (const auto* scene : selectScenes(database, filter)) {
+      const auto seg = vision::analyzeScene(database, *scene, options);
+      const auto grasps = vision::generateGrasps(seg, options.grasps);
+      std::string name = scene->id;
+      for (char& c : name) c = c == '/' ? '_' : c;
+      const fs::path file = fs::path(*debug) / (name + ".png");
+      fs::create_directories(*debug);
+      database::writeImageAtomically(
+          file, vision::drawSegmentation(database.leftImage(scene->id), seg, grasps,
+                                         database.calibration(scene->id)));
+      std::cerr << file.string() << ": " << seg.clusters.size() << " objects, "
+                << seg.patches.size() << " patches, " << grasps.size() << " grasps\n";
+    }
+  }
+  const int n = runAndWrite(*db, filter, *out, options, a.flag("quiet"));
+  std::cout << n << " grasps in " << *out << "\n";
+  return 0;
+}
+
+}  // namespace
+
+int writeBaselineGrasps(const fs::path& db, const std::string& filter, const fs::path& out,
+                        int threads, bool quiet) {
+  vision::BaselineOptions options;
+  options.threads = threads;
+  return runAndWrite(db, filter, out, options, quiet);
+}
+
+std::vector<Command> baselineCommands() {
+  return {
+      {"baseline", "",
+       "--db DIR|MANIFEST --out GRASPS [--scenes FILTER] [--per-type N] [--threads N] "
+       "[--debug DIR] [--quiet]",
+       "The paper's baseline method: stereo point cloud, table plane, object clusters, surface "
+       "patches and the grasp types s2EGA1, s2EGA3, s3EGA1 (at most N each per scene, default "
+       "20) as contact grasps in one grasp list; --debug writes a picture per scene.",
+       guarded(runBaseline)},
+  };
+}
+
+}  // namespace visgrab::app
