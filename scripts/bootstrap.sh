@@ -2,12 +2,14 @@
 # VisGraB set-up on Debian 12: install the Debian packages, build, then either run the main job
 # or run all tests.
 #
-#   scripts/bootstrap.sh run     install, build and run the main job (generate the scene database)
+#   scripts/bootstrap.sh run     install, build and run the main job: `visgrab benchmark` with the
+#                                baseline method (database if absent, grasps, trials, report)
 #   scripts/bootstrap.sh test    install, build (warnings as errors) and run every test, plus the
 #                                malformed-input suites again under AddressSanitizer+UBSan
 #
 # Environment: BUILD_DIR (default build), JOBS (default: number of cores), VISGRAB_DATABASE
-# (where the main job writes the database, default database/),
+# (the main job's scene database, generated there when absent, default database/),
+# VISGRAB_RESULTS (the main job's output folder, default benchmark/; an interrupted run resumes),
 # RW_COMPAT_DATA (RobWork's own files for the compatibility tests; they are skipped without it).
 set -euo pipefail
 
@@ -60,9 +62,10 @@ if [[ "$mode" == run ]]; then
   # false-positive warnings stay out of the way.
   configure_and_build "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo
   db=${VISGRAB_DATABASE:-database}
-  echo "== main job: generate the scene database into $db (resumes if interrupted)"
-  "$build/apps/visgrab/visgrab" db generate --out "$db" --threads "$jobs"
-  "$build/apps/visgrab/visgrab" db list --db "$db" --scenes 'textured,single,pose=1'
+  out=${VISGRAB_RESULTS:-benchmark}
+  echo "== main job: visgrab benchmark, baseline method, database $db, output $out (resumable)"
+  "$build/apps/visgrab/visgrab" benchmark --db "$db" --out "$out" --threads "$jobs" --resume
+  echo "== report: $out/report/report.html (also report.md and the CSV tables there)"
   exit 0
 fi
 
