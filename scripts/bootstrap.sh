@@ -7,6 +7,10 @@
 #   scripts/bootstrap.sh test    install, build (warnings as errors) and run every test, plus the
 #                                malformed-input suites again under AddressSanitizer+UBSan
 #
+# The test builds keep CI fast (docs/performance.md, "CI time"): unity batches and the tests'
+# precompiled header (both on by default), line-table debug info only (-g1), and in the
+# sanitizer build just the targets the "sanitize"-labelled suites need.
+#
 # Environment: BUILD_DIR (default build), JOBS (default: number of cores), VISGRAB_DATABASE
 # (the main job's scene database, generated there when absent, default database/),
 # VISGRAB_RESULTS (the main job's output folder, default benchmark/; an interrupted run resumes),
@@ -70,14 +74,15 @@ if [[ "$mode" == run ]]; then
 fi
 
 scripts/check-format.sh
-configure_and_build "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DVISGRAB_WERROR=ON
+configure_and_build "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DVISGRAB_WERROR=ON \
+  -DVISGRAB_LINE_DEBUG_INFO=ON
 echo "== running all tests"
 (cd "$build" && ctest --output-on-failure --parallel "$jobs")
 
 echo "== malformed-input suites under AddressSanitizer+UBSan"
 asan="${build}-asan"
 cmake -S . -B "$asan" -G Ninja -DCMAKE_BUILD_TYPE=Debug -DVISGRAB_SANITIZE=ON -DVISGRAB_WERROR=ON \
-  -DVISGRAB_BUILD_BENCHMARKS=OFF
+  -DVISGRAB_BUILD_BENCHMARKS=OFF -DVISGRAB_LINE_DEBUG_INFO=ON
 cmake --build "$asan" --parallel "$jobs" --target sanitize_tests
 (cd "$asan" && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
   ctest --output-on-failure --parallel "$jobs" -L sanitize)

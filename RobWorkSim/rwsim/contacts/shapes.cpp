@@ -27,7 +27,7 @@ constexpr double kAreaRelTolerance = 1e-6;
 constexpr double kConvexEdgeDepth = 1e-12;
 constexpr double kSameNormalDot = 1.0 - 1e-9;
 
-double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+double perpDot(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
   return a.x() * b.y() - a.y() * b.x();
 }
 
@@ -49,7 +49,7 @@ std::vector<Index> planarHull(const std::vector<Eigen::Vector2d>& q) {
       while (hull.size() >= base + 2) {
         const auto& o = q[static_cast<std::size_t>(hull[hull.size() - 2])];
         const auto& a = q[static_cast<std::size_t>(hull.back())];
-        if (cross2(a - o, q[static_cast<std::size_t>(p)] - o) > 0.0) break;
+        if (perpDot(a - o, q[static_cast<std::size_t>(p)] - o) > 0.0) break;
         hull.pop_back();
       }
       hull.push_back(p);
@@ -174,8 +174,8 @@ std::optional<Polytope> flatConvexPatch(const TriMesh& mesh) {
   double hullArea = 0.0;
   for (std::size_t k = 1; k + 1 < hull.size(); ++k) {
     const auto& o = planar[static_cast<std::size_t>(hull[0])];
-    hullArea += 0.5 * cross2(planar[static_cast<std::size_t>(hull[k])] - o,
-                             planar[static_cast<std::size_t>(hull[k + 1])] - o);
+    hullArea += 0.5 * perpDot(planar[static_cast<std::size_t>(hull[k])] - o,
+                              planar[static_cast<std::size_t>(hull[k + 1])] - o);
   }
   if (std::abs(hullArea - area) > kAreaRelTolerance * hullArea) return std::nullopt;
   std::vector<Vector3D> loop;

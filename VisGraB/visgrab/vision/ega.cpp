@@ -7,7 +7,7 @@
 namespace visgrab::vision {
 namespace {
 
-constexpr double kDeg = M_PI / 180.0;
+constexpr double kRadPerDeg = M_PI / 180.0;
 
 // A patch seen in its own plane: centre c, normal n, boundary points with their in-plane polar
 // angle and radius about c.
@@ -211,7 +211,7 @@ void threeFingerEncompassing(const PatchFrame& f, const Ranker& rank, int patchI
 
 bool sameGrasp(const CandidateGrasp& a, const CandidateGrasp& b, double distance) {
   if (a.contacts.size() != b.contacts.size()) return false;
-  if (a.approach.dot(b.approach) < std::cos(15.0 * kDeg)) return false;
+  if (a.approach.dot(b.approach) < std::cos(15.0 * kRadPerDeg)) return false;
   for (const auto& ca : a.contacts) {
     bool near = false;
     for (const auto& cb : b.contacts) near = near || (ca.position - cb.position).norm() < distance;

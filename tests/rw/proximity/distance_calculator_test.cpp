@@ -16,7 +16,7 @@ using rw::math::Vector3D;
 
 using test::pose;
 
-constexpr double kTol = 1e-9;
+constexpr double kDistanceTol = 1e-9;
 
 TEST(DistanceCalculator, ChainOfFourHasThreePairs) {
   const test::ChainScene s = test::makeChainScene();
@@ -26,13 +26,13 @@ TEST(DistanceCalculator, ChainOfFourHasThreePairs) {
   EXPECT_EQ(d[0].frames, makeFramePair(s.f[0], s.f[2]));
   EXPECT_EQ(d[1].frames, makeFramePair(s.f[0], s.f[3]));
   EXPECT_EQ(d[2].frames, makeFramePair(s.f[1], s.f[3]));
-  EXPECT_NEAR(d[0].distance, 2.0 - 0.2 - 0.1, kTol);  // sphere 0.2 at 0, sphere 0.1 at 2
-  EXPECT_NEAR(d[1].distance, 3.0 - 0.2 - 0.1, kTol);  // sphere 0.2 at 0, box face at 2.9
-  EXPECT_NEAR(d[2].distance, 2.0 - 0.2 - 0.1, kTol);  // box faces at 1.2 and 2.9
-  EXPECT_VECTOR_NEAR(d[0].pointA, Vector3D(0.2, 0, 0), kTol);
-  EXPECT_VECTOR_NEAR(d[0].pointB, Vector3D(1.9, 0, 0), kTol);
-  EXPECT_NEAR(d[2].pointA.x(), 1.2, kTol);
-  EXPECT_NEAR(d[2].pointB.x(), 2.9, kTol);
+  EXPECT_NEAR(d[0].distance, 2.0 - 0.2 - 0.1, kDistanceTol);  // sphere 0.2 at 0, sphere 0.1 at 2
+  EXPECT_NEAR(d[1].distance, 3.0 - 0.2 - 0.1, kDistanceTol);  // sphere 0.2 at 0, box face at 2.9
+  EXPECT_NEAR(d[2].distance, 2.0 - 0.2 - 0.1, kDistanceTol);  // box faces at 1.2 and 2.9
+  EXPECT_VECTOR_NEAR(d[0].pointA, Vector3D(0.2, 0, 0), kDistanceTol);
+  EXPECT_VECTOR_NEAR(d[0].pointB, Vector3D(1.9, 0, 0), kDistanceTol);
+  EXPECT_NEAR(d[2].pointA.x(), 1.2, kDistanceTol);
+  EXPECT_NEAR(d[2].pointB.x(), 2.9, kDistanceTol);
 }
 
 TEST(DistanceCalculator, TurningTheSecondFrameMovesTheRestOfTheChain) {
@@ -46,18 +46,18 @@ TEST(DistanceCalculator, TurningTheSecondFrameMovesTheRestOfTheChain) {
   const double r13 = std::sqrt(2.0) - 0.3;
   // F4's box is closest to the origin at its corner (0.9, 1.9, 0).
   const double r14 = std::sqrt(0.9 * 0.9 + 1.9 * 1.9) - 0.2;
-  EXPECT_NEAR(d[0].distance, r13, kTol);
-  EXPECT_NEAR(d[1].distance, r14, kTol);
-  EXPECT_NEAR(d[2].distance, 2.0 - 0.2 - 0.1, kTol);
+  EXPECT_NEAR(d[0].distance, r13, kDistanceTol);
+  EXPECT_NEAR(d[1].distance, r14, kDistanceTol);
+  EXPECT_NEAR(d[2].distance, 2.0 - 0.2 - 0.1, kDistanceTol);
   const Vector3D u = Vector3D(1, 1, 0).normalized();
-  EXPECT_VECTOR_NEAR(d[0].pointA, Vector3D(0.2 * u), kTol);
-  EXPECT_VECTOR_NEAR(d[0].pointB, Vector3D(Vector3D(1, 1, 0) - 0.1 * u), kTol);
-  EXPECT_VECTOR_NEAR(d[1].pointB, Vector3D(0.9, 1.9, 0), kTol);
+  EXPECT_VECTOR_NEAR(d[0].pointA, Vector3D(0.2 * u), kDistanceTol);
+  EXPECT_VECTOR_NEAR(d[0].pointB, Vector3D(Vector3D(1, 1, 0) - 0.1 * u), kDistanceTol);
+  EXPECT_VECTOR_NEAR(d[1].pointB, Vector3D(0.9, 1.9, 0), kDistanceTol);
 
   const std::optional<FrameDistance> m = calc.minimum(state);
   ASSERT_TRUE(m.has_value());
   EXPECT_EQ(m->frames, makeFramePair(s.f[0], s.f[2]));
-  EXPECT_NEAR(m->distance, r13, kTol);
+  EXPECT_NEAR(m->distance, r13, kDistanceTol);
 }
 
 TEST(DistanceCalculator, MinimumAndEmptyPairList) {
@@ -65,7 +65,7 @@ TEST(DistanceCalculator, MinimumAndEmptyPairList) {
   const DistanceCalculator calc(*s.wc);
   const std::optional<FrameDistance> m = calc.minimum(s.wc->defaultState());
   ASSERT_TRUE(m.has_value());
-  EXPECT_NEAR(m->distance, 1.7, kTol);
+  EXPECT_NEAR(m->distance, 1.7, kDistanceTol);
   EXPECT_EQ(m->frames, makeFramePair(s.f[0], s.f[2]));  // the first of two equal pairs
 
   rw::models::ProximitySetup none;
@@ -86,8 +86,8 @@ TEST(DistanceCalculator, FrameWithSeveralGeometriesUsesTheClosest) {
   const DistanceCalculator calc(wc);
   const std::vector<FrameDistance> d = calc.distances(wc.defaultState());
   ASSERT_EQ(d.size(), 1U);
-  EXPECT_NEAR(d[0].distance, 3.0 - 1.6 - 0.25, kTol);  // box face at 1.6
-  EXPECT_VECTOR_NEAR(d[0].pointA, Vector3D(1.6, 0, 0), kTol);
+  EXPECT_NEAR(d[0].distance, 3.0 - 1.6 - 0.25, kDistanceTol);  // box face at 1.6
+  EXPECT_VECTOR_NEAR(d[0].pointA, Vector3D(1.6, 0, 0), kDistanceTol);
 }
 
 }  // namespace

@@ -24,7 +24,7 @@ using test::meshSurfaceDistance;
 using test::pose;
 using test::tetrahedron;
 
-constexpr double kTol = 1e-9;
+constexpr double kMeshTol = 1e-9;
 
 // A's slanted face x + y + z = 1 has its centroid at c; B's apex sits `gap` above it along the
 // face normal n and B extends away from A.
@@ -49,14 +49,14 @@ TEST(Tetrahedra, TouchingAndJustSeparated) {
     ASSERT_TRUE(t.a->isConvex());
     ASSERT_TRUE(t.b->isConvex());
     const DistanceResult r = distance(*t.a, pose({0, 0, 0}), *t.b, pose({0, 0, 0}));
-    EXPECT_NEAR(r.distance, gap, kTol);
+    EXPECT_NEAR(r.distance, gap, kMeshTol);
     EXPECT_VECTOR_NEAR(r.pointA, Vector3D::Constant(1.0 / 3.0), 1e-7);
     EXPECT_FALSE(collides(*t.a, pose({0, 0, 0}), *t.b, pose({0, 0, 0})));
   }
   const TetraPair touching = tetrahedraApart(0.0);
   EXPECT_TRUE(collides(*touching.a, pose({0, 0, 0}), *touching.b, pose({0, 0, 0})));
   EXPECT_NEAR(distance(*touching.a, pose({0, 0, 0}), *touching.b, pose({0, 0, 0})).distance, 0.0,
-              kTol);
+              kMeshTol);
 }
 
 TEST(Tetrahedra, TriangleHierarchiesAgreeWithGjk) {
@@ -66,12 +66,12 @@ TEST(Tetrahedra, TriangleHierarchiesAgreeWithGjk) {
     const Bvh a(t.a->triangles());
     const Bvh b(t.b->triangles());
     const DistanceResult r = bvhDistance(a, b, Transform3D::Identity(), 1e9);
-    EXPECT_NEAR(r.distance, gap, kTol);
+    EXPECT_NEAR(r.distance, gap, kMeshTol);
     EXPECT_FALSE(bvhCollides(a, b, Transform3D::Identity(), kContactTolerance));
     // Both moved by the same pose: the relative pose, hence the distance, is unchanged.
     const Transform3D X = pose({0.1, -0.2, 0.3}, 10, 20, 30);
     const DistanceResult moved = distance(*t.a, X, *t.b, X);
-    EXPECT_NEAR(moved.distance, gap, kTol);
+    EXPECT_NEAR(moved.distance, gap, kMeshTol);
   }
   const TetraPair touching = tetrahedraApart(0.0);
   EXPECT_TRUE(bvhCollides(Bvh(touching.a->triangles()), Bvh(touching.b->triangles()),
@@ -107,11 +107,11 @@ TEST(LShape, IsNotConvexAndTheNotchIsFree) {
   const Transform3D Xc = pose({1.5, 1.5, 0.5});
   EXPECT_FALSE(collides(*l, Xl, *cube, Xc));
   const DistanceResult r = distance(*l, Xl, *cube, Xc);
-  EXPECT_NEAR(r.distance, 0.1, kTol);
-  EXPECT_NEAR(meshSurfaceDistance(r.pointA, Xl, l->triangles()), 0.0, kTol);
+  EXPECT_NEAR(r.distance, 0.1, kMeshTol);
+  EXPECT_NEAR(meshSurfaceDistance(r.pointA, Xl, l->triangles()), 0.0, kMeshTol);
   // The same cube as a (convex) mesh goes through the triangle-triangle path.
   const auto cubeMesh = Geometry::mesh(cube->trianglesPtr(), "cube (test)");
-  EXPECT_NEAR(distance(*l, Xl, *cubeMesh, Xc).distance, 0.1, kTol);
+  EXPECT_NEAR(distance(*l, Xl, *cubeMesh, Xc).distance, 0.1, kMeshTol);
   EXPECT_FALSE(collides(*cubeMesh, Xc, *l, Xl));
   // Moved 0.15 toward the corner, it cuts into both inner faces.
   EXPECT_TRUE(collides(*l, Xl, *cube, pose({1.35, 1.35, 0.5})));
@@ -125,13 +125,14 @@ TEST(LShape, StackedTouchingSeparatedAndPenetrating) {
   const Transform3D apart = pose({0.5, 0.5, 1.0 + 1e-4});
   EXPECT_FALSE(collides(*l, Xa, *l, apart));
   const DistanceResult r = distance(*l, Xa, *l, apart);
-  EXPECT_NEAR(r.distance, 1e-4, kTol);
-  EXPECT_NEAR(r.pointA.z(), 1.0, kTol);
-  EXPECT_NEAR(r.pointB.z(), 1.0 + 1e-4, kTol);
+  EXPECT_NEAR(r.distance, 1e-4, kMeshTol);
+  EXPECT_NEAR(r.pointA.z(), 1.0, kMeshTol);
+  EXPECT_NEAR(r.pointB.z(), 1.0 + 1e-4, kMeshTol);
   const DistanceResult sunk = distance(*l, Xa, *l, pose({0.5, 0.5, 0.9}));
   EXPECT_EQ(sunk.distance, 0.0);
-  EXPECT_NEAR(meshSurfaceDistance(sunk.pointA, Xa, l->triangles()), 0.0, kTol);
-  EXPECT_NEAR(meshSurfaceDistance(sunk.pointB, pose({0.5, 0.5, 0.9}), l->triangles()), 0.0, kTol);
+  EXPECT_NEAR(meshSurfaceDistance(sunk.pointA, Xa, l->triangles()), 0.0, kMeshTol);
+  EXPECT_NEAR(meshSurfaceDistance(sunk.pointB, pose({0.5, 0.5, 0.9}), l->triangles()), 0.0,
+              kMeshTol);
 }
 
 TEST(LShape, FacingCornersJustSeparated) {
@@ -142,11 +143,11 @@ TEST(LShape, FacingCornersJustSeparated) {
   const Transform3D Xa = pose({0, 0, 0});
   const Transform3D Xb = pose({3 + g, 3 + g, 0}, 180, 0, 0);
   const DistanceResult r = distance(*l, Xa, *l, Xb);
-  EXPECT_NEAR(r.distance, 1e-4, kTol);
+  EXPECT_NEAR(r.distance, 1e-4, kMeshTol);
   EXPECT_FALSE(collides(*l, Xa, *l, Xb));
   EXPECT_TRUE(collides(*l, Xa, *l, pose({3, 3, 0}, 180, 0, 0)));
-  EXPECT_NEAR(meshSurfaceDistance(r.pointA, Xa, l->triangles()), 0.0, kTol);
-  EXPECT_NEAR(meshSurfaceDistance(r.pointB, Xb, l->triangles()), 0.0, kTol);
+  EXPECT_NEAR(meshSurfaceDistance(r.pointA, Xa, l->triangles()), 0.0, kMeshTol);
+  EXPECT_NEAR(meshSurfaceDistance(r.pointB, Xb, l->triangles()), 0.0, kMeshTol);
 }
 
 // Smallest triangle-pair distance between meshes a (at Xa) and b (at Xb), by brute force.
@@ -182,8 +183,8 @@ TEST(LShape, RandomPosesMatchBruteForceOverTriangles) {
     const rw::geometry::TriMesh& otherMesh = i % 2 == 0 ? l->triangles() : tube->triangles();
     const double truth = bruteForce(l->triangles(), Xa, otherMesh, Xb);
     const DistanceResult r = distance(ml, Xa, other, Xb);
-    EXPECT_NEAR(r.distance, truth, kTol) << "pose " << i;
-    EXPECT_NEAR((r.pointA - r.pointB).norm(), r.distance, kTol);
+    EXPECT_NEAR(r.distance, truth, kMeshTol) << "pose " << i;
+    EXPECT_NEAR((r.pointA - r.pointB).norm(), r.distance, kMeshTol);
     EXPECT_EQ(collides(ml, Xa, other, Xb), truth <= kContactTolerance) << "pose " << i;
     (truth > 0.0 ? separated : overlapping) += 1;
   }
@@ -196,8 +197,8 @@ TEST(LShape, SphereInTheNotchIsExact) {
   const auto l = lShape();
   const auto sphere = Geometry::sphere(0.3);
   const DistanceResult r = distance(*sphere, pose({1.5, 1.5, 0.5}), *l, pose({0, 0, 0}));
-  EXPECT_NEAR(r.distance, 0.2, kTol);
-  EXPECT_NEAR((r.pointA - Vector3D(1.5, 1.5, 0.5)).norm(), 0.3, kTol);
+  EXPECT_NEAR(r.distance, 0.2, kMeshTol);
+  EXPECT_NEAR((r.pointA - Vector3D(1.5, 1.5, 0.5)).norm(), 0.3, kMeshTol);
   EXPECT_TRUE(collides(*sphere, pose({1.25, 1.5, 0.5}), *l, pose({0, 0, 0})));
 }
 
@@ -205,10 +206,10 @@ TEST(LShape, OnAPlane) {
   const auto l = lShape();
   const auto plane = Geometry::plane();
   EXPECT_TRUE(collides(*plane, pose({0, 0, 0}), *l, pose({0, 0, 0})));  // resting
-  EXPECT_NEAR(distance(*plane, pose({0, 0, 0}), *l, pose({0, 0, 0.25})).distance, 0.25, kTol);
+  EXPECT_NEAR(distance(*plane, pose({0, 0, 0}), *l, pose({0, 0, 0.25})).distance, 0.25, kMeshTol);
   // Turned 90 degrees about x: the outline now spans z in [0, 2] above the frame origin.
   EXPECT_NEAR(distance(*plane, pose({0, 0, -0.5}), *l, pose({0, 0, 0}, 0, 0, 90)).distance, 0.5,
-              kTol);
+              kMeshTol);
 }
 
 TEST(Tube, ThinCylinderInsideDoesNotCollide) {
@@ -219,14 +220,14 @@ TEST(Tube, ThinCylinderInsideDoesNotCollide) {
   const Transform3D Xt = pose({0.3, 0.2, 0.1}, 10, 20, 30);
   EXPECT_FALSE(collides(*tube, Xt, *rod, Xt));
   const DistanceResult r = distance(*tube, Xt, *rod, Xt);
-  EXPECT_GE(r.distance, apothem - 0.02 - kTol);
-  EXPECT_LE(r.distance, 0.03 + kTol);
-  EXPECT_NEAR((r.pointA - r.pointB).norm(), r.distance, kTol);
-  EXPECT_NEAR(meshSurfaceDistance(r.pointA, Xt, tube->triangles()), 0.0, kTol);
+  EXPECT_GE(r.distance, apothem - 0.02 - kMeshTol);
+  EXPECT_LE(r.distance, 0.03 + kMeshTol);
+  EXPECT_NEAR((r.pointA - r.pointB).norm(), r.distance, kMeshTol);
+  EXPECT_NEAR(meshSurfaceDistance(r.pointA, Xt, tube->triangles()), 0.0, kMeshTol);
   // Off the axis by 0.02 it still fits; by 0.04 it cuts into the wall.
   const Transform3D off = Xt * pose({0.02, 0, 0});
   EXPECT_FALSE(collides(*tube, Xt, *rod, off));
-  EXPECT_GE(distance(*tube, Xt, *rod, off).distance, apothem - 0.04 - kTol);
+  EXPECT_GE(distance(*tube, Xt, *rod, off).distance, apothem - 0.04 - kMeshTol);
   EXPECT_TRUE(collides(*tube, Xt, *rod, Xt * pose({0.04, 0, 0})));
 }
 

@@ -18,8 +18,8 @@ using rw::math::Vector3D;
 using test::pose;
 
 // Smallest distance between any triangle of `a` (at X_a) and any of `b` (at X_b).
-double bruteForce(const rw::geometry::TriMesh& a, const Transform3D& X_a,
-                  const rw::geometry::TriMesh& b, const Transform3D& X_b) {
+double bruteForceHullDistance(const rw::geometry::TriMesh& a, const Transform3D& X_a,
+                              const rw::geometry::TriMesh& b, const Transform3D& X_b) {
   const auto placed = [](const rw::geometry::TriMesh& m, const Transform3D& X) {
     std::vector<Triangle> out;
     for (const auto& t : m.triangles) {
@@ -54,7 +54,7 @@ TEST(SdhHull, ConvexHullQueriesMatchBruteForce) {
       const Transform3D X_hull = pose({0.01, -0.02, 0.03}, angle(random), angle(random), 0.0);
       const Transform3D X_box = pose({offset(random), offset(random), 0.03 + offset(random)},
                                      angle(random), angle(random), angle(random));
-      const double truth = bruteForce(*mesh, X_hull, box->triangles(), X_box);
+      const double truth = bruteForceHullDistance(*mesh, X_hull, box->triangles(), X_box);
       const DistanceResult r = distance(hullModel, X_hull, boxModel, X_box);
       if (truth > 1e-6) {
         ++separated;

@@ -17,17 +17,20 @@ using rw::math::Vector3D;
 
 using test::pose;
 
-constexpr double kTol = 1e-12;
+constexpr double kTriangleTol = 1e-12;
 
 const Triangle kUnit{{Vector3D(0, 0, 0), Vector3D(1, 0, 0), Vector3D(0, 1, 0)}};
 
 TEST(ClosestPointOnTriangle, EveryRegion) {
-  EXPECT_VECTOR_NEAR(closestPointOnTriangle({0.2, 0.3, 5}, kUnit), Vector3D(0.2, 0.3, 0), kTol);
-  EXPECT_VECTOR_NEAR(closestPointOnTriangle({-1, -2, 1}, kUnit), Vector3D(0, 0, 0), kTol);
-  EXPECT_VECTOR_NEAR(closestPointOnTriangle({3, -1, 0}, kUnit), Vector3D(1, 0, 0), kTol);
-  EXPECT_VECTOR_NEAR(closestPointOnTriangle({0.5, -1, 0}, kUnit), Vector3D(0.5, 0, 0), kTol);
-  EXPECT_VECTOR_NEAR(closestPointOnTriangle({-1, 0.5, 0}, kUnit), Vector3D(0, 0.5, 0), kTol);
-  EXPECT_VECTOR_NEAR(closestPointOnTriangle({1, 1, 0}, kUnit), Vector3D(0.5, 0.5, 0), kTol);
+  EXPECT_VECTOR_NEAR(closestPointOnTriangle({0.2, 0.3, 5}, kUnit), Vector3D(0.2, 0.3, 0),
+                     kTriangleTol);
+  EXPECT_VECTOR_NEAR(closestPointOnTriangle({-1, -2, 1}, kUnit), Vector3D(0, 0, 0), kTriangleTol);
+  EXPECT_VECTOR_NEAR(closestPointOnTriangle({3, -1, 0}, kUnit), Vector3D(1, 0, 0), kTriangleTol);
+  EXPECT_VECTOR_NEAR(closestPointOnTriangle({0.5, -1, 0}, kUnit), Vector3D(0.5, 0, 0),
+                     kTriangleTol);
+  EXPECT_VECTOR_NEAR(closestPointOnTriangle({-1, 0.5, 0}, kUnit), Vector3D(0, 0.5, 0),
+                     kTriangleTol);
+  EXPECT_VECTOR_NEAR(closestPointOnTriangle({1, 1, 0}, kUnit), Vector3D(0.5, 0.5, 0), kTriangleTol);
 }
 
 TEST(ClosestPointsOnSegments, SkewParallelAndDegenerate) {
@@ -35,18 +38,18 @@ TEST(ClosestPointsOnSegments, SkewParallelAndDegenerate) {
   Vector3D c2;
   // Skew: x axis segment and a y-parallel segment 2 above.
   EXPECT_NEAR(closestPointsOnSegments({-1, 0, 0}, {1, 0, 0}, {0.3, -1, 2}, {0.3, 1, 2}, c1, c2),
-              4.0, kTol);
-  EXPECT_VECTOR_NEAR(c1, Vector3D(0.3, 0, 0), kTol);
-  EXPECT_VECTOR_NEAR(c2, Vector3D(0.3, 0, 2), kTol);
+              4.0, kTriangleTol);
+  EXPECT_VECTOR_NEAR(c1, Vector3D(0.3, 0, 0), kTriangleTol);
+  EXPECT_VECTOR_NEAR(c2, Vector3D(0.3, 0, 2), kTriangleTol);
   // Parallel, overlapping in x: distance 1.
   EXPECT_NEAR(closestPointsOnSegments({0, 0, 0}, {2, 0, 0}, {1, 1, 0}, {3, 1, 0}, c1, c2), 1.0,
-              kTol);
+              kTriangleTol);
   // Clamped ends.
   EXPECT_NEAR(closestPointsOnSegments({0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {3, 0, 0}, c1, c2), 1.0,
-              kTol);
+              kTriangleTol);
   // A point against a segment.
   EXPECT_NEAR(closestPointsOnSegments({0, 0, 0}, {1, 0, 0}, {0.5, 3, 4}, {0.5, 3, 4}, c1, c2), 25.0,
-              kTol);
+              kTriangleTol);
 }
 
 Triangle moved(const Triangle& t, const Transform3D& X) {
@@ -57,14 +60,14 @@ TEST(TrianglePair, ParallelAndCrossing) {
   const Triangle up = moved(kUnit, pose({0.1, 0.1, 0.5}));
   EXPECT_FALSE(trianglesIntersect(kUnit, up, 1e-9));
   const DistanceResult r = triangleDistance(kUnit, up);
-  EXPECT_NEAR(r.distance, 0.5, kTol);
+  EXPECT_NEAR(r.distance, 0.5, kTriangleTol);
   // Standing up through the first one: (0.25, y, z) for y, z around 0.
   const Triangle crossing{{Vector3D(0.25, 0.2, -1), Vector3D(0.25, 0.2, 1), Vector3D(0.25, -1, 0)}};
   EXPECT_TRUE(trianglesIntersect(kUnit, crossing, 1e-9));
   const DistanceResult c = triangleDistance(kUnit, crossing);
   EXPECT_EQ(c.distance, 0.0);
-  EXPECT_NEAR(c.pointA.z(), 0.0, kTol);
-  EXPECT_NEAR(c.pointA.x(), 0.25, kTol);
+  EXPECT_NEAR(c.pointA.z(), 0.0, kTriangleTol);
+  EXPECT_NEAR(c.pointA.x(), 0.25, kTriangleTol);
 }
 
 TEST(TrianglePair, CoplanarOverlapAndGap) {
@@ -76,7 +79,7 @@ TEST(TrianglePair, CoplanarOverlapAndGap) {
   const Triangle mirrored{
       {Vector3D(1 + s, 1 + s, 0), Vector3D(s, 1 + s, 0), Vector3D(1 + s, s, 0)}};
   EXPECT_FALSE(trianglesIntersect(kUnit, mirrored, 1e-9));
-  EXPECT_NEAR(triangleDistance(kUnit, mirrored).distance, 0.1, kTol);
+  EXPECT_NEAR(triangleDistance(kUnit, mirrored).distance, 0.1, kTriangleTol);
 }
 
 TEST(Obb, SeparationAndLowerBound) {
@@ -90,7 +93,7 @@ TEST(Obb, SeparationAndLowerBound) {
   // Diagonal: the lower bound never exceeds the true distance sqrt(2) * 0.5.
   const double bound = obbDistanceLowerBound(unit, unit, I, Vector3D(1.5, 1.5, 0));
   EXPECT_GT(bound, 0.0);
-  EXPECT_LE(bound, std::sqrt(0.5) + kTol);
+  EXPECT_LE(bound, std::sqrt(0.5) + kTriangleTol);
   // Rotated 45 degrees about z: its edge reaches sqrt(1/2) towards the other box.
   const Transform3D X = pose({1.5, 0, 0}, 45, 0, 0);
   EXPECT_NEAR(obbDistanceLowerBound(unit, unit, X.linear(), X.translation()), 1.0 - std::sqrt(0.5),

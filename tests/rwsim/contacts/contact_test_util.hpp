@@ -8,6 +8,7 @@
 #include "rw/geometry/geometry.hpp"
 #include "rw/math/types.hpp"
 #include "rwsim/contacts/contact_detector.hpp"
+#include "support/test_support.hpp"
 
 /// Helpers for the contact tests: poses, meshes built in code, and a one-call collide().
 namespace rwsim::contacts::test {
@@ -19,6 +20,14 @@ using rw::math::Vector3D;
 
 /// Penetration used by the resting-contact tests (m).
 inline constexpr double kPen = 1e-4;
+
+/// pi.
+inline constexpr double kPi = std::numbers::pi;
+
+/// Expects every point's normal to be `n` (within 1e-9).
+inline void expectAllNormals(const std::vector<ContactPoint>& points, const Vector3D& n) {
+  for (const ContactPoint& c : points) EXPECT_VECTOR_NEAR(c.normal, n, 1e-9);
+}
 
 /// A pose: translation p, then rotation by `angle` about `axis`.
 inline Transform3D pose(const Vector3D& p, double angle = 0.0,

@@ -15,23 +15,19 @@ namespace {
 using rw::math::Transform3D;
 using rw::math::Vector3D;
 using test::contacts;
+using test::expectAllNormals;
 using test::Geometry;
 using test::kPen;
+using test::kPi;
 using test::pose;
 
 constexpr double kTol = 1e-9;
-constexpr double kPi = std::numbers::pi;
-
 /// True when some point of `points` is within tol of p.
 bool containsPoint(const std::vector<ContactPoint>& points, const Vector3D& p, double tol) {
   for (const ContactPoint& c : points) {
     if ((c.position - p).norm() <= tol) return true;
   }
   return false;
-}
-
-void expectAllNormals(const std::vector<ContactPoint>& points, const Vector3D& n) {
-  for (const ContactPoint& c : points) EXPECT_VECTOR_NEAR(c.normal, n, 1e-9);
 }
 
 TEST(BoxOnHalfSpace, FourCornersAtThePenetration) {

@@ -15,11 +15,11 @@ namespace {
 using rw::math::Transform3D;
 using rw::math::Vector3D;
 using test::contacts;
+using test::expectAllNormals;
 using test::Geometry;
 using test::kPen;
+using test::kPi;
 using test::pose;
-
-constexpr double kPi = std::numbers::pi;
 
 /// The L of side 0.2 with a 0.1 x 0.1 notch, 0.05 thick, bottom at z = 0 (area 0.03 m^2).
 std::shared_ptr<const Geometry> lShape() {
@@ -32,10 +32,6 @@ bool inL(double x, double y, double tol) {
   const bool inSquare = x >= -tol && x <= 0.2 + tol && y >= -tol && y <= 0.2 + tol;
   const bool inNotch = x > 0.1 + tol && y > 0.1 + tol;
   return inSquare && !inNotch;
-}
-
-void expectAllNormals(const std::vector<ContactPoint>& points, const Vector3D& n) {
-  for (const ContactPoint& c : points) EXPECT_VECTOR_NEAR(c.normal, n, 1e-9);
 }
 
 TEST(ConvexMesh, FineSphereOnPlaneTouchesAtItsPole) {

@@ -1,12 +1,9 @@
-// A small generated database checked against independent truth: the simulator (the settled
-// objects stay put and do not penetrate), the renderer's ground-truth depth (OpenCV's
-// StereoSGBM on the rectified pair, reprojected with Q), the collision geometry projected with
-// P1 (silhouettes), and byte equality (determinism across thread counts, resume).
+// The shared generated test database (tests/support/test_database.hpp) checked against
+// independent truth: the simulator (the settled objects stay put and do not penetrate), the
+// renderer's ground-truth depth (OpenCV's StereoSGBM on the rectified pair, reprojected with Q)
+// and the collision geometry projected with P1 (silhouettes); and small generations of their own
+// for byte equality (determinism across thread counts, resume) and unusable inputs.
 #include <gtest/gtest.h>
-#include <sys/file.h>
-#include <unistd.h>
-
-#include <fcntl.h>
 
 #include <filesystem>
 #include <fstream>
@@ -19,6 +16,7 @@
 #include "rw/loaders/workcell_loader.hpp"
 #include "rwsim/loaders/dynamic_workcell_loader.hpp"
 #include "rwsim/simulator/simulator.hpp"
+#include "support/test_database.hpp"
 #include "support/test_support.hpp"
 #include "visgrab/database/database.hpp"
 #include "visgrab/database/scene_set.hpp"
@@ -45,40 +43,15 @@ gen::GeneratorOptions optionsFor(const fs::path& out, int threads) {
   return options;
 }
 
-// Standing, lying and touching, on both tables.
-std::vector<db::SceneConditions> sampleScenes() {
-  std::vector<db::SceneConditions> scenes;
-  for (const auto texture : {db::Texture::kPlain, db::Texture::kTextured}) {
-    scenes.push_back(db::SceneConditions::single(texture, 5, 1));       // cocacola standing
-    scenes.push_back(db::SceneConditions::single(texture, 13, 6));      // saltbox lying
-    scenes.push_back(db::SceneConditions::pairScene(texture, 'c', 5));  // burti + denkmit close
-  }
-  return scenes;
-}
-
-// The shared sample database in the build tree, generated once (the generator resumes, so a
-// complete one costs nothing); a file lock keeps parallel test processes apart.
-const db::Database& sampleDatabase() {
-  static const db::Database database = [] {
-    const fs::path dir = VISGRAB_TEST_DB_DIR;
-    fs::create_directories(dir.parent_path());
-    const fs::path lockFile = dir.string() + ".lock";
-    const int fd = ::open(lockFile.c_str(), O_CREAT | O_RDWR, 0644);
-    if (fd < 0 || ::flock(fd, LOCK_EX) != 0)
-      throw std::runtime_error("cannot lock " + lockFile.string());
-    const auto report = gen::generateDatabase(sampleScenes(), optionsFor(dir, 2));
-    ::flock(fd, LOCK_UN);
-    ::close(fd);
-    if (!report.failures.empty()) throw std::runtime_error(report.failures.front());
-    return db::Database::open(dir);
-  }();
-  return database;
-}
+// The shared test database (tests/support/test_database.hpp): standing, lying, apart and
+// close, on both tables.
+const db::Database& sampleDatabase() { return visgrab::test::testDatabase(); }
 
 TEST(GeneratedDatabase, ListsTheGeneratedScenesWithTheirConditions) {
   const auto& database = sampleDatabase();
-  ASSERT_EQ(database.list().size(), sampleScenes().size());
-  for (const auto& scene : sampleScenes()) {
+  ASSERT_EQ(database.list().size(), visgrab::test::kTestSceneIds.size());
+  EXPECT_EQ(database.seed(), visgrab::test::kTestDatabaseSeed);
+  for (const auto& scene : visgrab::test::testDatabaseScenes()) {
     const auto& entry = database.scene(db::sceneIdOf(scene));
     ASSERT_TRUE(entry.conditions.has_value());
     EXPECT_EQ(*entry.conditions, scene);

@@ -15,11 +15,10 @@ namespace {
 using rw::math::Q;
 using visgrab::grasp::HandGraspSetup;
 using visgrab::grasp::loadHandGraspSetupFromString;
+using visgrab::test::grasp::kDeg;
 using visgrab::test::grasp::makeQ;
 using visgrab::test::grasp::pg70;
 using visgrab::test::grasp::sdh;
-
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 TEST(GraspDescription, SdhLoads) {
   const HandGraspSetup& s = sdh();

@@ -18,11 +18,10 @@ using visgrab::grasp::GraspKind;
 using visgrab::grasp::GraspRequest;
 using visgrab::grasp::resolve;
 using visgrab::grasp::ResolveStatus;
+using visgrab::test::grasp::kDeg;
 using visgrab::test::grasp::makeQ;
 using visgrab::test::grasp::pg70;
 using visgrab::test::grasp::sdh;
-
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 GraspRequest request(GraspKind kind) {
   GraspRequest r;

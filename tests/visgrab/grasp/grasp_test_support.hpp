@@ -3,11 +3,15 @@
 // Shared helpers of the grasp-utility tests: the project's hands, loaded once per process.
 #include <initializer_list>
 #include <memory>
+#include <numbers>
 
 #include "support/test_support.hpp"
 #include "visgrab/grasp/hand_grasp_setup.hpp"
 
 namespace visgrab::test::grasp {
+
+/// One degree in radians.
+inline constexpr double kDeg = std::numbers::pi / 180.0;
 
 /// The SDH's setup (scenes/hands/sdh/sdh.grasp.xml), loaded on first use.
 inline const visgrab::grasp::HandGraspSetup& sdh() {

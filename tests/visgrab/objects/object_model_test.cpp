@@ -56,7 +56,7 @@ std::pair<Eigen::Vector3d, Eigen::Vector3d> specBounds(const ObjectSpec& o) {
 class EveryObject : public ::testing::TestWithParam<int> {
  protected:
   const ObjectSpec& spec() const { return projectSpec().objects.at(GetParam()); }
-  const ObjectModel& model() const { return projectModels().at(GetParam()); }
+  const ObjectModel& model() const { return projectModel(GetParam()); }
 };
 
 TEST_P(EveryObject, CollisionBoundsMatchTheSpec) {

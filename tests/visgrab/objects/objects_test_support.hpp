@@ -25,12 +25,23 @@ inline const visgrab::objects::ObjectDatabaseSpec& projectSpec() {
   return spec;
 }
 
+/// The model of projectSpec().objects[index], generated on first use and kept. A test about one
+/// object (each runs in its own process under CTest) thus generates just that one.
+inline const visgrab::objects::ObjectModel& projectModel(std::size_t index) {
+  static std::map<std::size_t, visgrab::objects::ObjectModel> models;
+  auto it = models.find(index);
+  if (it == models.end()) {
+    it = models.emplace(index, visgrab::objects::generateObject(projectSpec().objects.at(index)))
+             .first;
+  }
+  return it->second;
+}
+
 /// The 18 models generated from projectSpec(), in file order, generated once.
 inline const std::vector<visgrab::objects::ObjectModel>& projectModels() {
   static const auto models = [] {
     std::vector<visgrab::objects::ObjectModel> out;
-    for (const auto& spec : projectSpec().objects)
-      out.push_back(visgrab::objects::generateObject(spec));
+    for (std::size_t i = 0; i < projectSpec().objects.size(); ++i) out.push_back(projectModel(i));
     return out;
   }();
   return models;

@@ -1,13 +1,10 @@
-// The benchmark run on a small generated database with grasps whose outcome is known from the
-// objects' ground-truth poses: each grasp representation, rejected input, and a run killed with
+// The benchmark run on the shared generated test database with grasps whose outcome is known from
+// the objects' ground-truth poses: each grasp representation, rejected input, and a run killed with
 // SIGKILL and resumed against an uninterrupted one (byte-equal results).
 #include <gtest/gtest.h>
 #include <signal.h>
-#include <sys/file.h>
 #include <sys/wait.h>
 #include <unistd.h>
-
-#include <fcntl.h>
 
 #include <chrono>
 #include <filesystem>
@@ -18,9 +15,9 @@
 #include <thread>
 
 #include "rw/math/rpy.hpp"
+#include "support/test_database.hpp"
 #include "support/test_support.hpp"
 #include "visgrab/database/database.hpp"
-#include "visgrab/generator/generator.hpp"
 #include "visgrab/results/results_file.hpp"
 #include "visgrab/runner/benchmark_runner.hpp"
 #include "visgrab/taskio/grasp_list.hpp"
@@ -34,6 +31,7 @@ using rw::math::Vector3D;
 using visgrab::grasp::GraspKind;
 using visgrab::grasp::GraspRequest;
 
+// Scenes of the shared test database (kTestSceneIds).
 const std::vector<db::SceneConditions>& scenes() {
   static const std::vector<db::SceneConditions> s{
       db::SceneConditions::single(db::Texture::kPlain, 5, 1),       // cocacola standing
@@ -45,29 +43,8 @@ const std::vector<db::SceneConditions>& scenes() {
   return s;
 }
 
-// The shared small database in the build tree, generated once under a file lock.
-const db::Database& database() {
-  static const db::Database d = [] {
-    const fs::path dir = VISGRAB_TEST_DB_DIR;
-    fs::create_directories(dir.parent_path());
-    const std::string lock = dir.string() + ".lock";
-    const int fd = ::open(lock.c_str(), O_CREAT | O_RDWR, 0644);
-    if (fd < 0 || ::flock(fd, LOCK_EX) != 0) throw std::runtime_error("cannot lock " + lock);
-    visgrab::generator::GeneratorOptions options;
-    options.out = dir;
-    options.objectSpec = visgrab::test::sourceDir() / "scenes/objects/objects.xml";
-    options.handFolder = visgrab::test::sourceDir() / "scenes/hands/sdh";
-    options.materials = visgrab::test::sourceDir() / "scenes/materials.xml";
-    options.seed = 3;
-    options.threads = 2;
-    const auto report = visgrab::generator::generateDatabase(scenes(), options);
-    ::flock(fd, LOCK_UN);
-    ::close(fd);
-    if (!report.failures.empty()) throw std::runtime_error(report.failures.front());
-    return db::Database::open(dir);
-  }();
-  return d;
-}
+// The shared test database (tests/support/test_database.hpp), which holds the scenes above.
+const db::Database& database() { return visgrab::test::testDatabase(); }
 
 fs::path handFile() { return visgrab::test::sourceDir() / "scenes/hands/sdh/sdh.grasp.xml"; }
 
