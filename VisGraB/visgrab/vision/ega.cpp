@@ -53,21 +53,28 @@ double angleBetween(double a, double b) {
   return std::abs(d);
 }
 
-// The encompassing contact beyond boundary point b in outward direction o: `wrapDepth` behind
-// the surface, at the object's outermost visible extent along o within that depth and near
-// the line through b along o; pushing back along -o.
+// The encompassing contact beyond boundary point b in outward direction o, pushing back along
+// -o: `wrapDepth` behind the surface (along -n) at the object's outermost visible extent along
+// o near the line through b; deeper, down to maxWrapDepth, where the object bulges further out
+// (a lying cylinder's widest line), so that the finger closes on the bulge, not above it.
 grasp::DesiredContact wrapContact(const PatchFrame& f, const Eigen::Vector3d& b,
                                   const Eigen::Vector3d& o, const GraspOptions& options) {
   const Eigen::Vector3d t = f.n.cross(o);
-  double extent = (b - f.c).dot(o);
+  const double atBoundary = (b - f.c).dot(o);
+  double shallow = atBoundary, deep = atBoundary, deepDepth = options.wrapDepth;
   for (const auto& x : f.clusterPoints) {
     const double depth = (b - x).dot(f.n);
-    if (depth < -0.003 || depth > options.wrapDepth) continue;
+    if (depth < -0.003 || depth > options.maxWrapDepth) continue;
     if (std::abs((x - b).dot(t)) > options.lateralTolerance) continue;
-    extent = std::max(extent, (x - f.c).dot(o));
+    const double extent = (x - f.c).dot(o);
+    if (depth <= options.wrapDepth) shallow = std::max(shallow, extent);
+    if (extent > deep) deep = extent, deepDepth = std::max(depth, options.wrapDepth);
   }
+  const bool bulges = deep > shallow + 0.003;
+  const double extent = bulges ? deep : shallow;
+  const double depth = bulges ? deepDepth : options.wrapDepth;
   grasp::DesiredContact contact;
-  contact.position = b + (extent - (b - f.c).dot(o)) * o - options.wrapDepth * f.n;
+  contact.position = b + (extent - atBoundary) * o - depth * f.n;
   contact.direction = -o;
   return contact;
 }
@@ -209,6 +216,49 @@ void threeFingerEncompassing(const PatchFrame& f, const Ranker& rank, int patchI
   }
 }
 
+// Three fingers across a patch: the thumb at one end of an axis, the two fingers side by side
+// at the other end, `fingerGap` apart (how the SDH holds a box across its narrow side; the
+// 120-degree spread does not fit patches longer than the hand).
+void threeFingerAcross(const PatchFrame& f, const Ranker& rank, int patchIndex,
+                       std::vector<CandidateGrasp>& out) {
+  const auto& o = rank.options;
+  for (int k = 0; k < o.axes; ++k) {
+    const double a = M_PI * k / o.axes;
+    for (double sign : {1.0, -1.0}) {
+      const Eigen::Vector3d u = sign * inPlane(f, a), v = f.n.cross(u);
+      // Extremal rim point along `dir` among those `offset` to the side (within tolerance).
+      auto extremal = [&](const Eigen::Vector3d& dir, double offset) {
+        const PatchFrame::Rim* best = nullptr;
+        double far = 0.0;
+        for (const auto& r : f.rim) {
+          const Eigen::Vector3d d = r.point - f.c;
+          if (std::abs(d.dot(v) - offset) > o.lateralTolerance) continue;
+          if (d.dot(dir) > far) far = d.dot(dir), best = &r;
+        }
+        return best;
+      };
+      const auto* thumb = extremal(u, 0.0);
+      const auto* left = extremal(-u, 0.5 * o.fingerGap);
+      const auto* right = extremal(-u, -0.5 * o.fingerGap);
+      if (!thumb || !left || !right) continue;
+      CandidateGrasp g;
+      g.type = GraspType::kS3Ega1;
+      g.patch = patchIndex;
+      g.approach = -f.n;
+      g.contacts = {wrapContact(f, thumb->point, u, o), wrapContact(f, left->point, -u, o),
+                    wrapContact(f, right->point, -u, o)};
+      const double width =
+          (g.contacts[0].position - 0.5 * (g.contacts[1].position + g.contacts[2].position)).dot(u);
+      if (width < o.minWidth || width > o.maxWidth) continue;
+      const auto b = rank.base(f, g);
+      if (!b) continue;
+      const double range = o.maxWidth - o.minWidth;
+      g.score = *b + 1.0 - std::abs(width - o.preferredWidth) / range;
+      out.push_back(std::move(g));
+    }
+  }
+}
+
 bool sameGrasp(const CandidateGrasp& a, const CandidateGrasp& b, double distance) {
   if (a.contacts.size() != b.contacts.size()) return false;
   if (a.approach.dot(b.approach) < std::cos(15.0 * kRadPerDeg)) return false;
@@ -251,6 +301,7 @@ std::vector<CandidateGrasp> generateGrasps(const SceneSegmentation& scene,
     twoFingerEncompassing(f, rank, static_cast<int>(p), candidates);
     twoFingerPinch(f, rank, static_cast<int>(p), candidates);
     threeFingerEncompassing(f, rank, static_cast<int>(p), candidates);
+    threeFingerAcross(f, rank, static_cast<int>(p), candidates);
   }
   std::vector<CandidateGrasp> result;
   for (GraspType type : kGraspTypes) {

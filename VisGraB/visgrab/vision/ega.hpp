@@ -36,6 +36,9 @@ struct GraspOptions {
   /// normal, at the object's outermost visible extent there: the fingers wrap round the
   /// surface's boundary.
   double wrapDepth = 0.015;
+  /// Where the object visibly bulges further out below wrapDepth (a lying cylinder), the
+  /// contact goes down to the bulge, at most this deep (m).
+  double maxWrapDepth = 0.045;
   /// Pinch grasps touch the surface this far (m) inside its boundary ...
   double pinchInset = 0.01;
   /// ... and its back behind it: the back is not seen, so the object is taken to be as thick
@@ -54,6 +57,10 @@ struct GraspOptions {
   double minSpan = 0.025;
   /// See minSpan.
   double maxSpan = 0.13;
+  /// Three-finger grasps across a patch: distance (m) between the two fingers opposite the
+  /// thumb (the SDH's fingers 2 and 3 at spread 0: their bases 38.1 mm from the palm centre,
+  /// 120 deg apart, 2 x 38.1 mm x sin 60 deg = 66 mm).
+  double fingerGap = 0.066;
   /// Contacts lower than this above the table (m) are not used (the finger would hit it).
   double minContactHeight = 0.012;
   /// Contacts lower than this (m) lower the grasp's rank.

@@ -344,6 +344,8 @@ SceneSegmentation segmentScene(OrganizedCloud cloud, const SegmentationOptions& 
   }
   DisjointSets objects(static_cast<int>(regions.size()));
   for (const auto& [pair, m] : meetings) {
+    // A meeting of a few cells says little (noise at an occluding edge); it joins nothing.
+    if (m.second < options.minMeetingCells) continue;
     if (m.first / m.second >= -options.concavity) objects.unite(pair.first, pair.second);
   }
 

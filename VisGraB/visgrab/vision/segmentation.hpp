@@ -49,6 +49,9 @@ struct SegmentationOptions {
   /// their meeting, u the unit step across it; about the sine of the bend) belong to two touching
   /// objects: the objects are convex.
   double concavity = 0.15;
+  /// Two regions join only if they meet along at least this many neighbouring cell pairs
+  /// (about 1.5 cm at cloudStep 2): a few pairs are noise where one object occludes another.
+  int minMeetingCells = 8;
   /// Half side (cells) of the window the normals are fitted in.
   int normalRadius = 3;
   /// Points farther than this (m) from a cell's point do not enter its normal.
