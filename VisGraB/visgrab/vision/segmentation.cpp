@@ -60,19 +60,40 @@ std::pair<Eigen::Vector3d, Eigen::Vector3d> planeBasis(const Eigen::Vector3d& n)
   return {e1, n.cross(e1)};
 }
 
+// Value at quantile q (0..1) of `values` (reordered).
+double quantile(std::vector<double>& values, double q) {
+  const auto k = static_cast<std::size_t>(q * static_cast<double>(values.size() - 1));
+  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(k), values.end());
+  return values[k];
+}
+
+// Centroid, top and footprint of a cluster. Top and footprint ignore the outermost 1 % / 2 % of
+// the points: a few mismatched pixels at an occluding edge must not stretch them.
 void describeCluster(const OrganizedCloud& cloud, const TablePlane& table, Cluster& c) {
   const auto [e1, e2] = planeBasis(table.normal);
-  std::vector<cv::Point2f> footprint;
-  footprint.reserve(c.cells.size());
   c.centroid.setZero();
-  c.top = 0.0;
+  std::vector<double> heights;
   for (int i : c.cells) {
     const Eigen::Vector3d p = cloud.point(i);
     c.centroid += p;
-    c.top = std::max(c.top, table.height(p));
-    footprint.emplace_back(static_cast<float>(p.dot(e1)), static_cast<float>(p.dot(e2)));
+    heights.push_back(table.height(p));
   }
   c.centroid /= static_cast<double>(c.cells.size());
+  c.top = quantile(heights, 0.99);
+  const Eigen::Vector2d mid(c.centroid.dot(e1), c.centroid.dot(e2));
+  std::vector<double> spread;
+  std::vector<cv::Point2f> footprint;
+  for (int i : c.cells) {
+    const Eigen::Vector3d p = cloud.point(i);
+    spread.push_back((Eigen::Vector2d(p.dot(e1), p.dot(e2)) - mid).norm());
+  }
+  std::vector<double> sorted = spread;
+  const double limit = quantile(sorted, 0.98);
+  for (std::size_t k = 0; k < c.cells.size(); ++k) {
+    if (spread[k] > limit) continue;
+    const Eigen::Vector3d p = cloud.point(c.cells[k]);
+    footprint.emplace_back(static_cast<float>(p.dot(e1)), static_cast<float>(p.dot(e2)));
+  }
   const cv::RotatedRect rect = cv::minAreaRect(footprint);
   c.footprint = Eigen::Vector2d(std::max(rect.size.width, rect.size.height),
                                 std::min(rect.size.width, rect.size.height));
@@ -167,6 +188,22 @@ SceneSegmentation segmentScene(OrganizedCloud cloud, const SegmentationOptions& 
     const Eigen::Vector3d onPlane = p - h * table.normal - table.offset * table.normal;
     if (onPlane.norm() > options.workspaceRadius) continue;
     at(object, i) = 1;
+  }
+  // Untextured cells (guessed depths) count only next to textured object cells, within
+  // untexturedReach: they fill an object's plain areas but cannot chain into long tentacles
+  // along a plain table.
+  {
+    std::vector<char> keep(static_cast<std::size_t>(N), 0);
+    const int reach = options.untexturedReach;
+    for (int i = 0; i < N; ++i) {
+      if (!at(object, i) || !at(pc.textured, i)) continue;
+      const int r = i / W, c = i % W;
+      for (int rr = std::max(0, r - reach); rr <= std::min(H - 1, r + reach); ++rr) {
+        for (int cc = std::max(0, c - reach); cc <= std::min(W - 1, c + reach); ++cc)
+          at(keep, rr * W + cc) = 1;
+      }
+    }
+    for (int i = 0; i < N; ++i) at(object, i) = at(object, i) && at(keep, i);
   }
 
   // Connected pieces: 8-connected components with a distance limit between neighbours.
@@ -347,6 +384,38 @@ SceneSegmentation segmentScene(OrganizedCloud cloud, const SegmentationOptions& 
     // A meeting of a few cells says little (noise at an occluding edge); it joins nothing.
     if (m.second < options.minMeetingCells) continue;
     if (m.first / m.second >= -options.concavity) objects.unite(pair.first, pair.second);
+  }
+
+  // A small part cut off a piece by concave meetings is more likely a feature of one object (a
+  // jug's handle) than a second object: it rejoins the part of its piece it meets longest.
+  {
+    std::vector<int> regionCells(regions.size(), 0), pieceCells;
+    for (int i = 0; i < N; ++i) {
+      if (at(regionOf, i) >= 0) ++at(regionCells, at(regionOf, i));
+      const int k = at(pieceOf, i);
+      if (k >= 0) {
+        if (k >= static_cast<int>(pieceCells.size()))
+          pieceCells.resize(static_cast<std::size_t>(k) + 1, 0);
+        ++at(pieceCells, k);
+      }
+    }
+    std::map<int, int> groupCells;
+    for (std::size_t r = 0; r < regions.size(); ++r)
+      groupCells[objects.find(static_cast<int>(r))] += regionCells[r];
+    for (const auto& [root, cells] : groupCells) {
+      const int piece = at(pieceOf, at(regions, root).front());
+      if (cells >= options.minPartFraction * at(pieceCells, piece)) continue;
+      int best = -1, longest = 0;
+      for (const auto& [pair, m] : meetings) {
+        const int a = objects.find(pair.first), b = objects.find(pair.second);
+        if (a == b || (a != objects.find(root) && b != objects.find(root))) continue;
+        if (m.second >= options.minMeetingCells && m.second > longest) {
+          longest = m.second;
+          best = a == objects.find(root) ? b : a;
+        }
+      }
+      if (best >= 0) objects.unite(root, best);
+    }
   }
 
   // Clusters: the cells of each group of convexly connected regions.

@@ -42,6 +42,8 @@ struct SegmentationOptions {
   /// Clusters whose highest point is lower than this (m) are noise too (mismatches on the
   /// table); the flattest object lying down is about 3 cm high.
   double minClusterTop = 0.02;
+  /// Untextured cells are object cells only within this many cells of a textured object cell.
+  int untexturedReach = 2;
   /// Pieces whose cells are less than this fraction textured are not objects (the wall behind
   /// the table gets depths SGBM guessed from its smoothness term).
   double minTexturedFraction = 0.5;
@@ -52,6 +54,10 @@ struct SegmentationOptions {
   /// Two regions join only if they meet along at least this many neighbouring cell pairs
   /// (about 1.5 cm at cloudStep 2): a few pairs are noise where one object occludes another.
   int minMeetingCells = 8;
+  /// A part of a piece cut off by concave meetings with fewer than this fraction of the piece's
+  /// cells rejoins the part it meets longest: a feature of one object (a jug's handle), not a
+  /// second object.
+  double minPartFraction = 0.25;
   /// Half side (cells) of the window the normals are fitted in.
   int normalRadius = 3;
   /// Points farther than this (m) from a cell's point do not enter its normal.
@@ -84,10 +90,10 @@ struct Cluster {
   /// Mean of its points (table frame).
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
   /// Estimate of the object's centre: the centre of the smallest rectangle around the points'
-  /// footprint on the table, at half the top height. Less biased towards the camera than the
-  /// centroid (only the front of an object is seen).
+  /// footprint on the table (the 98 % nearest the centroid), at half the top height. Less biased
+  /// towards the camera than the centroid (only the front of an object is seen).
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();
-  /// Highest point's height above the table (m).
+  /// Height of its highest points above the table (m; the 99th percentile).
   double top = 0.0;
   /// Sides of the footprint rectangle (m), longer first.
   Eigen::Vector2d footprint = Eigen::Vector2d::Zero();
