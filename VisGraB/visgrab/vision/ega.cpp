@@ -90,6 +90,21 @@ const PatchFrame::Rim* outermostNear(const PatchFrame& f, double a, double windo
   return best;
 }
 
+// Rim point farthest from the centre along `dir` (and beyond it) among those whose offset along
+// `side` is `offset` within `tolerance`; nullptr if none.
+const PatchFrame::Rim* outermostOnLine(const PatchFrame& f, const Eigen::Vector3d& dir,
+                                       const Eigen::Vector3d& side, double offset,
+                                       double tolerance) {
+  const PatchFrame::Rim* best = nullptr;
+  double far = 0.0;
+  for (const auto& r : f.rim) {
+    const Eigen::Vector3d d = r.point - f.c;
+    if (std::abs(d.dot(side) - offset) > tolerance) continue;
+    if (d.dot(dir) > far) far = d.dot(dir), best = &r;
+  }
+  return best;
+}
+
 struct Ranker {
   const TablePlane& table;
   const GraspOptions& options;
@@ -114,16 +129,9 @@ void twoFingerEncompassing(const PatchFrame& f, const Ranker& rank, int patchInd
   for (int k = 0; k < o.axes; ++k) {
     const double a = M_PI * k / o.axes;
     const Eigen::Vector3d u = inPlane(f, a), v = f.n.cross(u);
-    const PatchFrame::Rim *plus = nullptr, *minus = nullptr;
-    double hi = -std::numeric_limits<double>::infinity(), lo = -hi;
-    for (const auto& r : f.rim) {
-      const Eigen::Vector3d d = r.point - f.c;
-      if (std::abs(d.dot(v)) > o.lateralTolerance) continue;
-      const double along = d.dot(u);
-      if (along > hi) hi = along, plus = &r;
-      if (along < lo) lo = along, minus = &r;
-    }
-    if (!plus || !minus || plus == minus || hi <= 0.0 || lo >= 0.0) continue;
+    const auto* plus = outermostOnLine(f, u, v, 0.0, o.lateralTolerance);
+    const auto* minus = outermostOnLine(f, -u, v, 0.0, o.lateralTolerance);
+    if (!plus || !minus) continue;
     CandidateGrasp g;
     g.type = GraspType::kS2Ega1;
     g.patch = patchIndex;
@@ -226,20 +234,9 @@ void threeFingerAcross(const PatchFrame& f, const Ranker& rank, int patchIndex,
     const double a = M_PI * k / o.axes;
     for (double sign : {1.0, -1.0}) {
       const Eigen::Vector3d u = sign * inPlane(f, a), v = f.n.cross(u);
-      // Extremal rim point along `dir` among those `offset` to the side (within tolerance).
-      auto extremal = [&](const Eigen::Vector3d& dir, double offset) {
-        const PatchFrame::Rim* best = nullptr;
-        double far = 0.0;
-        for (const auto& r : f.rim) {
-          const Eigen::Vector3d d = r.point - f.c;
-          if (std::abs(d.dot(v) - offset) > o.lateralTolerance) continue;
-          if (d.dot(dir) > far) far = d.dot(dir), best = &r;
-        }
-        return best;
-      };
-      const auto* thumb = extremal(u, 0.0);
-      const auto* left = extremal(-u, 0.5 * o.fingerGap);
-      const auto* right = extremal(-u, -0.5 * o.fingerGap);
+      const auto* thumb = outermostOnLine(f, u, v, 0.0, o.lateralTolerance);
+      const auto* left = outermostOnLine(f, -u, v, 0.5 * o.fingerGap, o.lateralTolerance);
+      const auto* right = outermostOnLine(f, -u, v, -0.5 * o.fingerGap, o.lateralTolerance);
       if (!thumb || !left || !right) continue;
       CandidateGrasp g;
       g.type = GraspType::kS3Ega1;

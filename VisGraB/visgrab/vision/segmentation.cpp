@@ -16,17 +16,30 @@ namespace {
 
 constexpr double kDeg = M_PI / 180.0;
 
-// Least-squares plane of points: (unit normal with z >= 0, offset); normal by PCA.
-std::pair<Eigen::Vector3d, double> planeFit(const std::vector<Eigen::Vector3d>& pts) {
+// Principal axes of points: their mean and the covariance's eigenvectors, smallest
+// eigenvalue first (column 0: the normal of the least-squares plane; column 2: the longest
+// extent).
+struct PrincipalAxes {
   Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-  for (const auto& p : pts) mean += p;
-  mean /= static_cast<double>(pts.size());
+  Eigen::Matrix3d axes = Eigen::Matrix3d::Identity();
+};
+
+PrincipalAxes principalAxes(const std::vector<Eigen::Vector3d>& pts) {
+  PrincipalAxes pa;
+  for (const auto& p : pts) pa.mean += p;
+  pa.mean /= static_cast<double>(pts.size());
   Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-  for (const auto& p : pts) cov += (p - mean) * (p - mean).transpose();
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
-  Eigen::Vector3d n = eig.eigenvectors().col(0);
+  for (const auto& p : pts) cov += (p - pa.mean) * (p - pa.mean).transpose();
+  pa.axes = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(cov).eigenvectors();
+  return pa;
+}
+
+// Least-squares plane of points: (unit normal with z >= 0, offset).
+std::pair<Eigen::Vector3d, double> planeFit(const std::vector<Eigen::Vector3d>& pts) {
+  const PrincipalAxes pa = principalAxes(pts);
+  Eigen::Vector3d n = pa.axes.col(0);
   if (n.z() < 0) n = -n;
-  return {n, n.dot(mean)};
+  return {n, n.dot(pa.mean)};
 }
 
 // Smallest union-find: parent links, path halving; the root is the smallest index.
@@ -328,14 +341,17 @@ SceneSegmentation segmentScene(OrganizedCloud cloud, const SegmentationOptions& 
     }
     regions.push_back(std::move(region));
   }
+  // Each region's plane (its cells in increasing order), normal towards the camera.
+  std::vector<PrincipalAxes> regionAxes;
   std::vector<Eigen::Vector3d> regionNormal;
-  for (const auto& region : regions) {
+  for (auto& region : regions) {
+    std::sort(region.begin(), region.end());
     std::vector<Eigen::Vector3d> pts;
+    pts.reserve(region.size());
     for (int i : region) pts.push_back(pc.point(i));
-    Eigen::Vector3d n = planeFit(pts).first;
-    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-    for (const auto& p : pts) mean += p / static_cast<double>(pts.size());
-    if (n.dot(pc.viewpoint - mean) < 0) n = -n;
+    regionAxes.push_back(principalAxes(pts));
+    Eigen::Vector3d n = regionAxes.back().axes.col(0);
+    if (n.dot(pc.viewpoint - regionAxes.back().mean) < 0) n = -n;
     regionNormal.push_back(n);
   }
 
@@ -455,29 +471,18 @@ SceneSegmentation segmentScene(OrganizedCloud cloud, const SegmentationOptions& 
   for (int r : order) {
     SurfacePatch patch;
     patch.cells = std::move(at(regions, r));
-    std::sort(patch.cells.begin(), patch.cells.end());
     patch.cluster = at(s.clusterOf, patch.cells.front());
+    patch.centroid = at(regionAxes, r).mean;
+    patch.normal = at(regionNormal, r);
+    patch.axis1 = at(regionAxes, r).axes.col(2);
+    patch.axis2 = patch.normal.cross(patch.axis1);
     for (int i : patch.cells) at(s.patchOf, i) = static_cast<int>(s.patches.size());
     s.patches.push_back(std::move(patch));
   }
 
-  // Patch geometry and boundaries.
+  // Patch boundaries.
   for (std::size_t id = 0; id < s.patches.size(); ++id) {
     SurfacePatch& patch = s.patches[id];
-    std::vector<Eigen::Vector3d> pts;
-    pts.reserve(patch.cells.size());
-    for (int i : patch.cells) pts.push_back(pc.point(i));
-    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-    for (const auto& p : pts) mean += p;
-    mean /= static_cast<double>(pts.size());
-    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-    for (const auto& p : pts) cov += (p - mean) * (p - mean).transpose();
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
-    patch.centroid = mean;
-    patch.normal = eig.eigenvectors().col(0);
-    if (patch.normal.dot(pc.viewpoint - mean) < 0) patch.normal = -patch.normal;
-    patch.axis1 = eig.eigenvectors().col(2);
-    patch.axis2 = patch.normal.cross(patch.axis1);
     for (int i : patch.cells) {
       bool onBoundary = false, objectEnds = false;
       for (const auto& d : four) {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <opencv2/calib3d.hpp>
+#include <opencv2/core/eigen.hpp>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
 #include <string>
@@ -12,10 +13,8 @@ namespace visgrab::vision {
 namespace {
 
 cv::Mat toCv(const Eigen::MatrixXd& m) {
-  cv::Mat out(static_cast<int>(m.rows()), static_cast<int>(m.cols()), CV_64F);
-  for (int r = 0; r < out.rows; ++r) {
-    for (int c = 0; c < out.cols; ++c) out.at<double>(r, c) = m(r, c);
-  }
+  cv::Mat out;
+  cv::eigen2cv(m, out);
   return out;
 }
 
