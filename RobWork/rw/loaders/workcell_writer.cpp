@@ -589,6 +589,9 @@ void Renderer::writeModel(std::string_view tag, const GeometryInstance& instance
   if (visualOnly) attributes.emplace_back("colmodel", "Disabled");
   xml_.open(tag, attributes);
   writeTransform(instance.X_frame_geometry);
+  if (tag == "Drawable" && instance.color != GeometryInstance{}.color) {
+    xml_.text("RGB", {}, formatTriple(instance.color[0], instance.color[1], instance.color[2]));
+  }
   writeGeometry(*instance.geometry);
   xml_.close();
 }

@@ -13,6 +13,7 @@
 
 #include "rw/kinematics/frame_tree.hpp"
 #include "rw/loaders/workcell_loader.hpp"
+#include "rw/loaders/workcell_writer.hpp"
 #include "rw/math/dh.hpp"
 #include "rw/math/rpy.hpp"
 #include "support/test_support.hpp"
@@ -265,6 +266,43 @@ TEST(WorkCellLoader, UnitsFollowRobWorkConventions) {
   expected.translation() << 0.1, 0.2, 0.3;
   const FrameId base = wc->findFrame("D.Base");
   EXPECT_TRANSFORM_NEAR(wc->frames().frame(base).movableTransform(state), expected, 1e-12);
+}
+
+TEST(WorkCellLoader, DrawableColoursFromRgb) {
+  // RobWork's <RGB>r g b [a]</RGB> in a Drawable; the alpha is read and reported as not drawn; a
+  // CollisionModel is not drawn, so its colour is ignored with a warning.
+  TempDir dir;
+  std::vector<Diagnostic> warnings;
+  const auto wc = loadText(dir, R"(<WorkCell name="w">
+    <Frame name="F">
+      <Drawable name="Red"><RPY>0 0 0</RPY><Pos>0 0 0</Pos><RGB>1 0 0.25</RGB>
+        <Box x="1" y="1" z="1"/></Drawable>
+      <Drawable name="Plain"><Sphere radius="0.1"/></Drawable>
+      <Drawable name="Glass" colmodel="Disabled"><RGB>0 0.5 1 0.3</RGB><Sphere radius="0.1"/>
+      </Drawable>
+      <CollisionModel name="Hull"><RGB>0 1 0</RGB><Sphere radius="0.2"/></CollisionModel>
+    </Frame>
+  </WorkCell>)",
+                           &warnings);
+  ASSERT_NE(wc, nullptr);
+  const auto* object = wc->findObject(wc->findFrame("F"));
+  ASSERT_NE(object, nullptr);
+  ASSERT_EQ(object->visual.size(), 3u);
+  EXPECT_EQ(object->visual[0].color, (std::array<float, 3>{1.0f, 0.0f, 0.25f}));
+  EXPECT_EQ(object->visual[1].color, rw::models::GeometryInstance{}.color);
+  EXPECT_EQ(object->visual[2].color, (std::array<float, 3>{0.0f, 0.5f, 1.0f}));
+  EXPECT_TRUE(mentions(warnings, "transparency (alpha 0.3"));
+  EXPECT_TRUE(mentions(warnings, "a CollisionModel is not drawn"));
+  // The writer keeps the colours: written and read again, the same.
+  const auto written = dir.path() / "written.wc.xml";
+  rw::loaders::saveWorkCell(*wc, written);
+  const auto again = rw::loaders::loadWorkCell(written);
+  const auto* o2 = again->findObject(again->findFrame("F"));
+  ASSERT_NE(o2, nullptr);
+  ASSERT_EQ(o2->visual.size(), 3u);
+  EXPECT_EQ(o2->visual[0].color, object->visual[0].color);
+  EXPECT_EQ(o2->visual[1].color, object->visual[1].color);
+  EXPECT_EQ(o2->visual[2].color, object->visual[2].color);
 }
 
 TEST(WorkCellLoader, DhJointsUseTheirOwnTypeEachTime) {

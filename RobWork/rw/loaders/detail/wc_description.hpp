@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -50,6 +51,8 @@ struct ModelDesc {
   bool collision = true;
   /// Pose of the geometry in the frame.
   rw::math::Transform3D transform = rw::math::Transform3D::Identity();
+  /// Colour from <RGB> (Drawable only); nullopt: the default grey.
+  std::optional<std::array<float, 3>> color;
   /// The shapes.
   std::vector<GeometryDesc> geometries;
 };

@@ -32,23 +32,6 @@ std::string formatNumber(double value) {
   return os.str();
 }
 
-// Reads the number list of RPY/Pos/Transform/Q text; `count` < 0 accepts any count.
-std::optional<std::vector<double>> readNumberText(const XmlElement& element, int count,
-                                                  DiagnosticSink& sink) {
-  std::vector<double> values;
-  const std::string problem = parseNumberList(element.text, values);
-  if (!problem.empty()) {
-    sink.error(element.location, element.describe() + ": " + problem);
-    return std::nullopt;
-  }
-  if (count >= 0 && static_cast<int>(values.size()) != count) {
-    sink.error(element.location, element.describe() + ": expected " + std::to_string(count) +
-                                     " numbers, got " + std::to_string(values.size()));
-    return std::nullopt;
-  }
-  return values;
-}
-
 // The nearest rotation to R (by SVD), with the largest entry-wise correction made.
 std::pair<rw::math::Rotation3D, double> nearestRotation(const rw::math::Rotation3D& R) {
   const Eigen::JacobiSVD<rw::math::Rotation3D> svd(R, Eigen::ComputeFullU | Eigen::ComputeFullV);
@@ -138,6 +121,22 @@ constexpr std::array<NumberAttributes, 10> kNumberAttributes{{
 }};
 
 }  // namespace
+
+std::optional<std::vector<double>> readNumberText(const XmlElement& element, int count,
+                                                  DiagnosticSink& sink) {
+  std::vector<double> values;
+  const std::string problem = parseNumberList(element.text, values);
+  if (!problem.empty()) {
+    sink.error(element.location, element.describe() + ": " + problem);
+    return std::nullopt;
+  }
+  if (count >= 0 && static_cast<int>(values.size()) != count) {
+    sink.error(element.location, element.describe() + ": expected " + std::to_string(count) +
+                                     " numbers, got " + std::to_string(values.size()));
+    return std::nullopt;
+  }
+  return values;
+}
 
 Origin originOf(const XmlElement& element) { return Origin{element.location, element.describe()}; }
 

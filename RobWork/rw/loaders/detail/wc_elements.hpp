@@ -3,6 +3,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "rw/loaders/detail/diagnostic_sink.hpp"
 #include "rw/loaders/detail/wc_description.hpp"
@@ -18,6 +19,11 @@ Origin originOf(const XmlElement& element);
 /// A required number attribute (finite); reports and returns nullopt if missing or bad.
 std::optional<double> readNumberAttribute(const XmlElement& element, std::string_view name,
                                           DiagnosticSink& sink);
+
+/// The numbers of an element's text (RPY, Pos, Transform, Q, RGB); `count` < 0 accepts any
+/// count. Reports and returns nullopt for a bad number or a wrong count.
+std::optional<std::vector<double>> readNumberText(const XmlElement& element, int count,
+                                                  DiagnosticSink& sink);
 
 /// Collects the RPY/Pos/Transform children of one element and makes the transform.
 class TransformReader {

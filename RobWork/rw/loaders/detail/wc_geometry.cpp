@@ -100,6 +100,7 @@ rw::models::GeometryInstance instanceOf(const ModelDesc& model,
   instance.name = model.name;
   instance.X_frame_geometry = model.transform;
   instance.geometry = std::move(geometry);
+  if (model.color) instance.color = *model.color;
   return instance;
 }
 

@@ -33,7 +33,7 @@ constexpr const char* kJointChildren =
 constexpr const char* kDhJointChildren =
     "PosLimit, VelLimit, AccLimit, Depend, Property, Drawable, CollisionModel";
 constexpr const char* kModelChildren =
-    "RPY, Pos, Transform, Box, Sphere, Cylinder, Tube, Cone, Plane, Custom, Polytope";
+    "RPY, Pos, Transform, RGB, Box, Sphere, Cylinder, Tube, Cone, Plane, Custom, Polytope";
 
 bool isLimit(const std::string& name) {
   return name == "PosLimit" || name == "VelLimit" || name == "AccLimit";
@@ -67,6 +67,7 @@ class DescriptionParser {
                        TransformReader& transform);
   void attach(const XmlElement& element, FrameDesc& frame);
   bool readFrameAttributes(const XmlElement& element, FrameDesc& frame);
+  bool readColor(const XmlElement& model, const XmlElement& rgb, ModelDesc& desc);
   void parseModel(const XmlElement& element, const std::string& ownerFrame);
   void parseDeviceLimit(const XmlElement& element);
   void addSetup(const XmlElement& element);
@@ -286,6 +287,10 @@ void DescriptionParser::parseModel(const XmlElement& element, const std::string&
   bool ok = true;
   for (const XmlElement& child : element.children) {
     if (transform.take(element, child, sink_)) continue;
+    if (child.name == "RGB") {
+      if (!readColor(element, child, model)) ok = false;
+      continue;
+    }
     if (isGeometryElement(child.name)) {
       auto g = readGeometry(child, sink_);
       if (g) {
@@ -301,6 +306,42 @@ void DescriptionParser::parseModel(const XmlElement& element, const std::string&
   if (!X || !ok) return;
   model.transform = *X;
   desc_.models.push_back(std::move(model));
+}
+
+bool DescriptionParser::readColor(const XmlElement& model, const XmlElement& rgb, ModelDesc& desc) {
+  if (desc.color) {
+    sink_.error(rgb.location, model.describe() + ": more than one <RGB>");
+    return false;
+  }
+  const auto values = readNumberText(rgb, -1, sink_);
+  if (!values) return false;
+  if (values->size() != 3 && values->size() != 4) {
+    sink_.error(rgb.location, rgb.describe() +
+                                  ": expected 3 numbers (red green blue) or 4 (and "
+                                  "alpha), got " +
+                                  std::to_string(values->size()));
+    return false;
+  }
+  for (const double v : *values) {
+    if (!(v >= 0.0 && v <= 1.0)) {
+      sink_.error(rgb.location, rgb.describe() + ": colour components must be in [0, 1]");
+      return false;
+    }
+  }
+  if (model.name == "CollisionModel") {
+    sink_.warning(rgb.location, rgb.describe() +
+                                    ": a CollisionModel is not drawn; the colour "
+                                    "is ignored");
+    return true;
+  }
+  if (values->size() == 4 && (*values)[3] < 1.0) {
+    sink_.warning(rgb.location, rgb.describe() + ": transparency (alpha " +
+                                    std::to_string((*values)[3]) + ") is not drawn");
+  }
+  desc.color =
+      std::array<float, 3>{static_cast<float>((*values)[0]), static_cast<float>((*values)[1]),
+                           static_cast<float>((*values)[2])};
+  return true;
 }
 
 bool DescriptionParser::readFrameAttributes(const XmlElement& element, FrameDesc& frame) {
