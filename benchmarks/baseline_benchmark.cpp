@@ -15,9 +15,8 @@
 #include <utility>
 #include <vector>
 
+#include "bench_database.hpp"
 #include "visgrab/database/database.hpp"
-#include "visgrab/database/scene_set.hpp"
-#include "visgrab/generator/generator.hpp"
 #include "visgrab/vision/baseline.hpp"
 
 namespace {
@@ -31,47 +30,8 @@ using visgrab::vision::BaselineOptions;
 constexpr std::array<const char*, 2> kSceneIds = {"plain/single/cocacola/01",
                                                   "textured/single/cocacola/01"};
 
-// The database the benchmarks read: $VISGRAB_BENCH_DB if it holds both scenes, else a generated
-// one in a temporary folder, removed at exit.
-class BenchDatabase {
- public:
-  BenchDatabase() {
-    if (const char* env = std::getenv("VISGRAB_BENCH_DB"); env != nullptr && *env != '\0') {
-      db_.emplace(Database::open(env));
-      if (db_->contains(kSceneIds[0]) && db_->contains(kSceneIds[1])) return;
-      std::fprintf(stderr, "%s lacks %s or %s; generating them\n", env, kSceneIds[0], kSceneIds[1]);
-      db_.reset();
-    }
-    temp_ = fs::temp_directory_path() / ("visgrab-baseline-bench-" + std::to_string(::getpid()));
-    visgrab::generator::GeneratorOptions options;
-    options.out = temp_;
-    const fs::path scenes = fs::path(VISGRAB_SOURCE_DIR) / "scenes";
-    options.objectSpec = scenes / "objects/objects.xml";
-    options.handFolder = scenes / "hands/sdh";
-    options.materials = scenes / "materials.xml";
-    options.threads = 2;
-    std::vector<visgrab::database::SceneConditions> conditions;
-    for (const char* id : kSceneIds) conditions.push_back(*visgrab::database::parseSceneId(id));
-    const auto report = visgrab::generator::generateDatabase(conditions, options);
-    if (!report.failures.empty()) throw std::runtime_error(report.failures.front());
-    db_.emplace(Database::open(temp_));
-  }
-  ~BenchDatabase() {
-    std::error_code ignored;
-    if (!temp_.empty()) fs::remove_all(temp_, ignored);
-  }
-  BenchDatabase(const BenchDatabase&) = delete;
-  BenchDatabase& operator=(const BenchDatabase&) = delete;
-
-  const Database& db() const { return *db_; }
-
- private:
-  fs::path temp_;
-  std::optional<Database> db_;
-};
-
 const Database& benchDatabase() {
-  static const BenchDatabase database;
+  static const visgrab::bench::BenchDatabase database({kSceneIds[0], kSceneIds[1]});
   return database.db();
 }
 

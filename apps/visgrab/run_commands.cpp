@@ -16,6 +16,7 @@
 #include "visgrab/generator/generator.hpp"
 #include "visgrab/results/results_file.hpp"
 #include "visgrab/runner/benchmark_runner.hpp"
+#include "visgrab/view/report_pictures.hpp"
 
 namespace visgrab::app {
 
@@ -74,9 +75,38 @@ int runRun(const std::vector<std::string>& args) {
   return 0;
 }
 
+// The report's pictures (a few trials per method and condition, simulated again and drawn),
+// unless --no-pictures.
+analysis::ShowcaseDrawer pictureDrawer(const Arguments& a, int threads, bool quiet) {
+  if (a.flag("no-pictures")) return {};
+  view::ReportPictureOptions options;
+  options.threads = threads;
+  if (!quiet) {
+    options.progress = [](int done, int total) {
+      std::fprintf(stderr, "\rreport pictures: %d/%d   ", done, total);
+      if (done == total) std::fputc('\n', stderr);
+      std::fflush(stderr);
+    };
+  }
+  return [options, quiet](std::vector<analysis::Showcase>& showcases,
+                          const std::vector<results::RunResults>& runs, const fs::path& dir) {
+    view::drawShowcases(showcases, runs, dir, options);
+    // One line per distinct reason a picture is missing.
+    std::vector<std::string> reasons;
+    for (const auto& s : showcases) {
+      if (s.image.empty() && std::find(reasons.begin(), reasons.end(), s.note) == reasons.end()) {
+        reasons.push_back(s.note);
+      }
+    }
+    if (!quiet) {
+      for (const auto& r : reasons) std::cerr << "report pictures: not drawn: " << r << "\n";
+    }
+  };
+}
+
 int runAnalyze(const std::vector<std::string>& args) {
-  Arguments a(args, {});
-  a.rejectUnknown({"out"});
+  Arguments a(args, {"no-pictures", "quiet"});
+  a.rejectUnknown({"out", "no-pictures", "threads", "quiet"});
   const auto out = a.option("out");
   if (!out) throw UsageError("--out REPORT is required");
   if (a.positionals().empty()) throw UsageError("at least one RESULTS folder is required");
@@ -86,7 +116,7 @@ int runAnalyze(const std::vector<std::string>& args) {
     runs.push_back(results::readResults(dir, &warnings));
     for (const auto& w : warnings) std::cerr << w.format() << "\n";
   }
-  analysis::writeReport(runs, *out);
+  analysis::writeReport(runs, *out, {}, pictureDrawer(a, threadsOption(a), a.flag("quiet")));
   std::cout << "report in " << *out << " (report.html, report.md, CSV tables)\n";
   return 0;
 }
@@ -128,8 +158,9 @@ void ensureDatabase(const fs::path& dir, const std::string& filter, int threads,
 }
 
 int runBenchmarkCommand(const std::vector<std::string>& args) {
-  Arguments a(args, {"resume", "quiet"});
-  a.rejectUnknown({"db", "grasps", "out", "threads", "resume", "hand", "scenes", "data", "quiet"});
+  Arguments a(args, {"resume", "quiet", "no-pictures"});
+  a.rejectUnknown({"db", "grasps", "out", "threads", "resume", "hand", "scenes", "data", "quiet",
+                   "no-pictures"});
   a.requirePositionals(0, "no positional arguments (grasp files go after --grasps)");
   const auto out = a.option("out");
   if (!out) throw UsageError("--out DIR is required");
@@ -164,7 +195,8 @@ int runBenchmarkCommand(const std::vector<std::string>& args) {
   std::cout << summary.trials << " trials run, " << summary.resumed << " resumed, "
             << summary.rejected.size() << " grasps rejected\n";
   const fs::path reportDir = fs::path(*out) / "report";
-  analysis::writeReport({results::readResults(options.out)}, reportDir);
+  analysis::writeReport({results::readResults(options.out)}, reportDir, {},
+                        pictureDrawer(a, threads, quiet));
   std::cout << "report in " << (reportDir / "report.html").string() << "\n";
   return 0;
 }
@@ -181,14 +213,15 @@ std::vector<Command> runCommands() {
        guarded(runRun)},
       {"benchmark", "",
        "--out DIR [--grasps FILE|DIR] [--db DIR] [--threads N] [--resume] [--hand GRASP.xml] "
-       "[--scenes FILTER] [--quiet]",
+       "[--scenes FILTER] [--no-pictures] [--quiet]",
        "Run and analyze in one: generate the database (default ./database) if it is missing, make "
        "the baseline's grasps (DIR/grasps/baseline.csv) unless --grasps gives a method's, run "
-       "them (DIR/results), write the report (DIR/report/report.html).",
+       "them (DIR/results), write the report with its pictures (DIR/report/report.html).",
        guarded(runBenchmarkCommand)},
-      {"analyze", "", "RESULTS... --out REPORT",
+      {"analyze", "", "RESULTS... --out REPORT [--threads N] [--no-pictures] [--quiet]",
        "The paper's five analyses of one or more result folders (methods side by side): CSV "
-       "tables, report.md, report.html with SVG plots.",
+       "tables, report.md, report.html with SVG plots and pictures of the best, a typical and a "
+       "failed grasp per method and condition (REPORT/images; --no-pictures leaves them out).",
        guarded(runAnalyze)},
   };
 }

@@ -121,11 +121,12 @@ void checkGrasp(const GraspParameters& g, int dof) {
 class TrialRun {
  public:
   TrialRun(const dynamics::DynamicWorkCell& dwc, const GraspTrialSetup& setup,
-           const detail::TrialData& data, const GraspParameters& grasp)
+           const detail::TrialData& data, const GraspParameters& grasp, const Observer& observer)
       : dwc_(dwc),
         setup_(setup),
         data_(data),
         grasp_(grasp),
+        observer_(observer),
         sim_(dwc, data.detector, setup.simulator),
         pd_(data.controller->p, data.controller->d),
         dt_(sim_.options().timeStep) {}
@@ -151,6 +152,7 @@ class TrialRun {
   const GraspTrialSetup& setup_;
   const detail::TrialData& data_;
   const GraspParameters& grasp_;
+  const Observer& observer_;
   Simulator sim_;
   control::PDController pd_;
   double dt_;
@@ -195,7 +197,7 @@ bool TrialRun::advance(std::string_view phase) {
                sim_.failureDetail());
     return false;
   }
-  if (setup_.observer) setup_.observer(sim_, phase);
+  if (observer_) observer_(sim_, phase);
   if (sim_.time() > setup_.timeLimit) {
     finish(GraspOutcome::kTimeout,
            "simulated time passed the limit of " + std::to_string(setup_.timeLimit) + " s");
@@ -285,18 +287,26 @@ void TrialRun::evaluate(const Transform3D& X_h0, const Transform3D& X_o0) {
       "object drift " + std::to_string(drift) + " m during a lift of " + std::to_string(h) + " m");
 }
 
-GraspTrialResult TrialRun::run(const rw::kinematics::State& initial) {
-  const auto& wc = dwc_.workcell();
-  const auto& tree = wc.frames();
-  const auto& device = *dwc_.devices()[static_cast<std::size_t>(data_.hand)].device;
+/// `initial` with the hand at qOpen and its base placed so that the TCP is at X_W_tcp.
+rw::kinematics::State placeHand(const dynamics::DynamicWorkCell& dwc, const detail::TrialData& data,
+                                const GraspParameters& grasp,
+                                const rw::kinematics::State& initial) {
+  const auto& tree = dwc.workcell().frames();
+  const auto& device = *dwc.devices()[static_cast<std::size_t>(data.hand)].device;
   rw::kinematics::State state = initial;
-  device.setQ(grasp_.qOpen, state);
+  device.setQ(grasp.qOpen, state);
   const Transform3D X_tcp_base =
-      rw::kinematics::relativeTransform(tree, state, data_.tcp, data_.baseFrame);
-  const Transform3D X_W_base = grasp_.X_W_tcp * X_tcp_base;
+      rw::kinematics::relativeTransform(tree, state, data.tcp, data.baseFrame);
+  const Transform3D X_W_base = grasp.X_W_tcp * X_tcp_base;
   const Transform3D X_W_parent =
-      rw::kinematics::worldTransform(tree, state, state.parentOf(data_.baseFrame));
-  tree.frame(data_.baseFrame).setMovableTransform(state, X_W_parent.inverse() * X_W_base);
+      rw::kinematics::worldTransform(tree, state, state.parentOf(data.baseFrame));
+  tree.frame(data.baseFrame).setMovableTransform(state, X_W_parent.inverse() * X_W_base);
+  return state;
+}
+
+GraspTrialResult TrialRun::run(const rw::kinematics::State& initial) {
+  const auto& device = *dwc_.devices()[static_cast<std::size_t>(data_.hand)].device;
+  const rw::kinematics::State state = placeHand(dwc_, data_, grasp_, initial);
   result_.qGrasp = grasp_.qOpen;
   if (inCollision(state)) return result_;
 
@@ -341,13 +351,30 @@ GraspTrial::GraspTrial(const dynamics::DynamicWorkCell& dwc, GraspTrialSetup set
 
 int GraspTrial::handDevice() const { return data_->hand; }
 
+bool GraspTrial::isHandBody(int body) const {
+  return body >= 0 && static_cast<std::size_t>(body) < data_->isHandBody.size() &&
+         data_->isHandBody[static_cast<std::size_t>(body)];
+}
+
+rw::kinematics::State GraspTrial::placedState(const GraspParameters& grasp,
+                                              const rw::kinematics::State& initial) const {
+  const auto& device = *dwc_->devices()[static_cast<std::size_t>(data_->hand)].device;
+  checkGrasp(grasp, device.dof());
+  return placeHand(*dwc_, *data_, grasp, initial);
+}
+
 FrameId GraspTrial::tcpFrame() const { return data_->tcp; }
 
 GraspTrialResult GraspTrial::run(const GraspParameters& grasp,
                                  const rw::kinematics::State& initial) const {
+  return run(grasp, initial, setup_.observer);
+}
+
+GraspTrialResult GraspTrial::run(const GraspParameters& grasp, const rw::kinematics::State& initial,
+                                 const Observer& observer) const {
   const auto& device = *dwc_->devices()[static_cast<std::size_t>(data_->hand)].device;
   checkGrasp(grasp, device.dof());
-  TrialRun trial(*dwc_, setup_, *data_, grasp);
+  TrialRun trial(*dwc_, setup_, *data_, grasp, observer);
   return trial.run(initial);
 }
 

@@ -114,6 +114,9 @@ struct GraspTrialSetup {
   std::function<void(const Simulator&, std::string_view phase)> observer;
 };
 
+/// See GraspTrialSetup::observer.
+using Observer = std::function<void(const Simulator&, std::string_view phase)>;
+
 /// A contact on the grasped object after lifting, in the object's frame.
 struct TrialContact {
   /// Position.
@@ -182,10 +185,19 @@ class GraspTrial {
   /// @throws std::invalid_argument if qOpen, qClosed or a non-empty tauMax does not have one
   /// value per DOF of the hand, or tauMax has a negative entry.
   GraspTrialResult run(const GraspParameters& grasp, const rw::kinematics::State& initial) const;
+  /// Same, calling `observer` instead of the setup's (e.g. to record one trial's trajectory).
+  GraspTrialResult run(const GraspParameters& grasp, const rw::kinematics::State& initial,
+                       const Observer& observer) const;
   /// The setup in use.
   const GraspTrialSetup& setup() const { return setup_; }
+  /// The state a trial starts from (step 1): `initial` with the hand at qOpen and its base
+  /// placed so that the TCP is at X_W_tcp. @throws std::invalid_argument like run().
+  rw::kinematics::State placedState(const GraspParameters& grasp,
+                                    const rw::kinematics::State& initial) const;
   /// Index of the hand in DynamicWorkCell::devices().
   int handDevice() const;
+  /// True if body `body` (index in DynamicWorkCell::bodies()) is the hand's base or a link.
+  bool isHandBody(int body) const;
   /// The TCP frame used.
   rw::kinematics::FrameId tcpFrame() const;
 

@@ -293,11 +293,42 @@ constexpr std::string_view kStyle =
     ".ptitle{font-size:12px;font-weight:bold}"
     "small{color:#666}"
     ".paper{color:#555;background:#f4f4f4;font-style:italic}"
-    ".note{max-width:50em}";
+    ".note{max-width:50em}"
+    ".picture{margin:0.5em 0 1.2em}.picture img{max-width:100%;border:1px solid #ccc}"
+    ".picture figcaption{font-size:13px;color:#444}";
+
+/// The pictures section (only showcases with a picture).
+std::string showcasesHtml(const Analysis& a, const std::vector<Showcase>& showcases) {
+  std::string html;
+  std::size_t column = showcases.size();
+  std::string group;
+  for (const Showcase& s : showcases) {
+    if (s.image.empty()) continue;
+    if (html.empty()) {
+      html =
+          "<h2>Pictures: best, typical and failed grasps</h2>\n<p>Each trial simulated again and "
+          "drawn at its three moments: placed, fingers closed, after lifting (contact forces as "
+          "orange arrows). <code>visgrab render --results</code> draws any other.</p>\n";
+    }
+    if (s.column != column) {
+      column = s.column;
+      group.clear();
+      html += "<h3>" + escapeHtml(a.columns[column].label) + "</h3>\n";
+    }
+    if (s.groupKey != group) {
+      group = s.groupKey;
+      html += "<h4>" + escapeHtml(s.groupName) + "</h4>\n";
+    }
+    html += "<figure class=\"picture\"><img src=\"" + escapeHtml(s.image) + "\" alt=\"" +
+            escapeHtml(showcaseCaption(s)) + "\"/><figcaption>" + escapeHtml(showcaseCaption(s)) +
+            (s.note.empty() ? "" : " (" + escapeHtml(s.note) + ")") + "</figcaption></figure>\n";
+  }
+  return html;
+}
 
 }  // namespace
 
-std::string htmlReport(const Analysis& a) {
+std::string htmlReport(const Analysis& a, const std::vector<Showcase>& showcases) {
   std::string html =
       "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\"/>\n"
       "<title>VisGraB results</title>\n<style>" +
@@ -368,7 +399,7 @@ std::string htmlReport(const Analysis& a) {
             "object held.</p>\n" +
             objectTables(a, t);
   }
-  return html + "</body>\n</html>\n";
+  return html + showcasesHtml(a, showcases) + "</body>\n</html>\n";
 }
 
 }  // namespace visgrab::analysis

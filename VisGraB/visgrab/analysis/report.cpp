@@ -136,6 +136,32 @@ std::string markdownTables12(const Analysis& a) {
   return md;
 }
 
+/// The pictures section of the Markdown report (only showcases with a picture).
+std::string showcasesMarkdown(const Analysis& a, const std::vector<Showcase>& showcases) {
+  std::string md;
+  std::size_t column = showcases.size();
+  std::string group;
+  for (const Showcase& s : showcases) {
+    if (s.image.empty()) continue;
+    if (md.empty()) {
+      md = "\n## Pictures: best, typical and failed grasps\n\nEach trial simulated again and "
+           "drawn at its three moments: placed, fingers closed, after lifting (contact forces "
+           "as orange arrows).\n";
+    }
+    if (s.column != column) {
+      column = s.column;
+      group.clear();
+      md += "\n### " + a.columns[column].label + "\n";
+    }
+    if (s.groupKey != group) {
+      group = s.groupKey;
+      md += "\n#### " + s.groupName + "\n\n";
+    }
+    md += "![" + showcaseCaption(s) + "](" + s.image + ")\n\n" + showcaseCaption(s) + "\n\n";
+  }
+  return md;
+}
+
 }  // namespace
 
 std::string_view outcomeColour(GraspOutcome outcome) {
@@ -233,7 +259,7 @@ void writeCsvTables(const Analysis& a, const std::filesystem::path& outDir) {
   database::writeFileAtomically(outDir / "objects.csv", objects);
 }
 
-std::string markdownReport(const Analysis& a) {
+std::string markdownReport(const Analysis& a, const std::vector<Showcase>& showcases) {
   using detail::fixed;
   using detail::percent;
   std::string md = "# VisGraB results\n\n";
@@ -322,15 +348,21 @@ std::string markdownReport(const Analysis& a) {
     }
     md += "\nPairs: total (first object / second object held).\n";
   }
+  md += showcasesMarkdown(a, showcases);
   return md;
 }
 
 void writeReport(const std::vector<results::RunResults>& runs, const std::filesystem::path& outDir,
-                 const AnalysisOptions& options) {
+                 const AnalysisOptions& options, const ShowcaseDrawer& drawer) {
   const Analysis analysis = analyze(runs, options);
   writeCsvTables(analysis, outDir);
-  database::writeFileAtomically(outDir / "report.md", markdownReport(analysis));
-  database::writeFileAtomically(outDir / "report.html", htmlReport(analysis));
+  std::vector<Showcase> showcases;
+  if (drawer) {
+    showcases = chooseShowcases(analysis, runs);
+    drawer(showcases, runs, outDir);
+  }
+  database::writeFileAtomically(outDir / "report.md", markdownReport(analysis, showcases));
+  database::writeFileAtomically(outDir / "report.html", htmlReport(analysis, showcases));
 }
 
 }  // namespace visgrab::analysis

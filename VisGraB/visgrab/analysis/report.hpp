@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "visgrab/analysis/analysis.hpp"
+#include "visgrab/analysis/showcase.hpp"
 #include "visgrab/results/trial_record.hpp"
 
 namespace visgrab::analysis {
@@ -27,15 +28,18 @@ std::string escapeHtml(std::string_view text);
 void writeCsvTables(const Analysis& analysis, const std::filesystem::path& outDir);
 
 /// The report as Markdown (tables of all five analyses, definitions in short; Tables 1 and 2 with
-/// the paper's values beside the methods named like its grasp types, and the note on comparing).
-std::string markdownReport(const Analysis& analysis);
+/// the paper's values beside the methods named like its grasp types, and the note on comparing),
+/// then the showcases that have a picture, as image links.
+std::string markdownReport(const Analysis& analysis, const std::vector<Showcase>& showcases = {});
 
-/// The report as one self-contained HTML page (inline SVG plots, no external resources).
-std::string htmlReport(const Analysis& analysis);
+/// The report as one HTML page (inline SVG plots); the showcases' pictures, if any, are the only
+/// files it refers to (images/ next to it).
+std::string htmlReport(const Analysis& analysis, const std::vector<Showcase>& showcases = {});
 
-/// Analyses `runs` and writes the CSV tables, report.md and report.html into `outDir`.
+/// Analyses `runs` and writes the CSV tables, report.md and report.html into `outDir`. With a
+/// `drawer`, the showcases (chooseShowcases) are drawn first and shown in both reports.
 /// @throws std::runtime_error if a file cannot be written, std::invalid_argument for bad options.
 void writeReport(const std::vector<results::RunResults>& runs, const std::filesystem::path& outDir,
-                 const AnalysisOptions& options = {});
+                 const AnalysisOptions& options = {}, const ShowcaseDrawer& drawer = {});
 
 }  // namespace visgrab::analysis

@@ -67,6 +67,18 @@ struct ShadowMap {
 
 Eigen::Matrix4f toFloat(const Eigen::Matrix4d& m) { return m.cast<float>(); }
 
+/// World from mesh coordinates: X_WM * diag(scale).
+Eigen::Matrix4d modelMatrix(const SceneItem& item) {
+  Eigen::Matrix4d m = item.X_WM.matrix();
+  m.topLeftCorner<3, 3>() *= item.scale.asDiagonal();
+  return m;
+}
+
+/// Centre of the mesh's bounding sphere in the world.
+Eigen::Vector3d worldCentre(const SceneItem& item, const GpuMesh& mesh) {
+  return item.X_WM * item.scale.cwiseProduct(mesh.centre_M);
+}
+
 float encodeSrgb(float c) {
   c = std::clamp(c, 0.0f, 1.0f);
   return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
@@ -324,7 +336,8 @@ std::vector<std::size_t> GlRenderer::State::drawOrder(const Scene& scene,
   for (std::size_t i = 0; i < scene.items.size(); ++i) {
     const SceneItem& item = scene.items[i];
     const GpuMesh& mesh = meshes[item.mesh.index];
-    keyed.emplace_back((X_CW * (item.X_WM * mesh.centre_M)).z() - mesh.radius, i);
+    keyed.emplace_back((X_CW * worldCentre(item, mesh)).z() - mesh.radius * item.scale.maxCoeff(),
+                       i);
   }
   std::stable_sort(keyed.begin(), keyed.end(),
                    [](const auto& a, const auto& b) { return a.first < b.first; });
@@ -337,6 +350,9 @@ std::vector<std::size_t> GlRenderer::State::drawOrder(const Scene& scene,
 void GlRenderer::State::validate(const Scene& scene, const PinholeCamera& camera) const {
   camera.validate();
   for (const SceneItem& item : scene.items) {
+    if (!(item.scale.array() > 0.0).all() || !item.scale.allFinite()) {
+      throw std::invalid_argument("GlRenderer: an item's scale must be positive and finite");
+    }
     if (item.mesh.index >= meshes.size()) {
       throw std::invalid_argument("GlRenderer: unknown mesh handle " +
                                   std::to_string(item.mesh.index) + " (" +
@@ -423,15 +439,17 @@ Eigen::Matrix4d GlRenderer::State::renderShadowMap(const Scene& scene, const Lig
   Eigen::AlignedBox3d box;
   for (const SceneItem& item : scene.items) {
     const GpuMesh& mesh = meshes[item.mesh.index];
-    const Eigen::Vector3d c = item.X_WM * mesh.centre_M;
-    box.extend(c - Eigen::Vector3d::Constant(mesh.radius));
-    box.extend(c + Eigen::Vector3d::Constant(mesh.radius));
+    const Eigen::Vector3d c = worldCentre(item, mesh);
+    const double r = mesh.radius * item.scale.maxCoeff();
+    box.extend(c - Eigen::Vector3d::Constant(r));
+    box.extend(c + Eigen::Vector3d::Constant(r));
   }
   const Eigen::Vector3d centre = box.center();
   double radius = 1e-3;
   for (const SceneItem& item : scene.items) {
     const GpuMesh& mesh = meshes[item.mesh.index];
-    radius = std::max(radius, (item.X_WM * mesh.centre_M - centre).norm() + mesh.radius);
+    radius = std::max(
+        radius, (worldCentre(item, mesh) - centre).norm() + mesh.radius * item.scale.maxCoeff());
   }
   // Light frame L: z along the light's travel, origin 2 radii before the centre; orthographic
   // clip x, y in [-r, r], z in [r, 3r].
@@ -461,7 +479,7 @@ Eigen::Matrix4d GlRenderer::State::renderShadowMap(const Scene& scene, const Lig
   glUseProgram(shadowProgram);
   for (const SceneItem& item : scene.items) {
     const GpuMesh& mesh = meshes[item.mesh.index];
-    const Eigen::Matrix4f m = toFloat(clipFromWorld * item.X_WM.matrix());
+    const Eigen::Matrix4f m = toFloat(clipFromWorld * modelMatrix(item));
     glUniformMatrix4fv(shadowLightClipFromModel, 1, GL_FALSE, m.data());
     glBindVertexArray(mesh.vao);
     glDrawElements(GL_TRIANGLES, mesh.indexCount, GL_UNSIGNED_INT, nullptr);
@@ -541,11 +559,13 @@ void GlRenderer::State::drawShaded(const Scene& scene, const PinholeCamera& came
   for (std::size_t index : drawOrder(scene, camera.X_WC.inverse(Eigen::Isometry))) {
     const SceneItem& item = scene.items[index];
     const GpuMesh& mesh = meshes[item.mesh.index];
-    const Eigen::Matrix4f model = toFloat(item.X_WM.matrix());
-    const Eigen::Matrix3f normalMatrix = item.X_WM.linear().cast<float>();
+    const Eigen::Matrix4f model = toFloat(modelMatrix(item));
+    // Normals transform with the inverse transpose of R * diag(scale): R * diag(1 / scale).
+    const Eigen::Matrix3f normalMatrix =
+        (item.X_WM.linear() * item.scale.cwiseInverse().asDiagonal()).cast<float>();
     glUniformMatrix4fv(shaded.model, 1, GL_FALSE, model.data());
     glUniformMatrix3fv(shaded.normalMatrix, 1, GL_FALSE, normalMatrix.data());
-    glUniform3fv(shaded.colour, 1, mesh.colour.data());
+    glUniform3fv(shaded.colour, 1, item.colour ? item.colour->data() : mesh.colour.data());
     glUniform1f(shaded.specular, mesh.specular);
     glUniform1i(shaded.hasTexture, mesh.texture != 0 ? 1 : 0);
     glBindTexture(GL_TEXTURE_2D, mesh.texture);
@@ -580,7 +600,7 @@ void GlRenderer::State::drawDepthAndIds(const Scene& scene, const PinholeCamera&
   for (std::size_t index : drawOrder(scene, X_CW)) {
     const SceneItem& item = scene.items[index];
     const GpuMesh& mesh = meshes[item.mesh.index];
-    const Eigen::Matrix4f modelView = toFloat((X_CW * item.X_WM).matrix());
+    const Eigen::Matrix4f modelView = toFloat(X_CW.matrix() * modelMatrix(item));
     glUniformMatrix4fv(id.modelView, 1, GL_FALSE, modelView.data());
     glUniform1ui(id.instanceId, item.instanceId);
     glBindVertexArray(mesh.vao);

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include <Eigen/Core>
@@ -23,6 +24,12 @@ struct SceneItem {
   rw::math::Transform3D X_WM = rw::math::Transform3D::Identity();
   /// Written to the instance-id image where this item is visible; 0 means background.
   std::uint16_t instanceId = 0;
+  /// Scale along the mesh frame's axes, applied before X_WM (all > 0; e.g. a unit arrow
+  /// stretched to a force's length). Normals are transformed correctly.
+  Eigen::Vector3d scale = Eigen::Vector3d::Ones();
+  /// When set, replaces the mesh's colour (a texture still modulates it): e.g. a hand tinted
+  /// by a grasp's outcome. Linear RGB in [0, 1].
+  std::optional<Eigen::Vector3f> colour = std::nullopt;
 };
 
 /// A light source. Colours are linear RGB intensities (1 = full white).

@@ -186,6 +186,13 @@ std::string formatRunFile(const RunResults& run) {
   for (const auto& [method, count] : run.rejected) {
     text += "rejected," + csvField(method) + ",,,,,," + std::to_string(count) + "\n";
   }
+  if (!run.sources.database.empty()) {
+    text += "database," + csvField(run.sources.database.string()) + ",,,,,,\n";
+  }
+  for (const auto& file : run.sources.grasps) {
+    text += "grasps," + csvField(file.string()) + ",,,,,,\n";
+  }
+  if (!run.sources.hand.empty()) text += "hand," + csvField(run.sources.hand.string()) + ",,,,,,\n";
   return text;
 }
 
@@ -315,8 +322,16 @@ RunResults parseRunFile(std::string_view text, const std::string& file) {
       }
       if (count < 0) fail(file, lineNo, "negative rejected count " + f[7]);
       run.rejected.emplace_back(f[1], count);
+    } else if (f[0] == "database") {
+      run.sources.database = f[1];
+    } else if (f[0] == "grasps") {
+      run.sources.grasps.emplace_back(f[1]);
+    } else if (f[0] == "hand") {
+      run.sources.hand = f[1];
     } else {
-      fail(file, lineNo, "unknown record '" + f[0] + "' (expected scene, method or rejected)");
+      fail(file, lineNo,
+           "unknown record '" + f[0] +
+               "' (expected scene, method, rejected, database, grasps or hand)");
     }
   }
   return run;

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
@@ -54,6 +55,17 @@ struct RunScene {
   std::optional<database::SceneConditions> conditions;
 };
 
+/// Where a run's input came from (absolute paths, as the run saw them): what a tool needs to
+/// simulate one of its trials again, e.g. to draw it (`visgrab render --results`).
+struct RunSources {
+  /// The scene database (folder or original manifest); empty if unknown.
+  std::filesystem::path database;
+  /// The grasp files or folders.
+  std::vector<std::filesystem::path> grasps;
+  /// The hand's grasp description; empty if unknown.
+  std::filesystem::path hand;
+};
+
 /// Everything a run produced: the analyses' input.
 struct RunResults {
   /// The scenes the run covered, in database order.
@@ -65,6 +77,8 @@ struct RunResults {
   /// Grasps rejected before simulation because their input was malformed (bad numbers, unknown
   /// scene or pre-shape, ...), per method.
   std::vector<std::pair<std::string, int>> rejected;
+  /// The run's input files (run.csv records database, grasps, hand; empty for older files).
+  RunSources sources;
   /// Name of the run when several are compared side by side (readResults: the folder's name);
   /// may be empty.
   std::string label;

@@ -48,18 +48,6 @@ Diagnostic rejection(const grasp::GraspRequest& r, const std::string& message) {
   return d;
 }
 
-taskio::GraspFileContents readAllGrasps(const std::vector<fs::path>& paths) {
-  taskio::GraspFileContents all;
-  for (const auto& p : paths) {
-    std::error_code ec;
-    auto one = fs::is_directory(p, ec) ? taskio::readGraspFolder(p) : taskio::readGraspFile(p);
-    for (auto& r : one.requests) all.requests.push_back(std::move(r));
-    for (auto& d : one.rejected) all.rejected.push_back(std::move(d));
-    for (auto& d : one.warnings) all.warnings.push_back(std::move(d));
-  }
-  return all;
-}
-
 std::vector<const database::SceneEntry*> selectScenes(const database::Database& db,
                                                       const std::string& filterText) {
   try {
@@ -82,12 +70,7 @@ class SceneRunner {
   SceneRunner(const SceneWork& work, const grasp::HandGraspSetup& hand)
       : work_(&work), hand_(&hand) {
     dwc_ = rwsim::loaders::loadDynamicWorkCell(work.entry->dynamicWorkcell);
-    rwsim::simulator::GraspTrialSetup setup;
-    setup.hand = hand.deviceName();
-    setup.controller = hand.controllerName();
-    setup.tcpFrame = hand.tcpFrameName();
-    setup.simulator = rwsim::simulator::optionsFromEngineProperties(*dwc_);
-    trial_ = std::make_unique<rwsim::simulator::GraspTrial>(*dwc_, setup);
+    trial_ = std::make_unique<rwsim::simulator::GraspTrial>(*dwc_, trialSetup(hand, *dwc_));
   }
 
   /// The trial record of `job`, or nullopt (and `rejected` set) for a grasp rejected as input.
@@ -128,13 +111,23 @@ class SceneRunner {
 
 }  // namespace
 
+rwsim::simulator::GraspTrialSetup trialSetup(const grasp::HandGraspSetup& hand,
+                                             const rwsim::dynamics::DynamicWorkCell& dwc) {
+  rwsim::simulator::GraspTrialSetup setup;
+  setup.hand = hand.deviceName();
+  setup.controller = hand.controllerName();
+  setup.tcpFrame = hand.tcpFrameName();
+  setup.simulator = rwsim::simulator::optionsFromEngineProperties(dwc);
+  return setup;
+}
+
 RunSummary runBenchmark(const RunOptions& options,
                         const std::function<void(const RunProgress&)>& progress) {
   const auto start = std::chrono::steady_clock::now();
   const database::Database db = database::Database::openAny(options.database);
   const auto selected = selectScenes(db, options.scenes);
   const auto hand = grasp::loadHandGraspSetup(options.hand);
-  const taskio::GraspFileContents grasps = readAllGrasps(options.grasps);
+  const taskio::GraspFileContents grasps = taskio::readGraspSources(options.grasps);
   if (!options.resume && fs::exists(options.out / results::kTrialsFileName)) {
     throw std::runtime_error(options.out.string() +
                              " already holds results; resume them (--resume) or choose another "
@@ -147,6 +140,11 @@ RunSummary runBenchmark(const RunOptions& options,
   // Grasps the reader could not parse have no reliable method: they count under their file.
   for (const auto& d : grasps.rejected) ++rejectedPerMethod[fs::path(d.file).filename().string()];
   results::RunResults run;
+  run.sources.database = fs::absolute(options.database).lexically_normal();
+  for (const auto& g : options.grasps) {
+    run.sources.grasps.push_back(fs::absolute(g).lexically_normal());
+  }
+  run.sources.hand = fs::absolute(options.hand).lexically_normal();
   std::map<std::string, std::size_t> sceneOrder;
   for (const auto* s : selected) {
     sceneOrder.emplace(s->id, run.scenes.size());

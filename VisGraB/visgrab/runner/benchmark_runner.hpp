@@ -7,9 +7,17 @@
 #include <vector>
 
 #include "rw/loaders/diagnostic.hpp"
+#include "rwsim/simulator/grasp_trial.hpp"
+#include "visgrab/grasp/hand_grasp_setup.hpp"
 
 /// The headless benchmark run: every grasp of every scene through the simulator.
 namespace visgrab::runner {
+
+/// The trial setup the benchmark uses for `hand` in the scene `dwc`: the hand's device,
+/// controller and TCP frame from its grasp description, the simulator options from the dwc's
+/// PhysicsEngine properties, the rest GraspTrialSetup's defaults.
+rwsim::simulator::GraspTrialSetup trialSetup(const grasp::HandGraspSetup& hand,
+                                             const rwsim::dynamics::DynamicWorkCell& dwc);
 
 /// What `visgrab run` needs.
 struct RunOptions {

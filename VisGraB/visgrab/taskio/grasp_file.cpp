@@ -129,4 +129,16 @@ GraspFileContents readGraspFolder(const fs::path& folder) {
   return all;
 }
 
+GraspFileContents readGraspSources(const std::vector<std::filesystem::path>& paths) {
+  GraspFileContents all;
+  for (const auto& p : paths) {
+    std::error_code ec;
+    auto one = std::filesystem::is_directory(p, ec) ? readGraspFolder(p) : readGraspFile(p);
+    for (auto& r : one.requests) all.requests.push_back(std::move(r));
+    for (auto& d : one.rejected) all.rejected.push_back(std::move(d));
+    for (auto& d : one.warnings) all.warnings.push_back(std::move(d));
+  }
+  return all;
+}
+
 }  // namespace visgrab::taskio

@@ -43,4 +43,8 @@ GraspFileContents readGraspFile(const std::filesystem::path& file);
 /// for the first file that cannot be read, or if `folder` is not a folder.
 GraspFileContents readGraspFolder(const std::filesystem::path& folder);
 
+/// readGraspFolder for each folder and readGraspFile for each file of `paths`, concatenated in
+/// that order. @throws rw::loaders::LoadError as they do.
+GraspFileContents readGraspSources(const std::vector<std::filesystem::path>& paths);
+
 }  // namespace visgrab::taskio

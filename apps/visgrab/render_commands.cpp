@@ -1,0 +1,221 @@
+#include "render_commands.hpp"
+
+#include <charconv>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include "visgrab/database/database.hpp"
+#include "visgrab/grasp/hand_grasp_setup.hpp"
+#include "visgrab/render/offscreen_renderer.hpp"
+#include "visgrab/render/png_io.hpp"
+#include "visgrab/results/results_file.hpp"
+#include "visgrab/taskio/grasp_file.hpp"
+#include "visgrab/view/grasp_pictures.hpp"
+
+namespace visgrab::app {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+/// --size WxH.
+std::pair<int, int> sizeOption(const Arguments& a, int width, int height) {
+  const auto text = a.option("size");
+  if (!text) return {width, height};
+  const auto x = text->find('x');
+  int w = 0, h = 0;
+  const char* begin = text->data();
+  const char* end = begin + text->size();
+  const bool ok = x != std::string::npos && std::from_chars(begin, begin + x, w).ptr == begin + x &&
+                  std::from_chars(begin + x + 1, end, h).ptr == end && w >= 16 && h >= 16 &&
+                  w <= 8192 && h <= 8192;
+  if (!ok) {
+    throw UsageError(
+        "--size: expected WIDTHxHEIGHT in pixels (16..8192 each), e.g. 800x600; got '" + *text +
+        "'");
+  }
+  return {w, h};
+}
+
+int runRender(const std::vector<std::string>& args) {
+  Arguments a(args, {"montage", "overlay", "no-contacts", "quiet"});
+  a.rejectUnknown({"db", "scene", "results", "grasps", "hand", "grasp", "method", "out", "montage",
+                   "overlay", "view", "size", "no-contacts", "columns", "data", "quiet"});
+  a.requirePositionals(0, "no positional arguments");
+  const auto sceneId = a.option("scene");
+  const auto out = a.option("out");
+  if (!sceneId) throw UsageError("--scene ID is required");
+  if (!out) throw UsageError("--out FILE.png is required");
+  if (fs::path(*out).extension() != ".png") {
+    throw UsageError("--out: the picture is written as PNG; give a file name ending in .png");
+  }
+  const bool montage = a.flag("montage");
+  const bool overlay = a.flag("overlay");
+  const auto graspSpec = a.option("grasp");
+  if (montage && (overlay || graspSpec)) {
+    throw UsageError(
+        "--montage shows all grasps of the scene; it takes neither --grasp nor "
+        "--overlay");
+  }
+  if (overlay && !graspSpec) throw UsageError("--overlay needs --grasp ID|N");
+  view::PictureOptions options;
+  if (const auto v = a.option("view")) {
+    const auto preset = view::viewPresetFromName(*v);
+    if (!preset) throw UsageError("--view: expected oblique, front, side or top; got '" + *v + "'");
+    options.view = *preset;
+  }
+  options.contacts = !a.flag("no-contacts");
+  const int columns = integerOption(a, "columns", 4, 1);
+  const bool quiet = a.flag("quiet");
+
+  // The run's inputs: explicit options first, else what the results folder recorded.
+  std::optional<results::RunResults> run;
+  if (const auto r = a.option("results")) {
+    std::vector<rw::loaders::Diagnostic> warnings;
+    run = results::readResults(*r, &warnings);
+    for (const auto& w : warnings) std::cerr << w.format() << "\n";
+  }
+  fs::path dbPath;
+  if (const auto d = a.option("db")) {
+    dbPath = *d;
+  } else if (run && !run->sources.database.empty()) {
+    dbPath = run->sources.database;
+  } else {
+    throw UsageError("--db DIR is required (or --results of a run that recorded its database)");
+  }
+  std::vector<fs::path> graspFiles;
+  if (const auto g = a.option("grasps")) {
+    graspFiles.emplace_back(*g);
+  } else if (run) {
+    graspFiles = run->sources.grasps;
+  }
+  fs::path handFile = (dataFolder(a) / "hands/sdh/sdh.grasp.xml");
+  if (const auto h = a.option("hand")) {
+    handFile = *h;
+  } else if (run && !run->sources.hand.empty()) {
+    handFile = run->sources.hand;
+  }
+  if ((graspSpec || montage) && graspFiles.empty()) {
+    throw UsageError(std::string(montage ? "--montage" : "--grasp") +
+                     " needs the grasps: --grasps FILE|DIR, or --results of a run that recorded "
+                     "them");
+  }
+
+  const auto db = database::Database::openAny(dbPath);
+  const database::SceneEntry& entry = db.scene(*sceneId);
+  const auto hand = grasp::loadHandGraspSetup(handFile);
+  const view::SceneSession session(entry, *hand);
+  std::vector<view::SceneGrasp> grasps;
+  if (!graspFiles.empty()) {
+    const auto contents = taskio::readGraspSources(graspFiles);
+    for (const auto& d : contents.rejected) std::cerr << d.format() << "\n";
+    grasps = view::sceneGrasps(db, entry, contents, run ? &*run : nullptr);
+  }
+  const std::string method = a.option("method").value_or("");
+
+  render::OffscreenRenderer offscreen;
+  const view::WorkcellDrawing drawing(session.workcell(), offscreen.renderer(), hand->deviceName());
+  for (const auto& w : drawing.warnings()) std::cerr << "visgrab render: " << w << "\n";
+  visual::RgbImage image;
+  std::string summary;
+  if (montage) {
+    std::tie(options.width, options.height) = sizeOption(a, 320, 240);
+    std::vector<view::MontageTile> tiles;
+    int n = 0;
+    for (const auto& g : grasps) {
+      ++n;
+      if (!method.empty() && g.request.method != method) continue;
+      view::MontageTile tile;
+      tile.label = std::to_string(n) + "  " + g.request.method + " " + g.request.id;
+      const auto resolved = session.resolve(g.request);
+      if (resolved.ok()) tile.grasp = resolved.parameters;
+      if (g.record) {
+        tile.outcome = g.record->outcome;
+      } else if (!resolved.ok()) {
+        tile.outcome = rwsim::simulator::GraspOutcome::kInvalidContacts;
+      } else {
+        if (!quiet) std::fprintf(stderr, "\rsimulating grasp %d/%zu   ", n, grasps.size());
+        tile.outcome = session.trial().run(resolved.parameters, session.initialState()).outcome;
+      }
+      tiles.push_back(std::move(tile));
+    }
+    if (!quiet && !run) std::fputc('\n', stderr);
+    if (tiles.empty()) {
+      throw UsageError("the grasp files have no grasp for scene " + entry.id +
+                       (method.empty() ? "" : " and method " + method));
+    }
+    image = view::graspMontage(offscreen.renderer(), drawing, session, tiles,
+                               entry.id + "   " + std::to_string(tiles.size()) + " grasps" +
+                                   (method.empty() ? "" : " of " + method),
+                               options, columns);
+    summary = std::to_string(tiles.size()) + " grasps";
+  } else if (graspSpec) {
+    const view::SceneGrasp* chosen = nullptr;
+    try {
+      chosen = &view::selectGrasp(grasps, *graspSpec, method);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(std::string("--grasp: ") + e.what());
+    }
+    if (overlay) {
+      const auto resolved = session.resolve(chosen->request);
+      if (!resolved.ok()) {
+        std::cerr << "visgrab render: grasp " << chosen->request.id
+                  << " cannot be placed: " << resolved.message << "\n";
+        return 1;
+      }
+      const auto outcome =
+          chosen->record ? chosen->record->outcome
+                         : session.trial().run(resolved.parameters, session.initialState()).outcome;
+      const visual::RgbImage left = render::readImage(entry.leftImage);
+      image = view::graspOverlay(
+          offscreen.renderer(), drawing,
+          session.trial().placedState(resolved.parameters, session.initialState()),
+          resolved.parameters.X_W_tcp, left, db.calibration(entry.id), outcome,
+          entry.id + "   " + chosen->request.method + " " + chosen->request.id);
+      summary = std::string(rwsim::simulator::outcomeName(outcome));
+    } else {
+      std::tie(options.width, options.height) = sizeOption(a, 480, 360);
+      const auto picture =
+          view::trialStrip(offscreen.renderer(), drawing, session, *chosen, options);
+      if (!picture.note.empty()) std::cerr << "visgrab render: " << picture.note << "\n";
+      image = picture.image;
+      summary = std::string(rwsim::simulator::outcomeName(picture.outcome));
+    }
+  } else {
+    if (overlay) throw UsageError("--overlay needs --grasp ID|N");
+    std::tie(options.width, options.height) = sizeOption(a, 800, 600);
+    const auto& initial = session.initialState();
+    const view::Orbit orbit = view::framed(view::presetOrbit(options.view),
+                                           view::objectsBox(session, drawing, initial, 0.05),
+                                           options.width, options.height);
+    image = view::renderState(offscreen.renderer(), drawing, initial, {},
+                              view::DrawStyle{false, true, std::nullopt}, orbit, options);
+    summary = "scene";
+  }
+  render::writePng(*out, image);
+  std::cout << "wrote " << *out << " (" << image.width << "x" << image.height << ", " << summary
+            << ")\n";
+  return 0;
+}
+
+}  // namespace
+
+std::vector<Command> renderCommands() {
+  return {
+      {"render", "",
+       "--scene ID --out FILE.png [--db DIR] [--results RESULTS] [--grasps FILE|DIR] "
+       "[--hand GRASP.xml] [--grasp ID|N [--overlay]] [--method M] [--montage [--columns N]] "
+       "[--view oblique|front|side|top] [--size WxH] [--no-contacts] [--quiet]",
+       "Draw a scene (headless, EGL): alone; with --grasp the trial's three moments (placed, "
+       "closed, lifted) labelled with the outcome and qualities, contact forces as arrows; "
+       "--overlay the grasp over the left stereo image; --montage every grasp of the scene "
+       "coloured by outcome. --results takes the database, grasps, hand and outcomes from a "
+       "run.",
+       guarded(runRender)},
+  };
+}
+
+}  // namespace visgrab::app

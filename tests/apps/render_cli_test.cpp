@@ -1,0 +1,161 @@
+// `visgrab render` on a scene of the shared test database: the scene alone, a grasp's three
+// moments taken from a run's results (which record the database, grasps and hand), the montage,
+// the overlay on the left image, and the command-line mistakes.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include "support/test_database.hpp"
+#include "support/test_support.hpp"
+#include "visgrab/render/png_io.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using visgrab::test::RunResult;
+using visgrab::test::shellQuoted;
+
+constexpr const char* kScene = "plain/single/cocacola/01";
+
+RunResult visgrab(const std::string& args) {
+  return visgrab::test::runProgram(VISGRAB_BINARY, args);
+}
+
+std::string db() { return shellQuoted(visgrab::test::testDatabasePath()); }
+
+// A results folder of two grasps on the can: SDH_CYL pointing down (RPY 0 180 0, quaternion
+// 0 0 1 0) around its middle (stable) and with the palm 2 cm above the table (in collision).
+class RenderCli : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = new visgrab::test::TempDir;
+    const auto base = visgrab::test::testDatabase().groundTruth(kScene).front().X_WO.translation();
+    char text[512];
+    std::snprintf(text, sizeof text,
+                  "%s, known, good, preshape, %.6f,%.6f,%.6f, 0,0,1,0, SDH_CYL\n"
+                  "%s, known, through, preshape, %.6f,%.6f,%.6f, 0,0,1,0, SDH_CYL\n",
+                  kScene, base.x(), base.y(), base.z() + 0.06, kScene, base.x(), base.y(),
+                  base.z() + 0.02);
+    visgrab::test::writeFile(dir_->path() / "grasps.csv", text);
+    const RunResult r =
+        visgrab("run --db " + db() + " --grasps " + shellQuoted(dir_->path() / "grasps.csv") +
+                " --out " + shellQuoted(dir_->path() / "results") + " --quiet");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+  }
+  static void TearDownTestSuite() {
+    delete dir_;
+    dir_ = nullptr;
+  }
+  static fs::path path(const std::string& name) { return dir_->path() / name; }
+  static std::string results() { return " --results " + shellQuoted(dir_->path() / "results"); }
+
+  static visgrab::test::TempDir* dir_;
+};
+
+visgrab::test::TempDir* RenderCli::dir_ = nullptr;
+
+TEST_F(RenderCli, SceneAloneIsFramedOnTheObjects) {
+  const RunResult r = visgrab("render --db " + db() + " --scene " + kScene + " --out " +
+                              shellQuoted(path("scene.png")));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const auto image = visgrab::render::readPng(path("scene.png"));
+  ASSERT_EQ(image.width, 800);
+  ASSERT_EQ(image.height, 600);
+  // The can fills the middle: the centre pixels are neither the background (top-left corner)
+  // nor all one colour.
+  auto px = [&](int row, int col) {
+    const std::size_t i = 3 * (static_cast<std::size_t>(row) * 800 + col);
+    return std::array<int, 3>{image.pixels[i], image.pixels[i + 1], image.pixels[i + 2]};
+  };
+  EXPECT_NE(px(300, 400), px(2, 2));
+  int differing = 0;
+  for (int row = 250; row < 350; ++row) {
+    for (int col = 350; col < 450; ++col) differing += px(row, col) != px(300, 400) ? 1 : 0;
+  }
+  EXPECT_GT(differing, 1000);
+}
+
+TEST_F(RenderCli, GraspStripFromTheRunsResults) {
+  RunResult r = visgrab("render" + results() + " --scene " + kScene +
+                        " --grasp good --size 240x180 --out " + shellQuoted(path("good.png")));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("stable"), std::string::npos) << r.output;
+  auto image = visgrab::render::readPng(path("good.png"));
+  EXPECT_EQ(image.width, 3 * (240 + 2));
+  EXPECT_EQ(image.height, 36 + 180 + 30 + 2);
+  // The second grasp by number: in collision, one panel.
+  r = visgrab("render" + results() + " --scene " + kScene + " --grasp 2 --size 240x180 --out " +
+              shellQuoted(path("through.png")));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("in_collision"), std::string::npos) << r.output;
+  image = visgrab::render::readPng(path("through.png"));
+  EXPECT_EQ(image.width, 240 + 2);
+}
+
+TEST_F(RenderCli, MontageAndOverlay) {
+  RunResult r =
+      visgrab("render" + results() + " --scene " + kScene +
+              " --montage --size 160x120 --columns 3 --out " + shellQuoted(path("montage.png")));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("2 grasps"), std::string::npos) << r.output;
+  auto image = visgrab::render::readPng(path("montage.png"));
+  EXPECT_EQ(image.width, 3 * (160 + 2));
+  EXPECT_EQ(image.height, 36 + (120 + 30 + 2) + 30);
+
+  r = visgrab("render" + results() + " --scene " + kScene + " --grasp good --overlay --out " +
+              shellQuoted(path("overlay.png")));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  image = visgrab::render::readPng(path("overlay.png"));
+  const auto left =
+      visgrab::render::readImage(visgrab::test::testDatabase().scene(kScene).leftImage);
+  ASSERT_EQ(image.width, left.width);
+  ASSERT_EQ(image.height, left.height + 36);
+  // The hand is drawn over the image: many pixels below the title differ from the left image.
+  int changed = 0;
+  for (int row = 0; row < left.height; ++row) {
+    for (int col = 0; col < left.width; ++col) {
+      const std::size_t a = 3 * (static_cast<std::size_t>(row) * left.width + col);
+      const std::size_t b = 3 * (static_cast<std::size_t>(row + 36) * left.width + col);
+      int d = 0;
+      for (int k = 0; k < 3; ++k) d += std::abs(left.pixels[a + k] - image.pixels[b + k]);
+      changed += d > 30 ? 1 : 0;
+    }
+  }
+  EXPECT_GT(changed, 2000);
+  EXPECT_LT(changed, left.width * left.height / 2);
+}
+
+TEST_F(RenderCli, MistakesAreUsageErrors) {
+  const std::string out = " --out " + shellQuoted(path("x.png"));
+  struct Case {
+    std::string args;
+    int exitCode;
+    std::string message;
+  };
+  const Case cases[] = {
+      {"render --db " + db() + out, 2, "--scene ID is required"},
+      {"render --db " + db() + " --scene " + kScene, 2, "--out FILE.png is required"},
+      {"render --db " + db() + " --scene " + kScene + " --out x.jpg", 2, "ending in .png"},
+      {"render --db " + db() + " --scene " + kScene + " --size 10x" + out, 2, "--size"},
+      {"render --db " + db() + " --scene " + kScene + " --view iso" + out, 2, "--view"},
+      {"render --db " + db() + " --scene " + kScene + " --overlay" + out, 2, "--overlay needs"},
+      {"render --db " + db() + " --scene " + kScene + " --grasp 1" + out, 2, "needs the grasps"},
+      {"render" + results() + " --scene " + kScene + " --grasp 9" + out, 2, "out of range"},
+      {"render" + results() + " --scene " + kScene + " --grasp bad" + out, 2, "no grasp 'bad'"},
+      {"render" + results() + " --scene " + kScene + " --montage --grasp 1" + out, 2, "--montage"},
+      {"render --db " + db() + " --scene plain/single/cocacola/09" + out, 1,
+       "closest known ids: plain/single/cocacola/01"},
+      {"render --db " + shellQuoted(path("nowhere")) + " --scene " + kScene + out, 1, "nowhere"},
+  };
+  for (const Case& c : cases) {
+    const RunResult r = visgrab(c.args);
+    EXPECT_EQ(r.exitCode, c.exitCode) << c.args << "\n" << r.output;
+    EXPECT_NE(r.output.find(c.message), std::string::npos) << c.args << "\n" << r.output;
+  }
+  EXPECT_FALSE(fs::exists(path("x.png")));
+}
+
+}  // namespace
