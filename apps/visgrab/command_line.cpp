@@ -41,6 +41,14 @@ std::optional<std::string> Arguments::option(const std::string& name) const {
   return std::nullopt;
 }
 
+std::vector<std::string> Arguments::values(const std::string& name) const {
+  std::vector<std::string> out;
+  for (const auto& [n, value] : options_) {
+    if (n == name && value) out.push_back(*value);
+  }
+  return out;
+}
+
 void Arguments::rejectUnknown(const std::vector<std::string>& known) const {
   for (const auto& [name, value] : options_) {
     if (std::find(known.begin(), known.end(), name) == known.end()) {

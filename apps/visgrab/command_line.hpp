@@ -26,8 +26,10 @@ class Arguments {
   const std::vector<std::string>& positionals() const { return positionals_; }
   /// True if the flag was given.
   bool flag(const std::string& name) const;
-  /// The value of an option, if given.
+  /// The value of an option, if given (the last one when it is given several times).
   std::optional<std::string> option(const std::string& name) const;
+  /// Every value of an option given several times, in order (empty if not given).
+  std::vector<std::string> values(const std::string& name) const;
   /// @throws UsageError if an option or flag not in `known` was given.
   void rejectUnknown(const std::vector<std::string>& known) const;
   /// @throws UsageError unless exactly `n` positionals were given (`what` names them).

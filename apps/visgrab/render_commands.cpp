@@ -87,9 +87,8 @@ int runRender(const std::vector<std::string>& args) {
     throw UsageError("--db DIR is required (or --results of a run that recorded its database)");
   }
   std::vector<fs::path> graspFiles;
-  if (const auto g = a.option("grasps")) {
-    graspFiles.emplace_back(*g);
-  } else if (run) {
+  for (const auto& g : a.values("grasps")) graspFiles.emplace_back(g);
+  if (graspFiles.empty() && run) {
     graspFiles = run->sources.grasps;
   }
   fs::path handFile = (dataFolder(a) / "hands/sdh/sdh.grasp.xml");

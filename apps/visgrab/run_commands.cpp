@@ -50,13 +50,13 @@ int runRun(const std::vector<std::string>& args) {
   a.requirePositionals(0, "no positional arguments (grasp files go after --grasps)");
   runner::RunOptions options;
   const auto db = a.option("db");
-  const auto grasps = a.option("grasps");
+  const auto grasps = a.values("grasps");
   const auto out = a.option("out");
   if (!db) throw UsageError("--db DIR (a generated database or an original manifest) is required");
-  if (!grasps) throw UsageError("--grasps FILE|DIR is required");
+  if (grasps.empty()) throw UsageError("--grasps FILE|DIR is required");
   if (!out) throw UsageError("--out RESULTS is required");
   options.database = *db;
-  options.grasps = {*grasps};
+  options.grasps.assign(grasps.begin(), grasps.end());
   options.out = *out;
   options.hand = a.option("hand").value_or((dataFolder(a) / "hands/sdh/sdh.grasp.xml").string());
   options.scenes = a.option("scenes").value_or("");
@@ -170,20 +170,22 @@ int runBenchmarkCommand(const std::vector<std::string>& args) {
   const bool quiet = a.flag("quiet");
   const std::string scenes = a.option("scenes").value_or("");
   ensureDatabase(db, scenes, threads, data, quiet);
-  fs::path grasps = a.option("grasps").value_or("");
-  if (grasps.empty()) {
+  std::vector<fs::path> graspSources;
+  for (const auto& g : a.values("grasps")) graspSources.emplace_back(g);
+  if (graspSources.empty()) {
     // No method given: the baseline's grasps, made once (an existing file is complete: it is
     // written atomically) and reused by --resume.
-    grasps = fs::path(*out) / "grasps" / "baseline.csv";
+    const fs::path grasps = fs::path(*out) / "grasps" / "baseline.csv";
     if (!fs::exists(grasps) || !a.flag("resume")) {
       if (!quiet)
         std::cerr << "visgrab benchmark: baseline grasps into " << grasps.string() << "\n";
       writeBaselineGrasps(db, scenes, grasps, threads, quiet);
     }
+    graspSources = {grasps};
   }
   runner::RunOptions options;
   options.database = db;
-  options.grasps = {grasps};
+  options.grasps = graspSources;
   options.out = fs::path(*out) / "results";
   options.hand = a.option("hand").value_or((data / "hands/sdh/sdh.grasp.xml").string());
   options.scenes = scenes;
@@ -206,7 +208,7 @@ int runBenchmarkCommand(const std::vector<std::string>& args) {
 std::vector<Command> runCommands() {
   return {
       {"run", "",
-       "--db DIR|MANIFEST --grasps FILE|DIR --out RESULTS [--threads N] [--resume] "
+       "--db DIR|MANIFEST --grasps FILE|DIR [--grasps ...] --out RESULTS [--threads N] [--resume] "
        "[--hand GRASP.xml] [--scenes FILTER] [--quiet]",
        "Run every grasp of every scene through the simulator; each finished trial is written at "
        "once (RESULTS/trials.csv), so --resume continues a killed run.",

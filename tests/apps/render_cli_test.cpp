@@ -26,23 +26,28 @@ RunResult visgrab(const std::string& args) {
 
 std::string db() { return shellQuoted(visgrab::test::testDatabasePath()); }
 
-// A results folder of two grasps on the can: SDH_CYL pointing down (RPY 0 180 0, quaternion
-// 0 0 1 0) around its middle (stable) and with the palm 2 cm above the table (in collision).
+// A results folder of two grasps on the can, from two grasp files: SDH_CYL pointing down (RPY 0
+// 180 0, quaternion 0 0 1 0) around its middle (stable) and with the palm 2 cm above the table
+// (in collision).
 class RenderCli : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     dir_ = new visgrab::test::TempDir;
     const auto base = visgrab::test::testDatabase().groundTruth(kScene).front().X_WO.translation();
-    char text[512];
-    std::snprintf(text, sizeof text,
-                  "%s, known, good, preshape, %.6f,%.6f,%.6f, 0,0,1,0, SDH_CYL\n"
-                  "%s, known, through, preshape, %.6f,%.6f,%.6f, 0,0,1,0, SDH_CYL\n",
-                  kScene, base.x(), base.y(), base.z() + 0.06, kScene, base.x(), base.y(),
-                  base.z() + 0.02);
-    visgrab::test::writeFile(dir_->path() / "grasps.csv", text);
+    // One grasp per file, both given to `visgrab run` (--grasps repeated).
+    char good[256], through[256];
+    std::snprintf(good, sizeof good,
+                  "%s, known, good, preshape, %.6f,%.6f,%.6f, 0,0,1,0, SDH_CYL\n", kScene, base.x(),
+                  base.y(), base.z() + 0.06);
+    std::snprintf(through, sizeof through,
+                  "%s, known, through, preshape, %.6f,%.6f,%.6f, 0,0,1,0, SDH_CYL\n", kScene,
+                  base.x(), base.y(), base.z() + 0.02);
+    visgrab::test::writeFile(dir_->path() / "good.csv", good);
+    visgrab::test::writeFile(dir_->path() / "through.csv", through);
     const RunResult r =
-        visgrab("run --db " + db() + " --grasps " + shellQuoted(dir_->path() / "grasps.csv") +
-                " --out " + shellQuoted(dir_->path() / "results") + " --quiet");
+        visgrab("run --db " + db() + " --grasps " + shellQuoted(dir_->path() / "good.csv") +
+                " --grasps " + shellQuoted(dir_->path() / "through.csv") + " --out " +
+                shellQuoted(dir_->path() / "results") + " --quiet");
     ASSERT_EQ(r.exitCode, 0) << r.output;
   }
   static void TearDownTestSuite() {
