@@ -52,7 +52,7 @@ fs::path dataFolder() {
 
 std::string usageLine() {
   return "usage: visgrab-viewer [--db DIR|MANIFEST] [--scene ID] [--results RESULTS]\n"
-         "                      [--grasps FILE|DIR]... [--hand GRASP.xml] [--grasp ID|N]\n"
+         "                      [--grasps FILE|DIR]... [--hand DIR|GRASP.xml] [--grasp ID|N]\n"
          "                      [--method M] [--screenshot FILE.png] [--size WxH]\n"
          "       visgrab-viewer --help\n";
 }
@@ -67,7 +67,8 @@ std::string usageText() {
          "  --results RESULTS    a run's result folder: outcomes in the grasp table; its run.csv\n"
          "                       gives the default database, grasp files and hand\n"
          "  --grasps FILE|DIR    grasp files (docs/grasp-format.md); may be repeated\n"
-         "  --hand GRASP.xml     the hand's grasp description (default: the results' hand, else\n"
+         "  --hand DIR|GRASP.xml the hand: its folder or grasp description (default: the results' "
+         "hand, else\n"
          "                       $VISGRAB_DATA or the source tree's "
          "scenes/hands/sdh/sdh.grasp.xml)\n"
          "  --grasp ID|N         replay this grasp of --scene (its id, or N for the N-th grasp)\n"

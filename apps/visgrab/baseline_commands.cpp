@@ -9,6 +9,7 @@
 #include "visgrab/database/atomic_file.hpp"
 #include "visgrab/database/database.hpp"
 #include "visgrab/database/scene_filter.hpp"
+#include "visgrab/grasp/grasp_request.hpp"
 #include "visgrab/taskio/grasp_list.hpp"
 #include "visgrab/vision/baseline.hpp"
 
@@ -29,7 +30,8 @@ std::vector<const database::SceneEntry*> selectScenes(const database::Database& 
 
 // Runs the baseline and writes the grasp list; the shared part of `baseline` and `benchmark`.
 int runAndWrite(const fs::path& dbPath, const std::string& filter, const fs::path& out,
-                const vision::BaselineOptions& options, bool quiet) {
+                const vision::BaselineOptions& options, bool quiet,
+                const std::string& preshape = {}) {
   const auto db = database::Database::openAny(dbPath);
   const auto scenes = selectScenes(db, filter);
   if (scenes.empty()) throw UsageError("--scenes selects no scene of " + dbPath.string());
@@ -55,8 +57,14 @@ int runAndWrite(const fs::path& dbPath, const std::string& filter, const fs::pat
       std::cerr << "baseline: " << r.sceneId << ": no grasps: " << r.error << "\n";
     }
     for (const auto& g : r.grasps) {
-      ++perType[g.method];
-      all.push_back(g);
+      if (preshape.empty()) {
+        ++perType[g.method];
+        all.push_back(g);
+      } else if (auto p = grasp::preshapeFromContacts(g, preshape)) {
+        // Two-contact grasps only: the same plan for every two-finger hand.
+        ++perType[p->method];
+        all.push_back(std::move(*p));
+      }
     }
   }
   if (out.has_parent_path()) fs::create_directories(out.parent_path());
@@ -75,7 +83,7 @@ int runAndWrite(const fs::path& dbPath, const std::string& filter, const fs::pat
 
 int runBaseline(const std::vector<std::string>& args) {
   Arguments a(args, {"quiet"});
-  a.rejectUnknown({"db", "out", "scenes", "threads", "per-type", "debug", "quiet"});
+  a.rejectUnknown({"db", "out", "scenes", "threads", "per-type", "debug", "preshape", "quiet"});
   a.requirePositionals(0, "no positional arguments");
   const auto db = a.option("db");
   const auto out = a.option("out");
@@ -102,7 +110,9 @@ int runBaseline(const std::vector<std::string>& args) {
                 << seg.patches.size() << " patches, " << grasps.size() << " grasps\n";
     }
   }
-  const int n = runAndWrite(*db, filter, *out, options, a.flag("quiet"));
+  const std::string preshape = a.option("preshape").value_or("");
+  if (a.option("preshape") && preshape.empty()) throw UsageError("--preshape: give a name");
+  const int n = runAndWrite(*db, filter, *out, options, a.flag("quiet"), preshape);
   std::cout << n << " grasps in " << *out << "\n";
   return 0;
 }
@@ -120,10 +130,12 @@ std::vector<Command> baselineCommands() {
   return {
       {"baseline", "",
        "--db DIR|MANIFEST --out GRASPS [--scenes FILTER] [--per-type N] [--threads N] "
-       "[--debug DIR] [--quiet]",
+       "[--preshape NAME] [--debug DIR] [--quiet]",
        "The paper's baseline method: stereo point cloud, table plane, object clusters, surface "
        "patches and the grasp types s2EGA1, s2EGA3, s3EGA1 (at most N each per scene, default "
-       "20) as contact grasps in one grasp list; --debug writes a picture per scene.",
+       "20) as contact grasps in one grasp list; --preshape NAME writes the two-contact ones as "
+       "pre-shape grasps (TCP between the contacts, z along the approach, x across: one plan for "
+       "any two-finger hand); --debug writes a picture per scene.",
        guarded(runBaseline)},
   };
 }

@@ -206,7 +206,7 @@ std::vector<Command> renderCommands() {
   return {
       {"render", "",
        "--scene ID --out FILE.png [--db DIR] [--results RESULTS] [--grasps FILE|DIR] "
-       "[--hand GRASP.xml] [--grasp ID|N [--overlay]] [--method M] [--montage [--columns N]] "
+       "[--hand DIR|GRASP.xml] [--grasp ID|N [--overlay]] [--method M] [--montage [--columns N]] "
        "[--view oblique|front|side|top] [--size WxH] [--no-contacts] [--quiet]",
        "Draw a scene (headless, EGL): alone; with --grasp the trial's three moments (placed, "
        "closed, lifted) labelled with the outcome and qualities, contact forces as arrows; "

@@ -209,12 +209,12 @@ std::vector<Command> runCommands() {
   return {
       {"run", "",
        "--db DIR|MANIFEST --grasps FILE|DIR [--grasps ...] --out RESULTS [--threads N] [--resume] "
-       "[--hand GRASP.xml] [--scenes FILTER] [--quiet]",
+       "[--hand DIR|GRASP.xml] [--scenes FILTER] [--quiet]",
        "Run every grasp of every scene through the simulator; each finished trial is written at "
        "once (RESULTS/trials.csv), so --resume continues a killed run.",
        guarded(runRun)},
       {"benchmark", "",
-       "--out DIR [--grasps FILE|DIR] [--db DIR] [--threads N] [--resume] [--hand GRASP.xml] "
+       "--out DIR [--grasps FILE|DIR] [--db DIR] [--threads N] [--resume] [--hand DIR|GRASP.xml] "
        "[--scenes FILTER] [--no-pictures] [--quiet]",
        "Run and analyze in one: generate the database (default ./database) if it is missing, make "
        "the baseline's grasps (DIR/grasps/baseline.csv) unless --grasps gives a method's, run "

@@ -76,6 +76,34 @@ TEST(BaselineCli, WritesAtMostPerTypeContactGraspsPerSceneAndMethod) {
   EXPECT_EQ(readAll(again), readAll(file));
 }
 
+// --preshape: the same scenes' two-contact grasps, each as a pre-shape grasp with its TCP midway
+// between its contacts (checked against the contact grasps of a run without --preshape).
+TEST(BaselineCli, PreshapeWritesTheTwoContactGraspsAsPreshapeGrasps) {
+  visgrab::test::TempDir dir;
+  const RunResult contacts = visgrab(baselineArgs(dir.path() / "c.csv", "--per-type 4"));
+  ASSERT_EQ(contacts.exitCode, 0) << contacts.output;
+  const RunResult preshapes =
+      visgrab(baselineArgs(dir.path() / "p.csv", "--per-type 4 --preshape wide"));
+  ASSERT_EQ(preshapes.exitCode, 0) << preshapes.output;
+  const auto c = visgrab::taskio::readGraspFile(dir.path() / "c.csv");
+  const auto p = visgrab::taskio::readGraspFile(dir.path() / "p.csv");
+  std::map<std::string, const visgrab::grasp::GraspRequest*> byKey;
+  for (const auto& g : c.requests) byKey[g.sceneId + " " + g.id] = &g;
+  int twoContact = 0;
+  for (const auto& g : c.requests) twoContact += g.contacts.size() == 2 ? 1 : 0;
+  ASSERT_GT(twoContact, 0);
+  EXPECT_EQ(static_cast<int>(p.requests.size()), twoContact);
+  for (const auto& g : p.requests) {
+    EXPECT_EQ(g.kind, visgrab::grasp::GraspKind::kPreshape);
+    EXPECT_EQ(g.preshape, "wide");
+    const auto* original = byKey.at(g.sceneId + " " + g.id);
+    ASSERT_EQ(original->contacts.size(), 2u);
+    const rw::math::Vector3D mid =
+        0.5 * (original->contacts[0].position + original->contacts[1].position);
+    EXPECT_LT((g.X_W_tcp.translation() - mid).norm(), 1e-6) << g.id;  // grasp lists: 7+ digits
+  }
+}
+
 TEST(BaselineCli, DebugWritesOnePicturePerScene) {
   visgrab::test::TempDir dir;
   const fs::path pictures = dir.path() / "debug";

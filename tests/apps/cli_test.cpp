@@ -35,7 +35,8 @@ TEST(VisgrabCli, WcInfoPrintsTheSdhJointOrder) {
 }
 
 TEST(VisgrabCli, WcCheckIsCleanOnTheBundledHands) {
-  for (const char* hand : {"scenes/hands/sdh/sdh.wc.xml", "scenes/hands/pg70/pg70.wc.xml"}) {
+  for (const char* hand : {"scenes/hands/sdh/sdh.wc.xml", "scenes/hands/pg70/pg70.wc.xml",
+                           "scenes/hands/robotiq2f85/robotiq2f85.wc.xml"}) {
     const RunResult r = runVisgrab("wc check " + quoted(visgrab::test::sourceDir() / hand));
     EXPECT_EQ(r.exitCode, 0) << hand << "\n" << r.output;
     EXPECT_NE(r.output.find("0 error(s)"), std::string::npos) << r.output;

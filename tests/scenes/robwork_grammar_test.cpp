@@ -36,6 +36,7 @@ const std::map<std::string, std::vector<std::string>>& attributeOrder() {
       {"CollisionModel", {"name", "refframe"}},
       {"RPY", {}},
       {"Pos", {}},
+      {"RGB", {}},
       {"PosLimit", {"refjoint", "min", "max"}},
       {"VelLimit", {"refjoint", "max"}},
       {"AccLimit", {"refjoint", "max"}},
@@ -199,7 +200,8 @@ TEST(RobWorkGrammar, TheCheckerSeesBreaches) {
 
 TEST(RobWorkGrammar, ProjectHandsFollowRobWorksGrammar) {
   for (const fs::path& file :
-       {visgrab::test::scenes::projectSdhFile(), visgrab::test::scenes::projectPg70File()}) {
+       {visgrab::test::scenes::projectSdhFile(), visgrab::test::scenes::projectPg70File(),
+        visgrab::test::sourceDir() / "scenes/hands/robotiq2f85/robotiq2f85.wc.xml"}) {
     EXPECT_EQ(joined(grammarProblems(readText(file))), "") << file;
   }
 }

@@ -47,11 +47,12 @@ void forward(const Diagnostic& d, const std::string& referencedFrom, DiagnosticS
 
 /// Loads the workcell the dynamic workcell names; forwards its diagnostics.
 std::unique_ptr<rw::models::WorkCell> loadReferencedWorkCell(
-    const detail::DynamicWorkCellDesc& desc, const fs::path& dwcFile, DiagnosticSink& sink) {
+    const detail::DynamicWorkCellDesc& desc, const fs::path& dwcFile,
+    std::optional<std::string_view> workcellText, DiagnosticSink& sink) {
   const fs::path file = dwcFile.parent_path() / desc.workcellFile;
   const std::string root = "<DynamicWorkcell workcell=\"" + desc.workcellFile + "\">: ";
   std::error_code ec;
-  if (!fs::is_regular_file(file, ec)) {
+  if (!workcellText && !fs::is_regular_file(file, ec)) {
     sink.error(desc.rootLocation,
                root + "cannot read the workcell file \"" + file.lexically_normal().string() +
                    "\": " + (fs::exists(file, ec) ? "it is not a file" : "no such file"));
@@ -61,7 +62,9 @@ std::unique_ptr<rw::models::WorkCell> loadReferencedWorkCell(
       desc.rootLocation.file->displayPath + ":" + std::to_string(desc.rootLocation.line);
   std::vector<Diagnostic> warnings;
   try {
-    auto workcell = rw::loaders::loadWorkCell(file, &warnings);
+    auto workcell = workcellText
+                        ? rw::loaders::loadWorkCellFromString(*workcellText, file, &warnings)
+                        : rw::loaders::loadWorkCell(file, &warnings);
     for (const Diagnostic& d : warnings) forward(d, referencedFrom, sink);
     return workcell;
   } catch (const rw::loaders::LoadError& e) {
@@ -72,6 +75,7 @@ std::unique_ptr<rw::models::WorkCell> loadReferencedWorkCell(
 
 // The whole pipeline: text (tag repair, schema, Includes), description, workcell, model.
 std::unique_ptr<DynamicWorkCell> load(const fs::path& file, std::optional<std::string_view> text,
+                                      std::optional<std::string_view> workcellText,
                                       DiagnosticSink& sink) {
   const auto source =
       std::make_shared<const SourceFile>(SourceFile{file.lexically_normal().string(), {}});
@@ -98,7 +102,7 @@ std::unique_ptr<DynamicWorkCell> load(const fs::path& file, std::optional<std::s
     const auto desc =
         detail::parseDynamicWorkCellDescription(document->root, document->topLevel, sink);
     if (!desc) return nullptr;
-    auto workcell = loadReferencedWorkCell(*desc, file, sink);
+    auto workcell = loadReferencedWorkCell(*desc, file, workcellText, sink);
     if (!workcell || sink.hasErrors()) return nullptr;
     auto dwc = detail::buildDynamicWorkCell(*desc, std::move(workcell), sink);
     if (!dwc || sink.hasErrors()) return nullptr;
@@ -115,9 +119,10 @@ std::unique_ptr<DynamicWorkCell> load(const fs::path& file, std::optional<std::s
 
 std::unique_ptr<DynamicWorkCell> loadOrThrow(const fs::path& file,
                                              std::optional<std::string_view> text,
+                                             std::optional<std::string_view> workcellText,
                                              std::vector<Diagnostic>* warnings) {
   DiagnosticSink sink;
-  auto dwc = load(file, text, sink);
+  auto dwc = load(file, text, workcellText, sink);
   if (!dwc && !sink.hasErrors()) {
     sink.error(SourceLocation{}, "the dynamic workcell could not be loaded");
   }
@@ -134,19 +139,26 @@ std::unique_ptr<DynamicWorkCell> loadOrThrow(const fs::path& file,
 
 std::unique_ptr<DynamicWorkCell> loadDynamicWorkCell(const fs::path& file,
                                                      std::vector<Diagnostic>* warnings) {
-  return loadOrThrow(file, std::nullopt, warnings);
+  return loadOrThrow(file, std::nullopt, std::nullopt, warnings);
 }
 
 std::unique_ptr<DynamicWorkCell> loadDynamicWorkCellFromString(std::string_view xml,
                                                                const fs::path& virtualFile,
                                                                std::vector<Diagnostic>* warnings) {
-  return loadOrThrow(virtualFile, xml, warnings);
+  return loadOrThrow(virtualFile, xml, std::nullopt, warnings);
+}
+
+std::unique_ptr<DynamicWorkCell> loadDynamicWorkCellFromStrings(std::string_view xml,
+                                                                std::string_view workcellXml,
+                                                                const fs::path& virtualFile,
+                                                                std::vector<Diagnostic>* warnings) {
+  return loadOrThrow(virtualFile, xml, workcellXml, warnings);
 }
 
 std::vector<Diagnostic> checkDynamicWorkCell(const fs::path& file) {
   DiagnosticSink sink;
   try {
-    (void)load(file, std::nullopt, sink);
+    (void)load(file, std::nullopt, std::nullopt, sink);
   } catch (...) {
     // load() reports what it can; nothing may escape a check.
   }

@@ -34,6 +34,14 @@ std::unique_ptr<rwsim::dynamics::DynamicWorkCell> loadDynamicWorkCellFromString(
     std::string_view xml, const std::filesystem::path& virtualFile,
     std::vector<rw::loaders::Diagnostic>* warnings = nullptr);
 
+/// Same as loadDynamicWorkCellFromString, with the text of the workcell it names given too
+/// (instead of read from that file; relative paths in it resolve against that file's folder and
+/// messages name it): a scene composed in memory, e.g. with another hand.
+/// @throws rw::loaders::LoadError listing every error found.
+std::unique_ptr<rwsim::dynamics::DynamicWorkCell> loadDynamicWorkCellFromStrings(
+    std::string_view xml, std::string_view workcellXml, const std::filesystem::path& virtualFile,
+    std::vector<rw::loaders::Diagnostic>* warnings = nullptr);
+
 /// Checks a dynamic workcell file as loadDynamicWorkCell would and returns every error and
 /// warning in the order found. Never throws for bad input.
 std::vector<rw::loaders::Diagnostic> checkDynamicWorkCell(const std::filesystem::path& file);

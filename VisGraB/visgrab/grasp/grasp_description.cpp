@@ -158,6 +158,7 @@ GraspDescription readRoot(const XmlElement& root, const std::string& file) {
   GraspDescription d;
   d.file = file;
   d.workcell = root.attributeOr("workcell", "");
+  d.dynamics = root.attributeOr("dynamics", "");
   d.device = root.attributeOr("device", "");
   d.controller = root.attributeOr("controller", "");
   d.tcp = root.attributeOr("tcp", "");

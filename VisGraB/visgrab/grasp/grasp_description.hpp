@@ -142,6 +142,10 @@ struct GraspDescription {
   std::string file;
   /// The hand's workcell file, as written (relative to the description's folder).
   std::string workcell;
+  /// The hand's dynamics (a RobWorkSim IncludeData file with its RigidDevice and controller,
+  /// included by scenes), as written; empty: `<workcell stem>_dynamics.dwc.xml` beside the
+  /// workcell.
+  std::string dynamics;
   /// Device name.
   std::string device;
   /// Controller name.

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -58,5 +59,14 @@ struct GraspRequest {
 
 /// Name used in files: "raw", "preshape", "pose_q", "contacts".
 const char* kindName(GraspKind kind);
+
+/// A two-contact grasp as a pre-shape grasp for any two-finger hand: the TCP midway between the
+/// contacts, its z axis along the approach (the direction of travel), its x axis along the line
+/// from the first contact to the second made perpendicular to z (the closing direction of the
+/// PG70, the 2F-85 and the SDH's two-finger pre-shapes, scenes/hands/README.md), y = z x x; the
+/// pre-shape `preshape`. Scene, method and id are kept. nullopt unless `contacts` is a kContacts
+/// grasp with exactly two contacts, a non-zero approach and contacts not along the approach.
+std::optional<GraspRequest> preshapeFromContacts(const GraspRequest& contacts,
+                                                 const std::string& preshape);
 
 }  // namespace visgrab::grasp

@@ -319,12 +319,49 @@ std::unique_ptr<HandGraspSetup> loadHandGraspSetupFromString(
     all.insert(all.begin(), note);
     throw rw::loaders::LoadError(std::move(all));
   }
+  std::filesystem::path dynamics =
+      description->dynamics.empty()
+          ? wcFile.parent_path() /
+                (wcFile.filename().string().substr(0, wcFile.filename().string().find('.')) +
+                 "_dynamics.dwc.xml")
+          : virtualFile.parent_path() / description->dynamics;
   auto setup = HandGraspSetup::build(std::move(*description), std::move(workcell), sink);
   if (!setup) throw rw::loaders::LoadError(sink.take());
+  setup->workcellFile_ = std::filesystem::absolute(wcFile).lexically_normal();
+  setup->dynamicsFile_ = std::filesystem::absolute(dynamics).lexically_normal();
   return setup;
 }
 
-std::unique_ptr<HandGraspSetup> loadHandGraspSetup(const std::filesystem::path& file) {
+std::filesystem::path graspDescriptionFile(const std::filesystem::path& fileOrFolder) {
+  std::error_code ec;
+  if (!std::filesystem::is_directory(fileOrFolder, ec)) return fileOrFolder;
+  std::vector<std::filesystem::path> found;
+  for (const auto& e : std::filesystem::directory_iterator(fileOrFolder, ec)) {
+    const std::string name = e.path().filename().string();
+    if (name.size() > 10 && name.ends_with(".grasp.xml") && e.is_regular_file(ec)) {
+      found.push_back(e.path());
+    }
+  }
+  std::sort(found.begin(), found.end());
+  if (found.size() == 1) return found.front();
+  rw::loaders::Diagnostic d;
+  d.file = fileOrFolder.string();
+  if (found.empty()) {
+    d.message = "the hand folder " + fileOrFolder.string() +
+                " holds no grasp description (*.grasp.xml; docs/adding-a-hand.md)";
+  } else {
+    d.message = "the hand folder " + fileOrFolder.string() + " holds " +
+                std::to_string(found.size()) + " grasp descriptions (";
+    for (std::size_t i = 0; i < found.size(); ++i) {
+      d.message += (i ? ", " : "") + found[i].filename().string();
+    }
+    d.message += "); give the one to use";
+  }
+  throw rw::loaders::LoadError({d});
+}
+
+std::unique_ptr<HandGraspSetup> loadHandGraspSetup(const std::filesystem::path& fileOrFolder) {
+  const std::filesystem::path file = graspDescriptionFile(fileOrFolder);
   std::string text;
   const std::string why = rw::loaders::xml::readTextFile(file, text);
   if (!why.empty()) {

@@ -123,6 +123,11 @@ class HandGraspSetup {
   const GraspDescription& description() const { return description_; }
   /// The hand's kinematic model.
   const rw::models::WorkCell& workcell() const { return *workcell_; }
+  /// The hand's workcell file (absolute, normalised; empty when built from a workcell in code).
+  const std::filesystem::path& workcellFile() const { return workcellFile_; }
+  /// The hand's dynamics file (GraspDescription::dynamics resolved; absolute, normalised;
+  /// empty when built in code).
+  const std::filesystem::path& dynamicsFile() const { return dynamicsFile_; }
   /// The hand's device.
   const rw::models::Device& device() const { return *device_; }
   /// Degrees of freedom of the hand.
@@ -153,6 +158,8 @@ class HandGraspSetup {
  private:
   HandGraspSetup() = default;
   friend class SetupBuilder;
+  friend std::unique_ptr<HandGraspSetup> loadHandGraspSetupFromString(
+      std::string_view xml, const std::filesystem::path& virtualFile);
 
   GraspDescription description_;
   std::shared_ptr<const rw::models::WorkCell> workcell_;
@@ -165,12 +172,20 @@ class HandGraspSetup {
   TauRule tauRule_;
   std::optional<ContactIkSettings> contactIk_;
   rw::kinematics::State defaultState_;
+  std::filesystem::path workcellFile_;
+  std::filesystem::path dynamicsFile_;
 };
 
 /// Loads a grasp description file and the hand's workcell it names (rw::loaders::loadWorkCell),
-/// and prepares them. @throws rw::loaders::LoadError listing every error, each at the
-/// file:line:column of the description (or of the workcell, if that fails to load).
+/// and prepares them. `file` may also be a hand's folder (e.g. scenes/hands/pg70): the one
+/// `*.grasp.xml` in it. @throws rw::loaders::LoadError listing every error, each at the
+/// file:line:column of the description (or of the workcell, if that fails to load); for a
+/// folder without exactly one grasp description, naming the folder and what it holds.
 std::unique_ptr<HandGraspSetup> loadHandGraspSetup(const std::filesystem::path& file);
+
+/// The grasp description of a hand given as a file or as its folder (see loadHandGraspSetup).
+/// @throws rw::loaders::LoadError as loadHandGraspSetup for a folder.
+std::filesystem::path graspDescriptionFile(const std::filesystem::path& fileOrFolder);
 
 /// Same as loadHandGraspSetup, reading the description from `xml`; its workcell attribute
 /// resolves against the folder of `virtualFile`, and messages name `virtualFile`.

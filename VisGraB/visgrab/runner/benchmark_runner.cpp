@@ -8,8 +8,10 @@
 #include <mutex>
 #include <optional>
 #include <stdexcept>
+#include <string_view>
 #include <thread>
 
+#include "rw/loaders/xml/text_file.hpp"
 #include "rwsim/loaders/dynamic_workcell_loader.hpp"
 #include "rwsim/simulator/grasp_trial.hpp"
 #include "visgrab/database/database.hpp"
@@ -69,7 +71,7 @@ class SceneRunner {
  public:
   SceneRunner(const SceneWork& work, const grasp::HandGraspSetup& hand)
       : work_(&work), hand_(&hand) {
-    dwc_ = rwsim::loaders::loadDynamicWorkCell(work.entry->dynamicWorkcell);
+    dwc_ = loadSceneWithHand(*work.entry, hand);
     trial_ = std::make_unique<rwsim::simulator::GraspTrial>(*dwc_, trialSetup(hand, *dwc_));
   }
 
@@ -110,6 +112,93 @@ class SceneRunner {
 };
 
 }  // namespace
+
+namespace {
+
+/// One `<Include file="..."/>` of a scene file.
+struct IncludeRef {
+  std::size_t valueBegin = 0, valueEnd = 0;
+  fs::path target;
+};
+
+/// The Includes of `text` (a scene file in `folder`) whose target lies in a folder "hands"
+/// (`<Include file="..."/>` as the generator writes them).
+std::vector<IncludeRef> handIncludes(const std::string& text, const fs::path& folder) {
+  std::vector<IncludeRef> out;
+  constexpr std::string_view kTag = "<Include";
+  constexpr std::string_view kAttribute = "file=\"";
+  for (std::size_t at = text.find(kTag); at != std::string::npos; at = text.find(kTag, at + 1)) {
+    const std::size_t close = text.find('>', at);
+    const std::size_t attr = text.find(kAttribute, at);
+    if (close == std::string::npos || attr == std::string::npos || attr > close) continue;
+    const std::size_t begin = attr + kAttribute.size();
+    const std::size_t end = text.find('"', begin);
+    if (end == std::string::npos || end > close) continue;
+    const fs::path target = (folder / text.substr(begin, end - begin)).lexically_normal();
+    if (target.parent_path().parent_path().filename() != "hands") continue;
+    out.push_back(IncludeRef{begin, end, target});
+  }
+  return out;
+}
+
+std::string readScenePart(const fs::path& file) {
+  std::string text;
+  const std::string why = rw::loaders::xml::readTextFile(file, text);
+  if (!why.empty()) {
+    rw::loaders::Diagnostic d;
+    d.file = file.string();
+    d.message = "cannot read " + file.string() + ": " + why;
+    throw rw::loaders::LoadError({d});
+  }
+  return text;
+}
+
+bool sameContent(const fs::path& a, const fs::path& b) {
+  std::string ta, tb;
+  return rw::loaders::xml::readTextFile(a, ta).empty() &&
+         rw::loaders::xml::readTextFile(b, tb).empty() && ta == tb;
+}
+
+/// The one hand Include of a scene file, or an error naming the file.
+IncludeRef theHandInclude(const std::string& text, const fs::path& file) {
+  const auto refs = handIncludes(text, file.parent_path());
+  if (refs.size() != 1) {
+    throw std::runtime_error(file.string() +
+                             ": expected one Include of a hand (a file in a "
+                             "hands/<hand>/ folder), found " +
+                             std::to_string(refs.size()) + "; cannot put another hand in");
+  }
+  return refs.front();
+}
+
+}  // namespace
+
+std::unique_ptr<rwsim::dynamics::DynamicWorkCell> loadSceneWithHand(
+    const database::SceneEntry& entry, const grasp::HandGraspSetup& hand) {
+  if (hand.workcellFile().empty() || hand.dynamicsFile().empty()) {
+    return rwsim::loaders::loadDynamicWorkCell(entry.dynamicWorkcell);
+  }
+  const std::string wcText = readScenePart(entry.workcell);
+  const std::string dwcText = readScenePart(entry.dynamicWorkcell);
+  const IncludeRef wcRef = theHandInclude(wcText, entry.workcell);
+  const IncludeRef dwcRef = theHandInclude(dwcText, entry.dynamicWorkcell);
+  if (sameContent(wcRef.target, hand.workcellFile()) &&
+      sameContent(dwcRef.target, hand.dynamicsFile())) {
+    return rwsim::loaders::loadDynamicWorkCell(entry.dynamicWorkcell);
+  }
+  if (!fs::is_regular_file(hand.dynamicsFile())) {
+    throw std::runtime_error("the hand's dynamics file " + hand.dynamicsFile().string() +
+                             " is missing (GraspDescription dynamics=\"...\", default "
+                             "<workcell stem>_dynamics.dwc.xml)");
+  }
+  std::string wc = wcText;
+  wc.replace(wcRef.valueBegin, wcRef.valueEnd - wcRef.valueBegin,
+             hand.workcellFile().generic_string());
+  std::string dwc = dwcText;
+  dwc.replace(dwcRef.valueBegin, dwcRef.valueEnd - dwcRef.valueBegin,
+              hand.dynamicsFile().generic_string());
+  return rwsim::loaders::loadDynamicWorkCellFromStrings(dwc, wc, entry.dynamicWorkcell);
+}
 
 rwsim::simulator::GraspTrialSetup trialSetup(const grasp::HandGraspSetup& hand,
                                              const rwsim::dynamics::DynamicWorkCell& dwc) {

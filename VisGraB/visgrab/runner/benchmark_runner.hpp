@@ -7,7 +7,9 @@
 #include <vector>
 
 #include "rw/loaders/diagnostic.hpp"
+#include "rwsim/dynamics/dynamic_workcell.hpp"
 #include "rwsim/simulator/grasp_trial.hpp"
+#include "visgrab/database/database.hpp"
 #include "visgrab/grasp/hand_grasp_setup.hpp"
 
 /// The headless benchmark run: every grasp of every scene through the simulator.
@@ -19,6 +21,18 @@ namespace visgrab::runner {
 rwsim::simulator::GraspTrialSetup trialSetup(const grasp::HandGraspSetup& hand,
                                              const rwsim::dynamics::DynamicWorkCell& dwc);
 
+/// The scene's dynamic workcell with `hand` in it. A generated scene includes its hand from the
+/// database's hands/ folder (one Include in scene.wc.xml, one in scene.dwc.xml). When those
+/// files equal the hand's workcell and dynamics files (the hand the database was generated
+/// with), the scene is loaded as it is; otherwise the two Includes are pointed at `hand`'s files
+/// (HandGraspSetup::workcellFile, dynamicsFile) and the scene is loaded from memory: any hand
+/// runs in any scene without generating the database again. The hand hangs from the scene's
+/// HandMount frame, as the generated one.
+/// @throws rw::loaders::LoadError for unreadable or invalid files, std::runtime_error naming the
+/// file when a scene file does not include exactly one hand.
+std::unique_ptr<rwsim::dynamics::DynamicWorkCell> loadSceneWithHand(
+    const database::SceneEntry& entry, const grasp::HandGraspSetup& hand);
+
 /// What `visgrab run` needs.
 struct RunOptions {
   /// A generated database folder or an original VisGraB manifest.
@@ -27,7 +41,8 @@ struct RunOptions {
   std::vector<std::filesystem::path> grasps;
   /// The result folder (trials.csv, run.csv).
   std::filesystem::path out;
-  /// The hand's grasp description (e.g. scenes/hands/sdh/sdh.grasp.xml).
+  /// The hand: its grasp description (e.g. scenes/hands/sdh/sdh.grasp.xml) or its folder
+  /// (scenes/hands/pg70); see loadSceneWithHand.
   std::filesystem::path hand;
   /// Only the scenes this filter selects (docs/database-format.md); empty: all.
   std::string scenes;

@@ -13,7 +13,7 @@ namespace visgrab::view {
 
 SceneSession::SceneSession(const database::SceneEntry& entry, const grasp::HandGraspSetup& hand)
     : entry_(entry), hand_(&hand) {
-  dwc_ = rwsim::loaders::loadDynamicWorkCell(entry.dynamicWorkcell);
+  dwc_ = runner::loadSceneWithHand(entry, hand);
   trial_ = std::make_unique<rwsim::simulator::GraspTrial>(*dwc_, runner::trialSetup(hand, *dwc_));
   initial_ = dwc_->workcell().defaultState();
   const auto& bodies = dwc_->bodies();

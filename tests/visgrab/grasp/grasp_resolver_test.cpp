@@ -140,3 +140,48 @@ TEST(Resolve, MessageWithoutSourceStillNamesTheGrasp) {
 }
 
 }  // namespace
+
+namespace {
+
+// Two contacts 6 cm apart along y at z 0.1, approach straight down: the TCP midway, z down,
+// x from the first contact to the second, y = z x x (worked by hand: (0,0,-1) x (0,1,0) =
+// (1,0,0)).
+TEST(PreshapeFromContacts, TcpBetweenTheContactsClosingAlongX) {
+  visgrab::grasp::GraspRequest c;
+  c.sceneId = "s";
+  c.method = "m";
+  c.id = "g";
+  c.kind = visgrab::grasp::GraspKind::kContacts;
+  c.contacts = {{{0.1, -0.03, 0.1}, {0, 1, 0}}, {{0.1, 0.03, 0.1}, {0, -1, 0}}};
+  c.approach = {0, 0, -2};
+  const auto p = visgrab::grasp::preshapeFromContacts(c, "wide");
+  ASSERT_TRUE(p.has_value());
+  EXPECT_EQ(p->kind, visgrab::grasp::GraspKind::kPreshape);
+  EXPECT_EQ(p->preshape, "wide");
+  EXPECT_EQ(p->id, "g");
+  EXPECT_TRUE(p->contacts.empty());
+  EXPECT_LT((p->X_W_tcp.translation() - rw::math::Vector3D(0.1, 0, 0.1)).norm(), 1e-15);
+  EXPECT_LT((p->X_W_tcp.linear().col(0) - rw::math::Vector3D(0, 1, 0)).norm(), 1e-15);
+  EXPECT_LT((p->X_W_tcp.linear().col(1) - rw::math::Vector3D(1, 0, 0)).norm(), 1e-15);
+  EXPECT_LT((p->X_W_tcp.linear().col(2) - rw::math::Vector3D(0, 0, -1)).norm(), 1e-15);
+  // A tilted line between the contacts: x is its part across the approach.
+  c.contacts[1].position = {0.1, 0.03, 0.16};
+  const auto tilted = visgrab::grasp::preshapeFromContacts(c, "wide");
+  ASSERT_TRUE(tilted.has_value());
+  EXPECT_LT((tilted->X_W_tcp.linear().col(0) - rw::math::Vector3D(0, 1, 0)).norm(), 1e-15);
+  // Not two contacts, no approach, or contacts along the approach: none.
+  auto three = c;
+  three.contacts.push_back(c.contacts[0]);
+  EXPECT_FALSE(visgrab::grasp::preshapeFromContacts(three, "wide").has_value());
+  auto noApproach = c;
+  noApproach.approach = rw::math::Vector3D::Zero();
+  EXPECT_FALSE(visgrab::grasp::preshapeFromContacts(noApproach, "wide").has_value());
+  auto along = c;
+  along.contacts[1].position = {0.1, -0.03, 0.2};
+  EXPECT_FALSE(visgrab::grasp::preshapeFromContacts(along, "wide").has_value());
+  auto pose = c;
+  pose.kind = visgrab::grasp::GraspKind::kPreshape;
+  EXPECT_FALSE(visgrab::grasp::preshapeFromContacts(pose, "wide").has_value());
+}
+
+}  // namespace

@@ -1,0 +1,217 @@
+// A hand is its files: a parallel gripper written into a temporary folder from XML alone (a
+// workcell, its dynamics, its grasp description) runs grasps in the shared test database's scenes,
+// which were generated with the SDH. Its outcomes are those its geometry implies: jaws around the
+// can hold it, jaws 25 cm beside it close on nothing, the palm pushed into it collides.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <map>
+#include <numbers>
+#include <string>
+
+#include "rw/math/rpy.hpp"
+#include "rwsim/dynamics/dynamic_workcell.hpp"
+#include "support/test_database.hpp"
+#include "support/test_support.hpp"
+#include "visgrab/grasp/hand_grasp_setup.hpp"
+#include "visgrab/results/results_file.hpp"
+#include "visgrab/runner/benchmark_runner.hpp"
+#include "visgrab/taskio/grasp_list.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using rw::math::Vector3D;
+
+constexpr const char* kScene = "plain/single/cocacola/01";
+
+// "Jaws": a housing 4 cm high, two 8 cm long jaws sliding apart along the base's y axis (q = the
+// opening of each: inner faces 2 q + 1 cm apart, 0..5 cm), the TCP between the jaws 9 cm above
+// the base, z along the approach, x along the closing direction (as the PG70's TCP).
+constexpr const char* kWorkcell = R"(<TreeDevice name="Jaws">
+  <Frame name="Base" type="Movable">
+    <RPY>0 0 0</RPY><Pos>0 0 0</Pos>
+    <Drawable name="Housing"><RPY>0 0 0</RPY><Pos>0 0 0.02</Pos><RGB>0.3 0.3 0.35</RGB>
+      <Box x="0.05" y="0.14" z="0.04"/></Drawable>
+  </Frame>
+  <Joint name="Right" refframe="Base" type="Prismatic">
+    <RPY>0 0 90</RPY><Pos>0 -0.005 0.04</Pos>
+    <PosLimit min="0" max="0.05"/>
+    <VelLimit max="0.1"/>
+    <Drawable name="RightJaw"><RPY>0 0 0</RPY><Pos>0 0.05 -0.005</Pos><RGB>0.9 0.6 0.1</RGB>
+      <Box x="0.03" y="0.08" z="0.01"/></Drawable>
+  </Joint>
+  <Frame name="RightTip" refframe="Right" type="EndEffector"><RPY>0 0 0</RPY><Pos>0 0 0</Pos></Frame>
+  <Joint name="Left" refframe="Base" type="Prismatic">
+    <RPY>0 0 90</RPY><Pos>0 0.005 0.04</Pos>
+    <Depend on="Right" gain="-1" offset="0"/>
+    <Drawable name="LeftJaw"><RPY>0 0 0</RPY><Pos>0 0.05 0.005</Pos><RGB>0.9 0.6 0.1</RGB>
+      <Box x="0.03" y="0.08" z="0.01"/></Drawable>
+  </Joint>
+  <Frame name="LeftTip" refframe="Left" type="EndEffector"><RPY>0 0 0</RPY><Pos>0 0 0</Pos></Frame>
+  <Frame name="TCP" refframe="Base"><RPY>90 0 0</RPY><Pos>0 0 0.09</Pos></Frame>
+  <CollisionSetup file="jaws.prox.xml"/>
+  <Q name="Home">0</Q>
+</TreeDevice>
+)";
+
+constexpr const char* kCollisionSetup = R"(<CollisionSetup>
+  <Exclude>
+    <FramePair first="Base" second="Right"/>
+    <FramePair first="Base" second="Left"/>
+  </Exclude>
+</CollisionSetup>
+)";
+
+constexpr const char* kDynamics = R"(<IncludeData>
+  <RigidDevice device="Jaws">
+    <ForceLimit joint="Right">30</ForceLimit>
+    <ForceLimit joint="Left">40</ForceLimit>
+    <KinematicBase frame="Base"><MaterialID>Finger</MaterialID></KinematicBase>
+    <RigidJoint joint="Right"><Mass>0.1</Mass><EstimateInertia/><MaterialID>Finger</MaterialID></RigidJoint>
+    <RigidJoint joint="Left"><Mass>0.1</Mass><EstimateInertia/><MaterialID>Finger</MaterialID></RigidJoint>
+  </RigidDevice>
+  <PDDeviceController name="GraspController" device="Jaws" type="Position">
+    <Sync>false</Sync>
+    <PDParams>10 0.003</PDParams>
+    <TimeStep>0.01</TimeStep>
+  </PDDeviceController>
+</IncludeData>
+)";
+
+constexpr const char* kGraspDescription = R"(<GraspDescription workcell="jaws.wc.xml"
+    dynamics="jaws_dynamics.dwc.xml" device="Jaws" controller="GraspController" tcp="TCP">
+  <PreShape name="JAWS_WIDE" aliases="wide" qOpen="0.048" qClosed="0.0"/>
+  <Closing><Offset joint="Right" value="-0.02"/></Closing>
+  <TauMax base="30"/>
+</GraspDescription>
+)";
+
+// The gripper's folder, written once.
+const fs::path& handFolder() {
+  static visgrab::test::TempDir dir;
+  static const fs::path folder = [] {
+    const fs::path f = dir.path() / "jaws";
+    visgrab::test::writeFile(f / "jaws.wc.xml", kWorkcell);
+    visgrab::test::writeFile(f / "jaws.prox.xml", kCollisionSetup);
+    visgrab::test::writeFile(f / "jaws_dynamics.dwc.xml", kDynamics);
+    visgrab::test::writeFile(f / "jaws.grasp.xml", kGraspDescription);
+    return f;
+  }();
+  return folder;
+}
+
+Vector3D canBase() {
+  return visgrab::test::testDatabase().groundTruth(kScene).front().X_WO.translation();
+}
+
+// The gripper pointing down (RPY 0 180 0) with its TCP at `tcp`, pre-shape "wide".
+visgrab::grasp::GraspRequest downAt(const std::string& id, const Vector3D& tcp) {
+  visgrab::grasp::GraspRequest r;
+  r.sceneId = kScene;
+  r.id = id;
+  r.method = "jaws";
+  r.kind = visgrab::grasp::GraspKind::kPreshape;
+  r.preshape = "wide";
+  r.X_W_tcp = rw::math::rpyTransform(Vector3D(0.0, std::numbers::pi, 0.0), tcp);
+  return r;
+}
+
+TEST(NewHand, TheSceneGetsTheGivenHand) {
+  const auto hand = visgrab::grasp::loadHandGraspSetup(handFolder());  // the folder is enough
+  EXPECT_EQ(hand->deviceName(), "Jaws");
+  EXPECT_EQ(hand->dynamicsFile(), (handFolder() / "jaws_dynamics.dwc.xml").lexically_normal());
+  const auto& entry = visgrab::test::testDatabase().scene(kScene);
+  const auto dwc = visgrab::runner::loadSceneWithHand(entry, *hand);
+  ASSERT_EQ(dwc->devices().size(), 1u);
+  EXPECT_EQ(dwc->devices()[0].device->name(), "Jaws");
+  EXPECT_EQ(dwc->workcell().findDevice("SchunkHand"), nullptr);
+  EXPECT_TRUE(dwc->workcell().findFrame("HandMount").valid());
+  // The SDH the database was generated with: the scene as it is.
+  const auto sdh =
+      visgrab::grasp::loadHandGraspSetup(visgrab::test::sourceDir() / "scenes/hands/sdh");
+  const auto original = visgrab::runner::loadSceneWithHand(entry, *sdh);
+  EXPECT_NE(original->workcell().findDevice("SchunkHand"), nullptr);
+}
+
+TEST(NewHand, RunsGraspsWithTheOutcomesItsGeometryImplies) {
+  // Pointing down, the housing spans 5..9 cm above the TCP and the jaws 3 cm below to 5 cm
+  // above it. With the TCP 9 cm above the can's base (the can is 11.5 cm high) the jaws hold the
+  // can's upper 8 cm and the housing is clear of its top; 4 cm above the base the housing is in
+  // the can.
+  const Vector3D high = canBase() + Vector3D(0, 0, 0.09);
+  std::vector<visgrab::grasp::GraspRequest> grasps = {
+      downAt("around", high),
+      downAt("beside", high + Vector3D(0.25, 0, 0)),
+      downAt("into", canBase() + Vector3D(0, 0, 0.04)),
+  };
+  visgrab::test::TempDir tmp;
+  visgrab::taskio::writeGraspList(grasps, tmp.path() / "plan.csv");
+  visgrab::runner::RunOptions options;
+  options.database = visgrab::test::testDatabase().root();
+  options.grasps = {tmp.path() / "plan.csv"};
+  options.out = tmp.path() / "results";
+  options.hand = handFolder();
+  options.threads = 2;
+  const auto summary = visgrab::runner::runBenchmark(options);
+  EXPECT_TRUE(summary.rejected.empty());
+  std::map<std::string, std::string> outcome;
+  const auto results = visgrab::results::readResults(options.out);
+  for (const auto& t : results.trials) {
+    outcome[t.graspId] = std::string(rwsim::simulator::outcomeName(t.outcome)) + " " + t.detail;
+  }
+  EXPECT_EQ(outcome["around"].substr(0, 6), "stable") << outcome["around"];
+  EXPECT_EQ(outcome["beside"].substr(0, 6), "missed") << outcome["beside"];
+  EXPECT_EQ(outcome["into"].substr(0, 12), "in_collision") << outcome["into"];
+  EXPECT_EQ(results.sources.hand, fs::absolute(handFolder()).lexically_normal());
+}
+
+// The project's three hands run one pre-shape plan ("wide": SDH_WIDE, PG70, R2F85_OPEN, each in
+// its two-finger grasp frame, x along the closing direction): the can is held by each, nothing is
+// touched 25 cm beside it.
+TEST(NewHand, TheProjectsHandsRunOnePreshapePlan) {
+  const Vector3D high = canBase() + Vector3D(0, 0, 0.09);
+  const std::vector<visgrab::grasp::GraspRequest> grasps = {
+      downAt("around", high), downAt("beside", high + Vector3D(0.25, 0, 0))};
+  visgrab::test::TempDir tmp;
+  visgrab::taskio::writeGraspList(grasps, tmp.path() / "plan.csv");
+  for (const char* hand : {"sdh", "pg70", "robotiq2f85"}) {
+    SCOPED_TRACE(hand);
+    visgrab::runner::RunOptions options;
+    options.database = visgrab::test::testDatabase().root();
+    options.grasps = {tmp.path() / "plan.csv"};
+    options.out = tmp.path() / hand;
+    options.hand = visgrab::test::sourceDir() / "scenes/hands" / hand;
+    const auto summary = visgrab::runner::runBenchmark(options);
+    EXPECT_TRUE(summary.rejected.empty());
+    std::map<std::string, rwsim::simulator::GraspOutcome> outcome;
+    for (const auto& t : visgrab::results::readResults(options.out).trials) {
+      outcome[t.graspId] = t.outcome;
+    }
+    EXPECT_TRUE(visgrab::results::isSuccess(outcome.at("around")))
+        << rwsim::simulator::outcomeName(outcome.at("around"));
+    EXPECT_EQ(outcome.at("beside"), rwsim::simulator::GraspOutcome::kMissed);
+  }
+}
+
+TEST(NewHand, AFolderWithoutOneGraspDescriptionIsAnError) {
+  visgrab::test::TempDir tmp;
+  try {
+    visgrab::grasp::loadHandGraspSetup(tmp.path());
+    FAIL() << "loaded a hand from an empty folder";
+  } catch (const rw::loaders::LoadError& e) {
+    EXPECT_NE(std::string(e.what()).find("holds no grasp description"), std::string::npos)
+        << e.what();
+  }
+  visgrab::test::writeFile(tmp.path() / "a.grasp.xml", kGraspDescription);
+  visgrab::test::writeFile(tmp.path() / "b.grasp.xml", kGraspDescription);
+  try {
+    visgrab::grasp::loadHandGraspSetup(tmp.path());
+    FAIL() << "loaded a hand from a folder with two descriptions";
+  } catch (const rw::loaders::LoadError& e) {
+    EXPECT_NE(std::string(e.what()).find("a.grasp.xml, b.grasp.xml"), std::string::npos)
+        << e.what();
+  }
+}
+
+}  // namespace
