@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <map>
@@ -17,6 +18,9 @@
 #include "rwsim/loaders/dynamic_workcell_loader.hpp"
 #include "rwsim/simulator/grasp_trial.hpp"
 #include "rwsim/simulator/simulator.hpp"
+#include "visgrab/database/database.hpp"
+#include "visgrab/grasp/hand_grasp_setup.hpp"
+#include "visgrab/runner/benchmark_runner.hpp"
 
 namespace visgrab::app {
 
@@ -244,25 +248,63 @@ void printResult(const rwsim::simulator::GraspTrialResult& r, const DynamicWorkC
   }
 }
 
+// True if --hand names a hand description (a folder or a *.grasp.xml file), not a device.
+bool isHandDescription(const std::string& value) {
+  std::error_code ec;
+  return std::filesystem::is_directory(value, ec) || value.ends_with(".grasp.xml");
+}
+
 int runGrasp(const std::vector<std::string>& raw) {
   std::vector<std::string> args = raw;
   const auto lists = takeNumberLists(args, {"pose", "qopen", "qclose", "taumax"});
   const Arguments a(args, {});
-  a.rejectUnknown({"hand", "tcp", "controller", "dt"});
-  a.requirePositionals(1, "FILE (a .dwc.xml dynamic workcell)");
+  a.rejectUnknown({"hand", "tcp", "controller", "dt", "db", "scene", "preshape", "data"});
   const auto pose = lists.find("pose");
   if (pose == lists.end()) throw UsageError("--pose x y z roll pitch yaw is required");
   if (pose->second.size() != 6) {
     throw UsageError("--pose needs 6 numbers (x y z in m, roll pitch yaw in degrees), got " +
                      std::to_string(pose->second.size()));
   }
-  const auto dwc = load(a.positionals()[0]);
-  if (!dwc) return 1;
+  // The hand: a device of the dynamic workcell, or a hand description (folder or file).
+  std::unique_ptr<grasp::HandGraspSetup> description;
+  if (const auto h = a.option("hand"); h && isHandDescription(*h)) {
+    description = grasp::loadHandGraspSetup(*h);
+  }
+  const auto preshapeName = a.option("preshape");
+  // The scene: a dynamic workcell file, or a database scene with the hand put in.
+  std::unique_ptr<DynamicWorkCell> dwc;
+  const auto dbPath = a.option("db");
+  const auto sceneId = a.option("scene");
+  if (dbPath || sceneId) {
+    if (!dbPath || !sceneId) throw UsageError("--db DIR and --scene ID go together");
+    a.requirePositionals(0, "no FILE with --db and --scene");
+    if (a.option("hand") && !description) {
+      throw UsageError("--hand with --db names a hand: its folder or *.grasp.xml");
+    }
+    const auto db = database::Database::openAny(*dbPath);
+    if (!description) description = grasp::loadHandGraspSetup(dataFolder(a) / "hands/sdh");
+    dwc = runner::loadSceneWithHand(db.scene(*sceneId), *description);
+  } else {
+    a.requirePositionals(1, "FILE (a .dwc.xml dynamic workcell), or --db DIR --scene ID");
+    dwc = load(a.positionals()[0]);
+    if (!dwc) return 1;
+  }
+  if (preshapeName && !description) {
+    throw UsageError("--preshape needs --hand DIR|GRASP.xml (a hand description with pre-shapes)");
+  }
   rwsim::simulator::GraspTrialSetup setup;
-  setup.hand = handName(a, *dwc);
-  setup.tcpFrame = a.option("tcp").value_or("");
+  if (description) {
+    setup = runner::trialSetup(*description, *dwc);
+    if (dwc->findDevice(setup.hand) < 0) {
+      throw UsageError("the dynamic workcell has no device '" + setup.hand + "' (the hand of " +
+                       description->description().file + ")");
+    }
+  } else {
+    setup.hand = handName(a, *dwc);
+    setup.simulator = rwsim::simulator::optionsFromEngineProperties(*dwc);
+  }
+  if (const auto tcp = a.option("tcp")) setup.tcpFrame = *tcp;
   setup.controller = a.option("controller").value_or(setup.controller);
-  setup.simulator = rwsim::simulator::optionsFromEngineProperties(*dwc);
   setup.simulator.timeStep = positiveOption(a, "dt", setup.simulator.timeStep);
   std::unique_ptr<rwsim::simulator::GraspTrial> trial;
   try {
@@ -275,9 +317,29 @@ int runGrasp(const std::vector<std::string>& raw) {
   const auto& v = pose->second;
   grasp.X_W_tcp = rw::math::rpyTransform(rw::math::Vector3D(v[3], v[4], v[5]) * rw::math::kDeg2Rad,
                                          rw::math::Vector3D(v[0], v[1], v[2]));
-  grasp.qOpen = dofVector(lists, "qopen", dof, setup.hand, true);
-  grasp.qClosed = dofVector(lists, "qclose", dof, setup.hand, true);
-  grasp.tauMax = dofVector(lists, "taumax", dof, setup.hand, false);
+  if (preshapeName) {
+    const grasp::PreShape* shape = description->findPreshape(*preshapeName);
+    if (shape == nullptr) {
+      std::string names;
+      for (const auto& p : description->preshapes()) names += (names.empty() ? "" : ", ") + p.name;
+      throw UsageError("--preshape: the hand has no pre-shape '" + *preshapeName + "' (" + names +
+                       ")");
+    }
+    // The pose is the pre-shape's TCP frame (as in grasp files).
+    grasp.X_W_tcp = grasp.X_W_tcp * shape->X_shapeTcp_tcp;
+    grasp.qOpen = shape->qOpen;
+    grasp.qClosed = shape->qClosed;
+    grasp.tauMax = shape->tauMax;
+  }
+  if (!preshapeName || lists.count("qopen") > 0) {
+    grasp.qOpen = dofVector(lists, "qopen", dof, setup.hand, !preshapeName);
+  }
+  if (!preshapeName || lists.count("qclose") > 0) {
+    grasp.qClosed = dofVector(lists, "qclose", dof, setup.hand, !preshapeName);
+  }
+  if (!preshapeName || lists.count("taumax") > 0) {
+    grasp.tauMax = dofVector(lists, "taumax", dof, setup.hand, false);
+  }
   if (grasp.tauMax.size() > 0 && grasp.tauMax.minCoeff() < 0.0) {
     throw UsageError("--taumax values must be >= 0");
   }
@@ -297,10 +359,14 @@ std::vector<Command> simulationCommands() {
        "(time,body,x,y,z,qw,qx,qy,qz) or print the final poses.",
        runSim},
       {"grasp", "",
-       "FILE.dwc.xml [--hand NAME] --pose X Y Z ROLL PITCH YAW --qopen Q... --qclose Q... "
-       "[--taumax T...] [--tcp FRAME] [--controller NAME] [--dt DT]",
+       "FILE.dwc.xml|--db DIR --scene ID [--hand NAME|DIR|GRASP.xml] --pose X Y Z ROLL PITCH "
+       "YAW (--qopen Q... --qclose Q... [--taumax T...] | --preshape NAME) [--tcp FRAME] "
+       "[--controller NAME] [--dt DT]",
        "Run one grasp trial: TCP pose in m and RobWork RPY degrees (Rz Ry Rx, as in .wc.xml), "
-       "q in rad/m, tau in N m/N; print the outcome, RobWork code, Q_lift, Q_GWS and contacts.",
+       "q in rad/m, tau in N m/N; print the outcome, RobWork code, Q_lift, Q_GWS and contacts. "
+       "--hand names a device of FILE, or a hand (its folder or grasp description: device, "
+       "controller, TCP and --preshape from it); --db/--scene run it in a database scene with "
+       "that hand put in (default the SDH).",
        runGrasp},
   };
 }

@@ -1,0 +1,88 @@
+// --hand DIR on the commands that simulate, with the project's three hands in a scene of the
+// shared test database (generated with the SDH): `visgrab grasp --db --scene --hand --preshape`
+// and `visgrab render --hand`; the command-line mistakes.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <string>
+
+#include "support/test_database.hpp"
+#include "support/test_support.hpp"
+#include "visgrab/render/png_io.hpp"
+
+namespace {
+
+using visgrab::test::RunResult;
+using visgrab::test::shellQuoted;
+
+constexpr const char* kScene = "plain/single/cocacola/01";
+
+RunResult visgrab(const std::string& args) {
+  return visgrab::test::runProgram(VISGRAB_BINARY, args);
+}
+
+std::string hand(const char* name) {
+  return shellQuoted(visgrab::test::sourceDir() / "scenes/hands" / name);
+}
+
+// The hand pointing down (RPY 0 180 0) with its TCP 9 cm above the can's base: every two-finger
+// pre-shape "wide" holds the 11.5 cm can from above.
+std::string graspArgs(const char* handName, const std::string& preshape = "wide") {
+  const auto base = visgrab::test::testDatabase().groundTruth(kScene).front().X_WO.translation();
+  char pose[128];
+  std::snprintf(pose, sizeof pose, "%.6f %.6f %.6f 0 180 0", base.x(), base.y(), base.z() + 0.09);
+  return "grasp --db " + shellQuoted(visgrab::test::testDatabasePath()) + " --scene " + kScene +
+         " --hand " + hand(handName) + " --pose " + pose + " --preshape " + preshape;
+}
+
+TEST(HandCli, GraspRunsEachHandInADatabaseScene) {
+  for (const char* name : {"pg70", "robotiq2f85", "sdh"}) {
+    const RunResult r = visgrab(graspArgs(name));
+    ASSERT_EQ(r.exitCode, 0) << name << "\n" << r.output;
+    const bool held = r.output.find("outcome: stable") != std::string::npos ||
+                      r.output.find("outcome: slipped") != std::string::npos;
+    EXPECT_TRUE(held) << name << "\n" << r.output;
+  }
+  const RunResult r = visgrab(graspArgs("robotiq2f85"));
+  EXPECT_NE(r.output.find("hand Robotiq2F85, TCP Robotiq2F85.TCP"), std::string::npos) << r.output;
+}
+
+TEST(HandCli, RenderDrawsTheGivenHand) {
+  visgrab::test::TempDir dir;
+  const auto base = visgrab::test::testDatabase().groundTruth(kScene).front().X_WO.translation();
+  char line[256];
+  std::snprintf(line, sizeof line, "%s, plan, 1, preshape, %.6f,%.6f,%.6f, 0,0,1,0, wide\n", kScene,
+                base.x(), base.y(), base.z() + 0.09);
+  visgrab::test::writeFile(dir.path() / "plan.csv", line);
+  const RunResult r = visgrab(
+      "render --db " + shellQuoted(visgrab::test::testDatabasePath()) + " --scene " + kScene +
+      " --hand " + hand("robotiq2f85") + " --grasps " + shellQuoted(dir.path() / "plan.csv") +
+      " --grasp 1 --size 160x120 --out " + shellQuoted(dir.path() / "r.png"));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("stable"), std::string::npos) << r.output;
+  EXPECT_EQ(visgrab::render::readPng(dir.path() / "r.png").width, 3 * (160 + 2));
+}
+
+TEST(HandCli, Mistakes) {
+  RunResult r = visgrab(graspArgs("pg70", "bogus"));
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+  EXPECT_NE(r.output.find("no pre-shape 'bogus' (PG70, PG70_SMALL)"), std::string::npos)
+      << r.output;
+  r = visgrab("grasp --db " + shellQuoted(visgrab::test::testDatabasePath()) + " --scene " +
+              kScene + " --hand SchunkHand --pose 0 0 0.2 0 180 0 --preshape wide");
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+  EXPECT_NE(r.output.find("--hand with --db names a hand"), std::string::npos) << r.output;
+  r = visgrab("grasp --db " + shellQuoted(visgrab::test::testDatabasePath()) +
+              " --pose 0 0 0.2 0 "
+              "180 0 --preshape wide");
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+  EXPECT_NE(r.output.find("--db DIR and --scene ID go together"), std::string::npos) << r.output;
+  visgrab::test::TempDir empty;
+  r = visgrab("run --db " + shellQuoted(visgrab::test::testDatabasePath()) + " --grasps " +
+              shellQuoted(empty.path()) + " --out " + shellQuoted(empty.path() / "out") +
+              " --hand " + shellQuoted(empty.path()));
+  EXPECT_EQ(r.exitCode, 1) << r.output;
+  EXPECT_NE(r.output.find("holds no grasp description"), std::string::npos) << r.output;
+}
+
+}  // namespace
