@@ -362,15 +362,7 @@ std::filesystem::path graspDescriptionFile(const std::filesystem::path& fileOrFo
 
 std::unique_ptr<HandGraspSetup> loadHandGraspSetup(const std::filesystem::path& fileOrFolder) {
   const std::filesystem::path file = graspDescriptionFile(fileOrFolder);
-  std::string text;
-  const std::string why = rw::loaders::xml::readTextFile(file, text);
-  if (!why.empty()) {
-    rw::loaders::Diagnostic d;
-    d.file = file.string();
-    d.message = "cannot read " + file.string() + ": " + why;
-    throw rw::loaders::LoadError({d});
-  }
-  return loadHandGraspSetupFromString(text, file);
+  return loadHandGraspSetupFromString(rw::loaders::xml::readTextFileOrThrow(file), file);
 }
 
 }  // namespace visgrab::grasp

@@ -141,18 +141,6 @@ std::vector<IncludeRef> handIncludes(const std::string& text, const fs::path& fo
   return out;
 }
 
-std::string readScenePart(const fs::path& file) {
-  std::string text;
-  const std::string why = rw::loaders::xml::readTextFile(file, text);
-  if (!why.empty()) {
-    rw::loaders::Diagnostic d;
-    d.file = file.string();
-    d.message = "cannot read " + file.string() + ": " + why;
-    throw rw::loaders::LoadError({d});
-  }
-  return text;
-}
-
 bool sameContent(const fs::path& a, const fs::path& b) {
   std::string ta, tb;
   return rw::loaders::xml::readTextFile(a, ta).empty() &&
@@ -178,8 +166,8 @@ std::unique_ptr<rwsim::dynamics::DynamicWorkCell> loadSceneWithHand(
   if (hand.workcellFile().empty() || hand.dynamicsFile().empty()) {
     return rwsim::loaders::loadDynamicWorkCell(entry.dynamicWorkcell);
   }
-  const std::string wcText = readScenePart(entry.workcell);
-  const std::string dwcText = readScenePart(entry.dynamicWorkcell);
+  const std::string wcText = rw::loaders::xml::readTextFileOrThrow(entry.workcell);
+  const std::string dwcText = rw::loaders::xml::readTextFileOrThrow(entry.dynamicWorkcell);
   const IncludeRef wcRef = theHandInclude(wcText, entry.workcell);
   const IncludeRef dwcRef = theHandInclude(dwcText, entry.dynamicWorkcell);
   if (sameContent(wcRef.target, hand.workcellFile()) &&

@@ -1,5 +1,7 @@
 #include "rw/loaders/xml/text_file.hpp"
 
+#include "rw/loaders/diagnostic.hpp"
+
 #include <fstream>
 #include <system_error>
 
@@ -21,6 +23,18 @@ std::string readTextFile(const fs::path& file, std::string& text) {
   }
   if (in.bad()) return "reading it failed";
   return {};
+}
+
+std::string readTextFileOrThrow(const std::filesystem::path& file) {
+  std::string text;
+  const std::string why = readTextFile(file, text);
+  if (!why.empty()) {
+    Diagnostic d;
+    d.file = file.string();
+    d.message = "cannot read " + file.string() + ": " + why;
+    throw LoadError({d});
+  }
+  return text;
 }
 
 }  // namespace rw::loaders::xml

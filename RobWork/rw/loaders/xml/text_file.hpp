@@ -14,4 +14,7 @@ inline constexpr std::size_t kMaxFileBytes = std::size_t{64} << 20;
 /// phrased to follow "cannot read FILE: ".
 std::string readTextFile(const std::filesystem::path& file, std::string& text);
 
+/// The whole file. @throws rw::loaders::LoadError naming the file and why it cannot be read.
+std::string readTextFileOrThrow(const std::filesystem::path& file);
+
 }  // namespace rw::loaders::xml
