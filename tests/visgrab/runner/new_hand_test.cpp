@@ -1,10 +1,13 @@
-// A hand is its files: a parallel gripper written into a temporary folder from XML alone (a
-// workcell, its dynamics, its grasp description) runs grasps in the shared test database's scenes,
+// A hand is its files: the parallel gripper of docs/adding-a-hand.md written into a temporary
+// folder from the page's XML alone (a workcell, its collision setup, its dynamics, its grasp
+// description) runs grasps in the shared test database's scenes,
 // which were generated with the SDH. Its outcomes are those its geometry implies: jaws around the
 // can hold it, jaws 25 cm beside it close on nothing, the palm pushed into it collides.
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <map>
 #include <numbers>
 #include <string>
@@ -25,77 +28,33 @@ using rw::math::Vector3D;
 
 constexpr const char* kScene = "plain/single/cocacola/01";
 
-// "Jaws": a housing 4 cm high, two 8 cm long jaws sliding apart along the base's y axis (q = the
-// opening of each: inner faces 2 q + 1 cm apart, 0..5 cm), the TCP between the jaws 9 cm above
-// the base, z along the approach, x along the closing direction (as the PG70's TCP).
-constexpr const char* kWorkcell = R"(<TreeDevice name="Jaws">
-  <Frame name="Base" type="Movable">
-    <RPY>0 0 0</RPY><Pos>0 0 0</Pos>
-    <Drawable name="Housing"><RPY>0 0 0</RPY><Pos>0 0 0.02</Pos><RGB>0.3 0.3 0.35</RGB>
-      <Box x="0.05" y="0.14" z="0.04"/></Drawable>
-  </Frame>
-  <Joint name="Right" refframe="Base" type="Prismatic">
-    <RPY>0 0 90</RPY><Pos>0 -0.005 0.04</Pos>
-    <PosLimit min="0" max="0.05"/>
-    <VelLimit max="0.1"/>
-    <Drawable name="RightJaw"><RPY>0 0 0</RPY><Pos>0 0.05 -0.005</Pos><RGB>0.9 0.6 0.1</RGB>
-      <Box x="0.03" y="0.08" z="0.01"/></Drawable>
-  </Joint>
-  <Frame name="RightTip" refframe="Right" type="EndEffector"><RPY>0 0 0</RPY><Pos>0 0 0</Pos></Frame>
-  <Joint name="Left" refframe="Base" type="Prismatic">
-    <RPY>0 0 90</RPY><Pos>0 0.005 0.04</Pos>
-    <Depend on="Right" gain="-1" offset="0"/>
-    <Drawable name="LeftJaw"><RPY>0 0 0</RPY><Pos>0 0.05 0.005</Pos><RGB>0.9 0.6 0.1</RGB>
-      <Box x="0.03" y="0.08" z="0.01"/></Drawable>
-  </Joint>
-  <Frame name="LeftTip" refframe="Left" type="EndEffector"><RPY>0 0 0</RPY><Pos>0 0 0</Pos></Frame>
-  <Frame name="TCP" refframe="Base"><RPY>90 0 0</RPY><Pos>0 0 0.09</Pos></Frame>
-  <CollisionSetup file="jaws.prox.xml"/>
-  <Q name="Home">0</Q>
-</TreeDevice>
-)";
-
-constexpr const char* kCollisionSetup = R"(<CollisionSetup>
-  <Exclude>
-    <FramePair first="Base" second="Right"/>
-    <FramePair first="Base" second="Left"/>
-  </Exclude>
-</CollisionSetup>
-)";
-
-constexpr const char* kDynamics = R"(<IncludeData>
-  <RigidDevice device="Jaws">
-    <ForceLimit joint="Right">30</ForceLimit>
-    <ForceLimit joint="Left">40</ForceLimit>
-    <KinematicBase frame="Base"><MaterialID>Finger</MaterialID></KinematicBase>
-    <RigidJoint joint="Right"><Mass>0.1</Mass><EstimateInertia/><MaterialID>Finger</MaterialID></RigidJoint>
-    <RigidJoint joint="Left"><Mass>0.1</Mass><EstimateInertia/><MaterialID>Finger</MaterialID></RigidJoint>
-  </RigidDevice>
-  <PDDeviceController name="GraspController" device="Jaws" type="Position">
-    <Sync>false</Sync>
-    <PDParams>10 0.003</PDParams>
-    <TimeStep>0.01</TimeStep>
-  </PDDeviceController>
-</IncludeData>
-)";
-
-constexpr const char* kGraspDescription = R"(<GraspDescription workcell="jaws.wc.xml"
-    dynamics="jaws_dynamics.dwc.xml" device="Jaws" controller="GraspController" tcp="TCP">
-  <PreShape name="JAWS_WIDE" aliases="wide" qOpen="0.048" qClosed="0.0"/>
-  <Closing><Offset joint="Right" value="-0.02"/></Closing>
-  <TauMax base="30"/>
-</GraspDescription>
-)";
+// The gripper of docs/adding-a-hand.md, "Jaws", taken from the page's XML blocks (so the
+// walk-through is tested as written): a housing 4 cm high, two 8 cm long jaws sliding apart along
+// the base's y axis (q = the opening of each: inner faces 2 q + 1 cm apart, 0..5 cm), the TCP
+// between the jaws 9 cm above the base, z along the approach, x along the closing direction.
+std::string docBlock(const std::string& root) {
+  std::ifstream in(visgrab::test::sourceDir() / "docs/adding-a-hand.md");
+  const std::string doc((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  for (std::size_t at = doc.find("```xml\n"); at != std::string::npos;
+       at = doc.find("```xml\n", at + 1)) {
+    const std::size_t begin = at + 7;
+    const std::size_t end = doc.find("```", begin);
+    const std::string block = doc.substr(begin, end - begin);
+    if (block.rfind("<" + root, 0) == 0) return block;
+  }
+  ADD_FAILURE() << "docs/adding-a-hand.md has no xml block starting with <" << root;
+  return {};
+}
 
 // The gripper's folder, written once.
 const fs::path& handFolder() {
   static visgrab::test::TempDir dir;
   static const fs::path folder = [] {
     const fs::path f = dir.path() / "jaws";
-    visgrab::test::writeFile(f / "jaws.wc.xml", kWorkcell);
-    visgrab::test::writeFile(f / "jaws.prox.xml", kCollisionSetup);
-    visgrab::test::writeFile(f / "jaws_dynamics.dwc.xml", kDynamics);
-    visgrab::test::writeFile(f / "jaws.grasp.xml", kGraspDescription);
+    visgrab::test::writeFile(f / "jaws.wc.xml", docBlock("TreeDevice"));
+    visgrab::test::writeFile(f / "jaws.prox.xml", docBlock("CollisionSetup"));
+    visgrab::test::writeFile(f / "jaws_dynamics.dwc.xml", docBlock("IncludeData"));
+    visgrab::test::writeFile(f / "jaws.grasp.xml", docBlock("GraspDescription"));
     return f;
   }();
   return folder;
@@ -203,8 +162,8 @@ TEST(NewHand, AFolderWithoutOneGraspDescriptionIsAnError) {
     EXPECT_NE(std::string(e.what()).find("holds no grasp description"), std::string::npos)
         << e.what();
   }
-  visgrab::test::writeFile(tmp.path() / "a.grasp.xml", kGraspDescription);
-  visgrab::test::writeFile(tmp.path() / "b.grasp.xml", kGraspDescription);
+  visgrab::test::writeFile(tmp.path() / "a.grasp.xml", docBlock("GraspDescription"));
+  visgrab::test::writeFile(tmp.path() / "b.grasp.xml", docBlock("GraspDescription"));
   try {
     visgrab::grasp::loadHandGraspSetup(tmp.path());
     FAIL() << "loaded a hand from a folder with two descriptions";
