@@ -8,6 +8,7 @@
 #include <string>
 
 #include "visgrab/database/database.hpp"
+#include "visgrab/grasp/grasp_resolver.hpp"
 #include "visgrab/grasp/hand_grasp_setup.hpp"
 #include "visgrab/render/offscreen_renderer.hpp"
 #include "visgrab/render/png_io.hpp"
@@ -125,11 +126,16 @@ int runRender(const std::vector<std::string>& args) {
     std::vector<view::MontageTile> tiles;
     int n = 0;
     for (const auto& g : grasps) {
-      ++n;
       if (!method.empty() && g.request.method != method) continue;
+      ++n;  // as --grasp N counts (with --method, among that method's grasps)
       view::MontageTile tile;
       tile.label = std::to_string(n) + "  " + g.request.method + " " + g.request.id;
       const auto resolved = session.resolve(g.request);
+      if (resolved.status == grasp::ResolveStatus::kInputError) {
+        std::cerr << "visgrab render: grasp " << g.request.id << " (" << g.request.method
+                  << ") left out: " << resolved.message << "\n";
+        continue;
+      }
       if (resolved.ok()) tile.grasp = resolved.parameters;
       if (g.record) {
         tile.outcome = g.record->outcome;
@@ -141,7 +147,7 @@ int runRender(const std::vector<std::string>& args) {
       }
       tiles.push_back(std::move(tile));
     }
-    if (!quiet && !run) std::fputc('\n', stderr);
+    if (!quiet) std::fputc('\n', stderr);
     if (tiles.empty()) {
       throw UsageError("the grasp files have no grasp for scene " + entry.id +
                        (method.empty() ? "" : " and method " + method));
@@ -177,8 +183,13 @@ int runRender(const std::vector<std::string>& args) {
       summary = std::string(rwsim::simulator::outcomeName(outcome));
     } else {
       std::tie(options.width, options.height) = sizeOption(a, 480, 360);
-      const auto picture =
-          view::trialStrip(offscreen.renderer(), drawing, session, *chosen, options);
+      view::TrialPicture picture;
+      try {
+        picture = view::trialStrip(offscreen.renderer(), drawing, session, *chosen, options);
+      } catch (const std::invalid_argument& e) {
+        std::cerr << "visgrab render: " << e.what() << "\n";
+        return 1;
+      }
       if (!picture.note.empty()) std::cerr << "visgrab render: " << picture.note << "\n";
       image = picture.image;
       summary = std::string(rwsim::simulator::outcomeName(picture.outcome));
@@ -196,7 +207,7 @@ int runRender(const std::vector<std::string>& args) {
   }
   render::writePng(*out, image);
   std::cout << "wrote " << *out << " (" << image.width << "x" << image.height << ", " << summary
-            << ")\n";
+            << ", hand " << hand->deviceName() << ")\n";
   return 0;
 }
 

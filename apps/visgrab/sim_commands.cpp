@@ -303,7 +303,13 @@ int runGrasp(const std::vector<std::string>& raw) {
     setup.hand = handName(a, *dwc);
     setup.simulator = rwsim::simulator::optionsFromEngineProperties(*dwc);
   }
-  if (const auto tcp = a.option("tcp")) setup.tcpFrame = *tcp;
+  if (const auto tcp = a.option("tcp")) {
+    if (description) {
+      throw UsageError("--tcp goes with --hand NAME only: a hand description sets its own TCP (" +
+                       description->tcpFrameName() + ")");
+    }
+    setup.tcpFrame = *tcp;
+  }
   setup.controller = a.option("controller").value_or(setup.controller);
   setup.simulator.timeStep = positiveOption(a, "dt", setup.simulator.timeStep);
   std::unique_ptr<rwsim::simulator::GraspTrial> trial;

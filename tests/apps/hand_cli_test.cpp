@@ -59,8 +59,18 @@ TEST(HandCli, RenderDrawsTheGivenHand) {
       " --hand " + hand("robotiq2f85") + " --grasps " + shellQuoted(dir.path() / "plan.csv") +
       " --grasp 1 --size 160x120 --out " + shellQuoted(dir.path() / "r.png"));
   ASSERT_EQ(r.exitCode, 0) << r.output;
-  EXPECT_NE(r.output.find("stable"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("stable, hand Robotiq2F85"), std::string::npos) << r.output;
   EXPECT_EQ(visgrab::render::readPng(dir.path() / "r.png").width, 3 * (160 + 2));
+  // A pre-shape the hand does not have is bad input, not an "invalid contacts" picture.
+  std::string badLine = kScene;
+  badLine.append(", plan, 1, preshape, 0,0,0.2, 0,0,1,0, NOPE\n");
+  visgrab::test::writeFile(dir.path() / "bad.csv", badLine);
+  const RunResult bad = visgrab("render --db " + shellQuoted(visgrab::test::testDatabasePath()) +
+                                " --scene " + kScene + " --hand " + hand("pg70") + " --grasps " +
+                                shellQuoted(dir.path() / "bad.csv") + " --grasp 1 --out " +
+                                shellQuoted(dir.path() / "bad.png"));
+  EXPECT_EQ(bad.exitCode, 1) << bad.output;
+  EXPECT_NE(bad.output.find("NOPE"), std::string::npos) << bad.output;
 }
 
 TEST(HandCli, Mistakes) {
@@ -72,6 +82,9 @@ TEST(HandCli, Mistakes) {
               kScene + " --hand SchunkHand --pose 0 0 0.2 0 180 0 --preshape wide");
   EXPECT_EQ(r.exitCode, 2) << r.output;
   EXPECT_NE(r.output.find("--hand with --db names a hand"), std::string::npos) << r.output;
+  r = visgrab(graspArgs("pg70") + " --tcp PG70.TCPPG70");
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+  EXPECT_NE(r.output.find("--tcp goes with --hand NAME only"), std::string::npos) << r.output;
   r = visgrab("grasp --db " + shellQuoted(visgrab::test::testDatabasePath()) +
               " --pose 0 0 0.2 0 "
               "180 0 --preshape wide");

@@ -143,8 +143,8 @@ struct GraspDescription {
   /// The hand's workcell file, as written (relative to the description's folder).
   std::string workcell;
   /// The hand's dynamics (a RobWorkSim IncludeData file with its RigidDevice and controller,
-  /// included by scenes), as written; empty: `<workcell stem>_dynamics.dwc.xml` beside the
-  /// workcell.
+  /// included by scenes), as written; empty: beside the workcell, the workcell's file name up to
+  /// its first dot + "_dynamics.dwc.xml".
   std::string dynamics;
   /// Device name.
   std::string device;

@@ -11,6 +11,7 @@
 #include <string_view>
 #include <thread>
 
+#include "rw/loaders/xml/strings.hpp"
 #include "rw/loaders/xml/text_file.hpp"
 #include "rwsim/loaders/dynamic_workcell_loader.hpp"
 #include "rwsim/simulator/grasp_trial.hpp"
@@ -147,18 +148,6 @@ bool sameContent(const fs::path& a, const fs::path& b) {
          rw::loaders::xml::readTextFile(b, tb).empty() && ta == tb;
 }
 
-/// The one hand Include of a scene file, or an error naming the file.
-IncludeRef theHandInclude(const std::string& text, const fs::path& file) {
-  const auto refs = handIncludes(text, file.parent_path());
-  if (refs.size() != 1) {
-    throw std::runtime_error(file.string() +
-                             ": expected one Include of a hand (a file in a "
-                             "hands/<hand>/ folder), found " +
-                             std::to_string(refs.size()) + "; cannot put another hand in");
-  }
-  return refs.front();
-}
-
 }  // namespace
 
 std::unique_ptr<rwsim::dynamics::DynamicWorkCell> loadSceneWithHand(
@@ -168,23 +157,37 @@ std::unique_ptr<rwsim::dynamics::DynamicWorkCell> loadSceneWithHand(
   }
   const std::string wcText = rw::loaders::xml::readTextFileOrThrow(entry.workcell);
   const std::string dwcText = rw::loaders::xml::readTextFileOrThrow(entry.dynamicWorkcell);
-  const IncludeRef wcRef = theHandInclude(wcText, entry.workcell);
-  const IncludeRef dwcRef = theHandInclude(dwcText, entry.dynamicWorkcell);
+  const auto wcRefs = handIncludes(wcText, entry.workcell.parent_path());
+  const auto dwcRefs = handIncludes(dwcText, entry.dynamicWorkcell.parent_path());
+  if (wcRefs.size() != 1 || dwcRefs.size() != 1) {
+    // Not a generated scene (an original or hand-written one): usable as it is when it holds
+    // the hand already.
+    auto dwc = rwsim::loaders::loadDynamicWorkCell(entry.dynamicWorkcell);
+    if (dwc->findDevice(hand.deviceName()) >= 0) return dwc;
+    throw std::runtime_error(
+        "scene " + entry.id + " has no device '" + hand.deviceName() + "' and does not include a " +
+        "hand from a hands/<hand>/ folder once in " + entry.workcell.filename().string() +
+        " and once in " + entry.dynamicWorkcell.filename().string() + " (found " +
+        std::to_string(wcRefs.size()) + " and " + std::to_string(dwcRefs.size()) +
+        "); cannot put the hand " + hand.description().file + " in");
+  }
+  const IncludeRef& wcRef = wcRefs.front();
+  const IncludeRef& dwcRef = dwcRefs.front();
   if (sameContent(wcRef.target, hand.workcellFile()) &&
       sameContent(dwcRef.target, hand.dynamicsFile())) {
     return rwsim::loaders::loadDynamicWorkCell(entry.dynamicWorkcell);
   }
   if (!fs::is_regular_file(hand.dynamicsFile())) {
     throw std::runtime_error("the hand's dynamics file " + hand.dynamicsFile().string() +
-                             " is missing (GraspDescription dynamics=\"...\", default "
-                             "<workcell stem>_dynamics.dwc.xml)");
+                             " is missing (GraspDescription dynamics=\"...\"; default: the "
+                             "workcell's name up to its first dot + _dynamics.dwc.xml)");
   }
   std::string wc = wcText;
   wc.replace(wcRef.valueBegin, wcRef.valueEnd - wcRef.valueBegin,
-             hand.workcellFile().generic_string());
+             rw::loaders::xml::escapeXml(hand.workcellFile().generic_string()));
   std::string dwc = dwcText;
   dwc.replace(dwcRef.valueBegin, dwcRef.valueEnd - dwcRef.valueBegin,
-              hand.dynamicsFile().generic_string());
+              rw::loaders::xml::escapeXml(hand.dynamicsFile().generic_string()));
   return rwsim::loaders::loadDynamicWorkCellFromStrings(dwc, wc, entry.dynamicWorkcell);
 }
 
@@ -272,6 +275,19 @@ RunSummary runBenchmark(const RunOptions& options,
   state.scenesTotal = static_cast<int>(pending.size());
   for (const auto& [method, n] : rejectedPerMethod) run.rejected.emplace_back(method, n);
   writer.writeRun(run);
+
+  // A hand that does not fit (a missing dynamics file, a device or controller the scene's
+  // dynamics lack) fails every scene: report it once, as the run's error, not per grasp.
+  if (!pending.empty()) {
+    try {
+      SceneRunner probe(*pending.front(), *hand);
+    } catch (const rw::loaders::LoadError&) {
+      throw;
+    } catch (const std::exception& e) {
+      throw std::runtime_error("the hand " + options.hand.string() + " cannot run in scene " +
+                               pending.front()->entry->id + ": " + e.what());
+    }
+  }
 
   std::mutex mutex;
   std::atomic<std::size_t> next{0};

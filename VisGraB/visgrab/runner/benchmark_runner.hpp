@@ -27,9 +27,11 @@ rwsim::simulator::GraspTrialSetup trialSetup(const grasp::HandGraspSetup& hand,
 /// with), the scene is loaded as it is; otherwise the two Includes are pointed at `hand`'s files
 /// (HandGraspSetup::workcellFile, dynamicsFile) and the scene is loaded from memory: any hand
 /// runs in any scene without generating the database again. The hand hangs from the scene's
-/// HandMount frame, as the generated one.
-/// @throws rw::loaders::LoadError for unreadable or invalid files, std::runtime_error naming the
-/// file when a scene file does not include exactly one hand.
+/// HandMount frame, as the generated one. A scene without exactly one such Include in each file
+/// (an original or hand-written one) is loaded as it is if it holds the hand's device.
+/// @throws rw::loaders::LoadError for unreadable or invalid files; std::runtime_error naming the
+/// scene when the hand cannot be put in (no such Includes and not the hand's device; the hand's
+/// dynamics file missing).
 std::unique_ptr<rwsim::dynamics::DynamicWorkCell> loadSceneWithHand(
     const database::SceneEntry& entry, const grasp::HandGraspSetup& hand);
 

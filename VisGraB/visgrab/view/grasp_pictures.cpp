@@ -344,6 +344,10 @@ TrialPicture trialStrip(render::GlRenderer& renderer, const WorkcellDrawing& dra
       session.entry().id + "   " + grasp.request.method + " " + grasp.request.id;
   TrialPicture picture;
   const grasp::ResolvedGrasp resolved = session.resolve(grasp.request);
+  if (resolved.status == grasp::ResolveStatus::kInputError) {
+    throw std::invalid_argument("grasp " + grasp.request.id + " (" + grasp.request.method +
+                                ") is not valid for this hand: " + resolved.message);
+  }
   if (!resolved.ok()) {
     picture.outcome = GraspOutcome::kInvalidContacts;
     picture.note = "the grasp cannot be placed: " + resolved.message;

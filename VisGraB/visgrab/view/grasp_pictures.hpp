@@ -97,7 +97,8 @@ struct TrialPicture {
 
 /// Resolves `grasp` in `session`, replays its trial and draws graspStrip, titled with the scene,
 /// method and grasp id. A grasp the contact IK cannot place gives one panel of the scene with
-/// the reason.
+/// the reason. @throws std::invalid_argument for a grasp the hand cannot take as input (an
+/// unknown pre-shape, wrong lengths), naming it.
 TrialPicture trialStrip(render::GlRenderer& renderer, const WorkcellDrawing& drawing,
                         const SceneSession& session, const SceneGrasp& grasp,
                         const PictureOptions& options);

@@ -109,6 +109,8 @@ void drawShowcases(std::vector<analysis::Showcase>& showcases,
           loadedScene.clear();
           drawing.reset();
           session.reset();
+          // A fresh renderer per scene: GlRenderer keeps every mesh it was given.
+          offscreen = std::make_unique<render::OffscreenRenderer>();
           session = std::make_unique<SceneSession>(entry, *in.hand);
           drawing = std::make_unique<WorkcellDrawing>(session->workcell(), offscreen->renderer(),
                                                       in.hand->deviceName());

@@ -71,7 +71,7 @@ WorkcellDrawing::WorkcellDrawing(const rw::models::WorkCell& workcell, render::G
               const Eigen::AlignedBox3d box = boxOf(m);
               loaded.emplace_back(renderer.add(std::make_shared<const visual::VisualMesh>(m)), box);
             }
-          } catch (const std::runtime_error& e) {
+          } catch (const std::exception& e) {
             warnings_.push_back(std::string(e.what()) + "; drawing its collision triangles");
             loaded.clear();
           }

@@ -46,15 +46,20 @@ std::string docBlock(const std::string& root) {
   return {};
 }
 
+// Writes the gripper's files into `folder` (without its dynamics file when `dynamics` is false).
+void writeJaws(const fs::path& folder, bool dynamics = true) {
+  visgrab::test::writeFile(folder / "jaws.wc.xml", docBlock("TreeDevice"));
+  visgrab::test::writeFile(folder / "jaws.prox.xml", docBlock("CollisionSetup"));
+  if (dynamics) visgrab::test::writeFile(folder / "jaws_dynamics.dwc.xml", docBlock("IncludeData"));
+  visgrab::test::writeFile(folder / "jaws.grasp.xml", docBlock("GraspDescription"));
+}
+
 // The gripper's folder, written once.
 const fs::path& handFolder() {
   static visgrab::test::TempDir dir;
   static const fs::path folder = [] {
     const fs::path f = dir.path() / "jaws";
-    visgrab::test::writeFile(f / "jaws.wc.xml", docBlock("TreeDevice"));
-    visgrab::test::writeFile(f / "jaws.prox.xml", docBlock("CollisionSetup"));
-    visgrab::test::writeFile(f / "jaws_dynamics.dwc.xml", docBlock("IncludeData"));
-    visgrab::test::writeFile(f / "jaws.grasp.xml", docBlock("GraspDescription"));
+    writeJaws(f);
     return f;
   }();
   return folder;
@@ -150,6 +155,74 @@ TEST(NewHand, TheProjectsHandsRunOnePreshapePlan) {
     EXPECT_TRUE(visgrab::results::isSuccess(outcome.at("around")))
         << rwsim::simulator::outcomeName(outcome.at("around"));
     EXPECT_EQ(outcome.at("beside"), rwsim::simulator::GraspOutcome::kMissed);
+  }
+}
+
+// A scene that is not generated (written by hand, as an original one) includes its gripper from
+// a folder that is not hands/<hand>/: it runs as it is with that gripper, and another hand is an
+// error that names the scene, not a silent run with the wrong hand.
+TEST(NewHand, ASceneHoldingItsHandDirectlyIsUsedAsItIs) {
+  visgrab::test::TempDir tmp;
+  const fs::path gripper = tmp.path() / "gripper";
+  writeJaws(gripper);
+  visgrab::test::writeFile(tmp.path() / "scene.wc.xml", R"(<WorkCell name="S">
+  <Frame name="Table" refframe="WORLD"><RPY>0 0 0</RPY><Pos>0 0 0</Pos>
+    <CollisionModel name="Top"><RPY>0 0 0</RPY><Pos>0 0 -0.02</Pos><Box x="1" y="1" z="0.04"/>
+    </CollisionModel>
+  </Frame>
+  <Frame name="HandMount" refframe="WORLD"><RPY>0 0 0</RPY><Pos>0 0 0.5</Pos></Frame>
+  <Include file="gripper/jaws.wc.xml"/>
+</WorkCell>
+)");
+  const fs::path materials = visgrab::test::sourceDir() / "scenes/materials.xml";
+  visgrab::test::writeFile(tmp.path() / "scene.dwc.xml",
+                           "<DynamicWorkcell workcell=\"scene.wc.xml\">\n"
+                           "  <Gravity>0 0 -9.81</Gravity>\n  <Include file=\"" +
+                               materials.generic_string() +
+                               "\"/>\n"
+                               "  <FixedBody frame=\"Table\"><MaterialID>Table</MaterialID></"
+                               "FixedBody>\n"
+                               "  <Include file=\"gripper/jaws_dynamics.dwc.xml\"/>\n"
+                               "</DynamicWorkcell>\n");
+  visgrab::database::SceneEntry entry;
+  entry.id = "hand-written";
+  entry.workcell = tmp.path() / "scene.wc.xml";
+  entry.dynamicWorkcell = tmp.path() / "scene.dwc.xml";
+  const auto jaws = visgrab::grasp::loadHandGraspSetup(gripper);
+  const auto dwc = visgrab::runner::loadSceneWithHand(entry, *jaws);
+  EXPECT_GE(dwc->findDevice("Jaws"), 0);
+  const auto sdh =
+      visgrab::grasp::loadHandGraspSetup(visgrab::test::sourceDir() / "scenes/hands/sdh");
+  try {
+    visgrab::runner::loadSceneWithHand(entry, *sdh);
+    FAIL() << "put the SDH into a scene that cannot take it";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("scene hand-written has no device 'SchunkHand'"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+// A hand that cannot run (its dynamics file missing) is the run's error, once, not a rejection
+// of every grasp.
+TEST(NewHand, AHandThatCannotRunFailsTheRun) {
+  visgrab::test::TempDir tmp;
+  const fs::path gripper = tmp.path() / "jaws";
+  writeJaws(gripper, false);
+  visgrab::taskio::writeGraspList({downAt("around", canBase() + Vector3D(0, 0, 0.09))},
+                                  tmp.path() / "plan.csv");
+  visgrab::runner::RunOptions options;
+  options.database = visgrab::test::testDatabase().root();
+  options.grasps = {tmp.path() / "plan.csv"};
+  options.out = tmp.path() / "results";
+  options.hand = gripper;
+  try {
+    visgrab::runner::runBenchmark(options);
+    FAIL() << "ran with a hand without dynamics";
+  } catch (const std::runtime_error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("cannot run in scene plain/single/cocacola/01"), std::string::npos) << what;
+    EXPECT_NE(what.find("jaws_dynamics.dwc.xml is missing"), std::string::npos) << what;
   }
 }
 
