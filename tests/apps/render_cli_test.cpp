@@ -133,6 +133,34 @@ TEST_F(RenderCli, MontageAndOverlay) {
   EXPECT_LT(changed, left.width * left.height / 2);
 }
 
+// The report's pictures of a run over two scenes (one per table): each scene is drawn with a
+// renderer of its own, and every showcase gets its picture.
+TEST_F(RenderCli, ReportPicturesOfSeveralScenes) {
+  std::string plan;
+  for (const char* scene : {"plain/single/cocacola/01", "textured/single/cocacola/01"}) {
+    const auto base = visgrab::test::testDatabase().groundTruth(scene).front().X_WO.translation();
+    char line[256];
+    std::snprintf(line, sizeof line,
+                  "%s, known, good, preshape, %.6f,%.6f,%.6f, 0,0,1,0, SDH_CYL\n", scene, base.x(),
+                  base.y(), base.z() + 0.06);
+    plan += line;
+  }
+  visgrab::test::writeFile(path("two.csv"), plan);
+  RunResult r = visgrab("run --db " + db() + " --grasps " + shellQuoted(path("two.csv")) +
+                        " --out " + shellQuoted(path("two")) + " --quiet");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  r = visgrab("analyze " + shellQuoted(path("two")) + " --out " + shellQuoted(path("two-report")));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_EQ(r.output.find("not drawn"), std::string::npos) << r.output;
+  // Both held grasps are their group's best: one picture per table.
+  for (const char* table : {"plain", "textured"}) {
+    const fs::path image =
+        path("two-report") / "images" / (std::string("column1-") + table + "-single-all-best.png");
+    ASSERT_TRUE(fs::exists(image)) << image;
+    EXPECT_GT(visgrab::render::readPng(image).width, 100);
+  }
+}
+
 TEST_F(RenderCli, MistakesAreUsageErrors) {
   const std::string out = " --out " + shellQuoted(path("x.png"));
   struct Case {

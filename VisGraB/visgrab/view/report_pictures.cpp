@@ -109,7 +109,9 @@ void drawShowcases(std::vector<analysis::Showcase>& showcases,
           loadedScene.clear();
           drawing.reset();
           session.reset();
-          // A fresh renderer per scene: GlRenderer keeps every mesh it was given.
+          // A fresh renderer per scene: GlRenderer keeps every mesh it was given. The old one
+          // goes first: its destructor leaves no context current.
+          offscreen.reset();
           offscreen = std::make_unique<render::OffscreenRenderer>();
           session = std::make_unique<SceneSession>(entry, *in.hand);
           drawing = std::make_unique<WorkcellDrawing>(session->workcell(), offscreen->renderer(),
@@ -117,12 +119,16 @@ void drawShowcases(std::vector<analysis::Showcase>& showcases,
           loadedScene = entry.id;
           loadedRun = r;
         }
-        const auto grasps = sceneGrasps(*in.db, entry, in.grasps, &runs[r]);
-        const SceneGrasp* grasp = nullptr;
-        for (const auto& g : grasps) {
-          if (g.request.method == s.trial.method && g.request.id == s.trial.graspId) grasp = &g;
+        // The showcase's request, with the showcase's own trial as its record.
+        std::optional<SceneGrasp> grasp;
+        for (const auto& q : in.grasps.requests) {
+          if (q.method == s.trial.method && q.id == s.trial.graspId && in.db->contains(q.sceneId) &&
+              in.db->scene(q.sceneId).id == entry.id) {
+            grasp = SceneGrasp{q, s.trial};
+            break;
+          }
         }
-        if (grasp == nullptr) {
+        if (!grasp) {
           throw std::runtime_error("grasp " + s.trial.graspId + " is not in the run's grasp files");
         }
         PictureOptions picture;
