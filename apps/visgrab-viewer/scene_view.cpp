@@ -14,6 +14,8 @@
 #include <QWheelEvent>
 
 #include "visgrab/render/scene.hpp"
+#include "visgrab/render/srgb.hpp"
+#include "visgrab/view/grasp_pictures.hpp"
 
 namespace visgrab::viewer {
 
@@ -23,14 +25,8 @@ constexpr double kDegreesPerPixel = 0.4;
 constexpr double kZoomPerWheelUnit = 0.9985;  // 120 units a notch: about 17 % closer
 constexpr double kMinDistance = 0.01;
 constexpr double kMaxDistance = 100.0;
-constexpr double kMetresPerNewton = 0.01;
-constexpr double kFramingMargin = 0.03;  // m around what is framed
-const Eigen::Vector3f kArrowColour(1.0f, 0.55f, 0.0f);
-
-float encodeSrgb(float c) {
-  c = std::clamp(c, 0.0f, 1.0f);
-  return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
-}
+constexpr double kMetresPerNewton = 0.01;  // as the pictures (view::PictureOptions)
+constexpr double kFramingMargin = 0.03;    // m around what is framed
 
 QString glVersionText(const QOpenGLContext* context) {
   if (context == nullptr) return "no OpenGL context";
@@ -166,7 +162,8 @@ void SceneView::fail(const QString& message) {
 void SceneView::clearToBackground() {
   QOpenGLFunctions* gl = context()->functions();
   const Eigen::Vector3f b = view::studioBackground();
-  gl->glClearColor(encodeSrgb(b.x()), encodeSrgb(b.y()), encodeSrgb(b.z()), 1.0f);
+  gl->glClearColor(render::encodeSrgb(b.x()), render::encodeSrgb(b.y()), render::encodeSrgb(b.z()),
+                   1.0f);
   gl->glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
 }
 
@@ -192,15 +189,7 @@ void SceneView::paintGL() {
     scene.lighting = view::studioLighting();
     scene.background = view::studioBackground();
     drawing_->addItems(state_, scene, style_);
-    if (contactsVisible_) {
-      for (const view::ContactForce& c : contacts_) {
-        const double f = c.force.norm();
-        if (!(f > 0.0)) continue;
-        const double length = std::clamp(f * kMetresPerNewton, 0.01, 0.06);
-        const Eigen::Vector3d dir = c.force / f;
-        drawing_->addArrow(c.point - length * dir, c.point, 0.0015, kArrowColour, scene);
-      }
-    }
+    if (contactsVisible_) view::addContactArrows(*drawing_, contacts_, kMetresPerNewton, scene);
     renderer_->draw(scene, view::orbitCamera(orbit_, pixelWidth(), pixelHeight()));
     lastError_.clear();
   } catch (const std::exception& e) {

@@ -34,6 +34,7 @@
 #include <QVBoxLayout>
 
 #include "rwsim/simulator/grasp_trial.hpp"
+#include "visgrab/render/srgb.hpp"
 #include "visgrab/view/grasp_pictures.hpp"
 
 namespace visgrab::viewer {
@@ -65,9 +66,7 @@ QString qs(const std::string& text) { return QString::fromStdString(text); }
 QColor outcomeQColor(GraspOutcome outcome) {
   const Eigen::Vector3f linear = view::outcomeColour(outcome);
   const auto encode = [](float c) {
-    c = std::clamp(c, 0.0f, 1.0f);
-    const float s = c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
-    return static_cast<int>(std::lround(255.0f * s));
+    return static_cast<int>(std::lround(255.0f * render::encodeSrgb(c)));
   };
   return QColor(encode(linear.x()), encode(linear.y()), encode(linear.z()));
 }

@@ -58,11 +58,11 @@ std::vector<Showcase> chooseShowcases(const Analysis& analysis,
         }
       }
       if (best != nullptr) add("best", *best);
-      std::vector<const results::TrialRecord*> others;
-      for (const auto* t : held) {
-        if (t != best || held.size() == 1) others.push_back(t);
-      }
       if (held.size() > 1) {
+        std::vector<const results::TrialRecord*> others;
+        for (const auto* t : held) {
+          if (t != best) others.push_back(t);
+        }
         std::stable_sort(others.begin(), others.end(),
                          [](const auto* a, const auto* b) { return a->qLift < b->qLift; });
         add("typical", *others[(others.size() - 1) / 2]);

@@ -1,5 +1,7 @@
 #include "visgrab/render/gl_renderer.hpp"
 
+#include "visgrab/render/srgb.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -77,11 +79,6 @@ Eigen::Matrix4d modelMatrix(const SceneItem& item) {
 /// Centre of the mesh's bounding sphere in the world.
 Eigen::Vector3d worldCentre(const SceneItem& item, const GpuMesh& mesh) {
   return item.X_WM * item.scale.cwiseProduct(mesh.centre_M);
-}
-
-float encodeSrgb(float c) {
-  c = std::clamp(c, 0.0f, 1.0f);
-  return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
 }
 
 GLint uniform(GLuint program, const char* name) { return glGetUniformLocation(program, name); }

@@ -10,6 +10,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "visgrab/analysis/report.hpp"
+#include "visgrab/render/srgb.hpp"
 
 namespace visgrab::view {
 
@@ -28,11 +29,6 @@ cv::Scalar outcomeInk(GraspOutcome outcome) {
   unsigned r = 0, g = 0, b = 0;
   if (hex.size() == 7) std::sscanf(std::string(hex).c_str(), "#%02x%02x%02x", &r, &g, &b);
   return cv::Scalar(r, g, b);
-}
-
-float decodeSrgb(double c) {
-  c /= 255.0;
-  return static_cast<float>(c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4));
 }
 
 cv::Mat toMat(const visual::RgbImage& image) {
@@ -100,7 +96,9 @@ std::string timeCaption(const char* what, double t) {
 
 Eigen::Vector3f outcomeColour(GraspOutcome outcome) {
   const cv::Scalar ink = outcomeInk(outcome);
-  return Eigen::Vector3f(decodeSrgb(ink[0]), decodeSrgb(ink[1]), decodeSrgb(ink[2]));
+  return Eigen::Vector3f(render::decodeSrgb(static_cast<float>(ink[0] / 255.0)),
+                         render::decodeSrgb(static_cast<float>(ink[1] / 255.0)),
+                         render::decodeSrgb(static_cast<float>(ink[2] / 255.0)));
 }
 
 std::string outcomeCaption(GraspOutcome outcome, double qLift, double qGws) {
@@ -122,6 +120,18 @@ Eigen::AlignedBox3d objectsBox(const SceneSession& session, const WorkcellDrawin
   return box;
 }
 
+void addContactArrows(const WorkcellDrawing& drawing, const std::vector<ContactForce>& contacts,
+                      double metresPerNewton, render::Scene& scene) {
+  const Eigen::Vector3f orange(1.0f, 0.55f, 0.0f);
+  for (const ContactForce& c : contacts) {
+    const double f = c.force.norm();
+    if (!(f > 0.0)) continue;
+    const double length = std::clamp(f * metresPerNewton, 0.01, 0.06);
+    const Eigen::Vector3d dir = c.force / f;
+    drawing.addArrow(c.point - length * dir, c.point, 0.0025, orange, scene);
+  }
+}
+
 visual::RgbImage renderState(render::GlRenderer& renderer, const WorkcellDrawing& drawing,
                              const rw::kinematics::State& state,
                              const std::vector<ContactForce>& contacts, const DrawStyle& style,
@@ -130,16 +140,7 @@ visual::RgbImage renderState(render::GlRenderer& renderer, const WorkcellDrawing
   scene.lighting = studioLighting();
   scene.background = studioBackground();
   drawing.addItems(state, scene, style);
-  if (options.contacts) {
-    const Eigen::Vector3f arrowColour(1.0f, 0.55f, 0.0f);
-    for (const ContactForce& c : contacts) {
-      const double f = c.force.norm();
-      if (!(f > 0.0)) continue;
-      const double length = std::clamp(f * options.metresPerNewton, 0.01, 0.06);
-      const Eigen::Vector3d dir = c.force / f;
-      drawing.addArrow(c.point - length * dir, c.point, 0.0025, arrowColour, scene);
-    }
-  }
+  if (options.contacts) addContactArrows(drawing, contacts, options.metresPerNewton, scene);
   render::RenderOptions ro;
   ro.colourSamples = options.samples;
   return renderer.render(scene, orbitCamera(orbit, options.width, options.height), ro).colour;

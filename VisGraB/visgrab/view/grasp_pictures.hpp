@@ -41,6 +41,11 @@ Eigen::Vector3f outcomeColour(rwsim::simulator::GraspOutcome outcome);
 Eigen::AlignedBox3d objectsBox(const SceneSession& session, const WorkcellDrawing& drawing,
                                const rw::kinematics::State& state, double margin = 0.03);
 
+/// Appends the contact forces as orange arrows ending at their points, pointing the way each
+/// force pushes the body it acts on, `metresPerNewton` long (kept within 1..6 cm).
+void addContactArrows(const WorkcellDrawing& drawing, const std::vector<ContactForce>& contacts,
+                      double metresPerNewton, render::Scene& scene);
+
 /// One picture of the scene at `state`: everything `style` selects, the contact forces as
 /// arrows (pointing at the object they push), seen from `orbit`. No caption.
 visual::RgbImage renderState(render::GlRenderer& renderer, const WorkcellDrawing& drawing,

@@ -123,6 +123,18 @@ struct Ranker {
   }
 };
 
+// The score of an encompassing grasp (two or three fingers) `width` wide: false when the width
+// is out of range or a contact too low; else the shared terms plus the closeness to the
+// preferred width.
+bool scoreEncompassing(const PatchFrame& f, const Ranker& rank, const GraspOptions& o, double width,
+                       CandidateGrasp& g) {
+  if (width < o.minWidth || width > o.maxWidth) return false;
+  const auto b = rank.base(f, g);
+  if (!b) return false;
+  g.score = *b + 1.0 - std::abs(width - o.preferredWidth) / (o.maxWidth - o.minWidth);
+  return true;
+}
+
 void twoFingerEncompassing(const PatchFrame& f, const Ranker& rank, int patchIndex,
                            std::vector<CandidateGrasp>& out) {
   const auto& o = rank.options;
@@ -138,12 +150,7 @@ void twoFingerEncompassing(const PatchFrame& f, const Ranker& rank, int patchInd
     g.approach = -f.n;
     g.contacts = {wrapContact(f, plus->point, u, o), wrapContact(f, minus->point, -u, o)};
     const double width = (g.contacts[0].position - g.contacts[1].position).norm();
-    if (width < o.minWidth || width > o.maxWidth) continue;
-    const auto b = rank.base(f, g);
-    if (!b) continue;
-    const double range = o.maxWidth - o.minWidth;
-    g.score = *b + 1.0 - std::abs(width - o.preferredWidth) / range;
-    out.push_back(std::move(g));
+    if (scoreEncompassing(f, rank, o, width, g)) out.push_back(std::move(g));
   }
 }
 
@@ -246,12 +253,7 @@ void threeFingerAcross(const PatchFrame& f, const Ranker& rank, int patchIndex,
                     wrapContact(f, right->point, -u, o)};
       const double width =
           (g.contacts[0].position - 0.5 * (g.contacts[1].position + g.contacts[2].position)).dot(u);
-      if (width < o.minWidth || width > o.maxWidth) continue;
-      const auto b = rank.base(f, g);
-      if (!b) continue;
-      const double range = o.maxWidth - o.minWidth;
-      g.score = *b + 1.0 - std::abs(width - o.preferredWidth) / range;
-      out.push_back(std::move(g));
+      if (scoreEncompassing(f, rank, o, width, g)) out.push_back(std::move(g));
     }
   }
 }
