@@ -383,7 +383,7 @@ QString ViewerWindow::replayGrasp(std::size_t index) {
   const QString name = qs(grasp.request.method + " " + grasp.request.id);
   const view::DrawStyle noHand{false, true, std::nullopt};
   const grasp::ResolvedGrasp resolved = session_->resolve(grasp.request);
-  if (!resolved.ok()) {
+  if (!resolved.placed()) {
     view_->showState(session_->initialState(), {}, noHand);
     const QString reason =
         QString("%1 cannot be placed (%2): %3")

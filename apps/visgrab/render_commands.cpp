@@ -136,10 +136,10 @@ int runRender(const std::vector<std::string>& args) {
                   << ") left out: " << resolved.message << "\n";
         continue;
       }
-      if (resolved.ok()) tile.grasp = resolved.parameters;
+      if (resolved.placed()) tile.grasp = resolved.parameters;
       if (g.record) {
         tile.outcome = g.record->outcome;
-      } else if (!resolved.ok()) {
+      } else if (!resolved.placed()) {
         tile.outcome = rwsim::simulator::GraspOutcome::kInvalidContacts;
       } else {
         if (!quiet) std::fprintf(stderr, "\rsimulating grasp %d/%zu   ", n, grasps.size());
@@ -166,7 +166,7 @@ int runRender(const std::vector<std::string>& args) {
     }
     if (overlay) {
       const auto resolved = session.resolve(chosen->request);
-      if (!resolved.ok()) {
+      if (!resolved.placed()) {
         std::cerr << "visgrab render: grasp " << chosen->request.id
                   << " cannot be placed: " << resolved.message << "\n";
         return 1;

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <map>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -19,6 +21,12 @@ using rw::math::Q;
 using rw::math::Transform3D;
 using rw::math::Vector3D;
 
+// A collision geometry of a frame prepared for the contact generation.
+struct FrameShape {
+  std::shared_ptr<const contacts::ContactShape> shape;
+  Transform3D X_frame_shape = Transform3D::Identity();
+};
+
 // Everything a trial needs that does not change between trials (shared by copies and threads).
 struct detail::TrialData {
   int hand = -1;
@@ -33,6 +41,8 @@ struct detail::TrialData {
   std::vector<double> radius;
   std::shared_ptr<const contacts::ContactDetector> detector;
   std::unique_ptr<const rw::proximity::CollisionDetector> collision;
+  // Per frame index: its collision geometry for penetration depths (empty without geometry).
+  std::vector<std::vector<FrameShape>> frameShapes;
 };
 
 namespace {
@@ -117,6 +127,75 @@ void checkGrasp(const GraspParameters& g, int dof) {
   if (!g.X_W_tcp.matrix().allFinite()) throw std::invalid_argument("the TCP pose is not finite");
 }
 
+void prepareFrameShapes(const dynamics::DynamicWorkCell& dwc, detail::TrialData& data) {
+  const auto& wc = dwc.workcell();
+  std::map<const rw::geometry::Geometry*, std::shared_ptr<const contacts::ContactShape>> built;
+  data.frameShapes.assign(wc.frames().size(), {});
+  for (const auto& f : wc.frames().frames()) {
+    const rw::models::Object* object = wc.findObject(f.id());
+    if (object == nullptr) continue;
+    for (const rw::models::GeometryInstance& g : object->collision) {
+      std::shared_ptr<const contacts::ContactShape>& shape = built[g.geometry.get()];
+      if (!shape) shape = contacts::ContactShape::build(*g.geometry);
+      data.frameShapes[static_cast<std::size_t>(f.id().index)].push_back(
+          FrameShape{shape, g.X_frame_geometry});
+    }
+  }
+}
+
+// Deepest overlap of the geometries of frames a and b (the contact generation's depth, margin 0).
+double penetrationDepth(const detail::TrialData& data, FrameId a, FrameId b,
+                        const rw::kinematics::FKTable& fk) {
+  contacts::ContactOptions options;
+  options.margin = 0.0;
+  std::vector<contacts::ContactPoint> points;
+  const Transform3D& X_W_a = fk.worldTransform(a);
+  const Transform3D& X_W_b = fk.worldTransform(b);
+  for (const FrameShape& sa : data.frameShapes[static_cast<std::size_t>(a.index)]) {
+    for (const FrameShape& sb : data.frameShapes[static_cast<std::size_t>(b.index)]) {
+      contacts::collide(*sa.shape, X_W_a * sa.X_frame_shape, *sb.shape, X_W_b * sb.X_frame_shape,
+                        options, points);
+    }
+  }
+  double depth = 0.0;
+  for (const contacts::ContactPoint& p : points) depth = std::max(depth, p.depth);
+  return depth;
+}
+
+// The trial's in-collision test (reference §4.2 step 5): pairs of a hand frame and a non-hand
+// frame that rw_proximity finds colliding. As RobWork's GraspTaskSimulator, a pair with an
+// object (11) outranks one with the environment (12); the detail names the deepest pair of the
+// outranking kind, and `penetration` is the deepest of all.
+PlacementCheck checkPlacement(const dynamics::DynamicWorkCell& dwc, const detail::TrialData& data,
+                              const rw::kinematics::State& state) {
+  const auto& tree = dwc.workcell().frames();
+  const rw::kinematics::FKTable fk(tree, state);
+  PlacementCheck out;
+  double deepestOfKind = -1.0;
+  for (const auto& pair : data.collision->collidingPairs(fk)) {
+    const bool handA = data.isHandFrame[static_cast<std::size_t>(pair.first.index)];
+    const bool handB = data.isHandFrame[static_cast<std::size_t>(pair.second.index)];
+    if (handA == handB) continue;
+    const FrameId hand = handA ? pair.first : pair.second;
+    const FrameId other = handA ? pair.second : pair.first;
+    const bool object = data.isObjectFrame[static_cast<std::size_t>(other.index)];
+    const double depth = penetrationDepth(data, hand, other, fk);
+    out.penetration = std::max(out.penetration, depth);
+    if (out.collides && out.withObject && !object) continue;
+    if (out.collides && object == out.withObject && depth <= deepestOfKind) continue;
+    out.collides = true;
+    out.withObject = object;
+    deepestOfKind = depth;
+    char mm[64];
+    std::snprintf(mm, sizeof(mm), " by %.1f mm", depth * 1e3);
+    out.detail = "hand frame " + tree.frame(hand).name() + " penetrates " +
+                 (object ? "object frame " : "environment frame ") + tree.frame(other).name() + mm +
+                 (object ? " (RobWork 11 CollisionObjectInitially)"
+                         : " (RobWork 12 CollisionEnvironmentInitially)");
+  }
+  return out;
+}
+
 // One trial: the phases of reference §4.3 as adapted in the module's documentation.
 class TrialRun {
  public:
@@ -160,29 +239,9 @@ class TrialRun {
 };
 
 bool TrialRun::inCollision(const rw::kinematics::State& state) {
-  // As RobWork's GraspTaskSimulator: a pair with an object (11) outranks one with the
-  // environment (12); our single outcome reports RobWork code 2 and names the pair.
-  const auto& tree = dwc_.workcell().frames();
-  std::string environment;
-  for (const auto& pair : data_.collision->collidingPairs(state)) {
-    const bool handA = data_.isHandFrame[static_cast<std::size_t>(pair.first.index)];
-    const bool handB = data_.isHandFrame[static_cast<std::size_t>(pair.second.index)];
-    if (handA == handB) continue;
-    const FrameId hand = handA ? pair.first : pair.second;
-    const FrameId other = handA ? pair.second : pair.first;
-    const std::string what = "hand frame " + tree.frame(hand).name() + " penetrates ";
-    if (data_.isObjectFrame[static_cast<std::size_t>(other.index)]) {
-      finish(GraspOutcome::kInCollision, what + "object frame " + tree.frame(other).name() +
-                                             " (RobWork 11 CollisionObjectInitially)");
-      return true;
-    }
-    if (environment.empty()) {
-      environment = what + "environment frame " + tree.frame(other).name() +
-                    " (RobWork 12 CollisionEnvironmentInitially)";
-    }
-  }
-  if (environment.empty()) return false;
-  finish(GraspOutcome::kInCollision, environment);
+  const PlacementCheck check = checkPlacement(dwc_, data_, state);
+  if (!check.collides) return false;
+  finish(GraspOutcome::kInCollision, check.detail);
   return true;
 }
 
@@ -346,6 +405,7 @@ GraspTrial::GraspTrial(const dynamics::DynamicWorkCell& dwc, GraspTrialSetup set
   data->detector = std::make_shared<contacts::ContactDetector>(
       dwc, setup_.simulator.contacts, dynamics::jointConnectedBodyPairs(dwc));
   data->collision = std::make_unique<rw::proximity::CollisionDetector>(dwc.workcell());
+  prepareFrameShapes(dwc, *data);
   data_ = std::move(data);
 }
 
@@ -364,6 +424,11 @@ rw::kinematics::State GraspTrial::placedState(const GraspParameters& grasp,
 }
 
 FrameId GraspTrial::tcpFrame() const { return data_->tcp; }
+
+PlacementCheck GraspTrial::checkPlacement(const GraspParameters& grasp,
+                                          const rw::kinematics::State& initial) const {
+  return simulator::checkPlacement(*dwc_, *data_, placedState(grasp, initial));
+}
 
 GraspTrialResult GraspTrial::run(const GraspParameters& grasp,
                                  const rw::kinematics::State& initial) const {

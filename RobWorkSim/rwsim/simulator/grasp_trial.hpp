@@ -153,12 +153,28 @@ struct GraspTrialResult {
   rw::math::Vector3D objectLift = rw::math::Vector3D::Zero();
 };
 
+/// Whether a hand placed for a grasp penetrates the scene (step 1 of a trial).
+struct PlacementCheck {
+  /// True when some hand frame's collision geometry overlaps a non-hand frame's.
+  bool collides = false;
+  /// True when the deepest such pair involves an object (RobWork 11), false for the environment
+  /// (RobWork 12); meaningful only when `collides`.
+  bool withObject = false;
+  /// Deepest overlap over the colliding pairs, m (0 when free): the largest contact depth the
+  /// simulator's own contact generation (margin 0) finds between their geometries.
+  double penetration = 0.0;
+  /// The deepest pair, e.g. "hand frame SchunkHand.f1.Link3 penetrates object frame
+  /// cocacola by 4.1 mm (RobWork 11 CollisionObjectInitially)"; empty when free.
+  std::string detail;
+};
+
 /// Runs grasp trials on one dynamic workcell (const; each run() makes its own Simulator, so many
 /// threads may run trials on one GraspTrial). A trial (reference §4 adapted to the paper, §2.4):
 ///  1. The hand's kinematic base is placed so that the TCP is at X_W_tcp with the hand at qOpen.
 ///     If rw_proximity's collision detector reports a pair of a hand frame and a non-hand frame,
-///     the outcome is kInCollision (RobWork code 2; the detail names the pair and says whether
-///     RobWork's newer code would be 11, object, or 12, environment). Nothing is simulated.
+///     the outcome is kInCollision (RobWork code 2; the detail names the deepest pair, its
+///     penetration and whether RobWork's newer code would be 11, object, or 12, environment).
+///     Nothing is simulated. checkPlacement() is this test on its own.
 ///  2. Closing: the PD controller (RobWork's law, velocity output) drives towards qClosed with
 ///     the motors' torque limited by tauMax (empty: the dwc's ForceLimits). It ends, not before
 ///     minCloseTime, when every joint is within closedTolerance of qClosed, or every active
@@ -194,6 +210,11 @@ class GraspTrial {
   /// placed so that the TCP is at X_W_tcp. @throws std::invalid_argument like run().
   rw::kinematics::State placedState(const GraspParameters& grasp,
                                     const rw::kinematics::State& initial) const;
+  /// Step 1 alone: does the hand, placed for `grasp` in `initial`, penetrate the scene, and how
+  /// deeply (the trial's own in-collision test; thread-safe, no simulation).
+  /// @throws std::invalid_argument like run().
+  PlacementCheck checkPlacement(const GraspParameters& grasp,
+                                const rw::kinematics::State& initial) const;
   /// Index of the hand in DynamicWorkCell::devices().
   int handDevice() const;
   /// True if body `body` (index in DynamicWorkCell::bodies()) is the hand's base or a link.

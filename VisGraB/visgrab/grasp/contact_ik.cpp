@@ -379,63 +379,156 @@ void checkInput(const HandGraspSetup& setup, const std::vector<DesiredContact>& 
   if (!(approach.norm() > 1e-9)) throw std::invalid_argument("the approach direction is zero");
 }
 
+// Two attempts that land on the same solution (base within 1 mm and 1 degree, joints within
+// 0.01 rad or 1 mm, same contact assignment).
+bool sameSolution(const Attempt& a, const Attempt& b) {
+  if (a.grasp != b.grasp || a.fingerOfContact != b.fingerOfContact) return false;
+  const Transform3D d = a.X_W_base.inverse(Eigen::Isometry) * b.X_W_base;
+  const double angle = Eigen::AngleAxisd(d.linear()).angle();
+  return d.translation().norm() < 1e-3 && angle < rw::math::kDeg2Rad &&
+         (a.q - b.q).cwiseAbs().maxCoeff() < 1e-2;
+}
+
+std::vector<Target> targetsOf(const std::vector<DesiredContact>& contacts,
+                              const std::vector<int>& fingerOfContact) {
+  std::vector<Target> targets;
+  for (std::size_t k = 0; k < contacts.size(); ++k) {
+    targets.push_back(
+        {fingerOfContact[k], contacts[k].position, contacts[k].direction.normalized()});
+  }
+  return targets;
+}
+
+// The result for the fingers at `qContact` with the base at X_W_base: errors, then qOpen with
+// the fingertips `backoff` short of the contacts (same base), qClosed and tauMax.
+ContactIkResult finishResult(HandModel& model, Solver& solver, const HandGraspSetup& setup,
+                             const std::vector<Target>& targets, const Vector3D& approach,
+                             int grasp, const Transform3D& X_W_base, const Q& qContact,
+                             double backoff) {
+  const ContactIkSettings& ik = *setup.contactIk();
+  const IkGrasp& g = ik.grasps[static_cast<std::size_t>(grasp)];
+  const Errors e = measure(model, ik, X_W_base, qContact, targets, approach);
+  ContactIkResult result;
+  result.valid = e.position <= ik.maxPositionError && e.direction <= ik.maxDirectionError &&
+                 e.approach <= ik.maxApproachError;
+  result.X_W_base = X_W_base;
+  result.X_W_tcp = X_W_base * setup.X_base_tcp();
+  result.qContact = qContact;
+  result.positionError = e.position;
+  result.directionError = e.direction;
+  result.approachError = e.approach;
+  result.grasp = grasp;
+  result.fingerOfContact.assign(targets.size(), -1);
+  std::vector<Target> backed = targets;
+  for (Target& t : backed) t.position -= backoff * t.direction;
+  Transform3D X = X_W_base;
+  result.qOpen = qContact;
+  if (backoff > 0.0) solver.solve(X, result.qOpen, backed, g.joints, false);
+  result.qClosed = result.qOpen + g.closeOffset;
+  result.tauMax = setup.tauRule().evaluate(result.qOpen);
+  return result;
+}
+
 }  // namespace
 
-ContactIkResult solveContactIk(const HandGraspSetup& setup,
-                               const std::vector<DesiredContact>& contacts,
-                               const Vector3D& approach) {
+std::vector<ContactIkResult> contactIkSolutions(const HandGraspSetup& setup,
+                                                const std::vector<DesiredContact>& contacts,
+                                                const Vector3D& approach, int maxSolutions) {
   checkInput(setup, contacts, approach);
   const ContactIkSettings& ik = *setup.contactIk();
   const Vector3D a = approach.normalized();
   HandModel model(setup);
   Solver solver(model, setup, a);
-  Attempt best;
-  ContactIkResult result;
+  std::vector<Attempt> attempts;
   const auto n = static_cast<int>(contacts.size());
   Vector3D centroid = Vector3D::Zero();
   for (const DesiredContact& c : contacts) centroid += c.position / static_cast<double>(n);
+  int tried = 0;
   for (std::size_t gi = 0; gi < ik.grasps.size(); ++gi) {
     const IkGrasp& g = ik.grasps[gi];
     if (g.contacts != n) continue;
     std::vector<int> order(static_cast<std::size_t>(n));
     std::iota(order.begin(), order.end(), 0);
     do {
-      std::vector<Target> targets;
       std::vector<int> fingerOf(static_cast<std::size_t>(n));
       for (std::size_t k = 0; k < order.size(); ++k) {
-        const DesiredContact& c = contacts[static_cast<std::size_t>(order[k])];
-        targets.push_back({g.fingers[k], c.position, c.direction.normalized()});
         fingerOf[static_cast<std::size_t>(order[k])] = g.fingers[k];
       }
+      const std::vector<Target> targets = targetsOf(contacts, fingerOf);
       for (const Q& seed : g.seeds) {
         Attempt at = runAttempt(model, solver, ik, seed, targets, g.joints, a, centroid);
         at.grasp = static_cast<int>(gi);
         at.fingerOfContact = fingerOf;
-        ++result.attempts;
-        if (better(at, best)) best = std::move(at);
+        ++tried;
+        attempts.push_back(std::move(at));
       }
     } while (std::next_permutation(order.begin(), order.end()));
   }
-  const IkGrasp& g = ik.grasps[static_cast<std::size_t>(best.grasp)];
-  result.valid = best.valid;
-  if (!best.valid) result.reason = describeFailure(best, ik);
-  result.X_W_base = best.X_W_base;
-  result.X_W_tcp = best.X_W_base * setup.X_base_tcp();
-  result.qContact = best.q;
-  result.positionError = best.errors.position;
-  result.directionError = best.errors.direction;
-  result.approachError = best.errors.approach;
-  result.grasp = best.grasp;
-  result.fingerOfContact = best.fingerOfContact;
-  // Back-off: same base, fingertips `backoff` short of the contacts.
-  std::vector<Target> backed = best.targets;
-  for (Target& t : backed) t.position -= ik.backoff * t.direction;
-  Transform3D X = best.X_W_base;
-  result.qOpen = best.q;
-  if (ik.backoff > 0.0) solver.solve(X, result.qOpen, backed, g.joints, false);
-  result.qClosed = result.qOpen + g.closeOffset;
-  result.tauMax = setup.tauRule().evaluate(result.qOpen);
-  return result;
+  // Best first (stable: ties keep the order of attempts), then distinct valid solutions only,
+  // or the single best attempt when none is valid.
+  std::stable_sort(attempts.begin(), attempts.end(), [](const Attempt& x, const Attempt& y) {
+    return better(x, y) && !better(y, x);
+  });
+  std::vector<const Attempt*> chosen;
+  for (const Attempt& at : attempts) {
+    if (!chosen.empty() && !at.valid) break;
+    if (std::any_of(chosen.begin(), chosen.end(),
+                    [&](const Attempt* c) { return sameSolution(*c, at); })) {
+      continue;
+    }
+    chosen.push_back(&at);
+    if (!at.valid || static_cast<int>(chosen.size()) >= std::max(1, maxSolutions)) break;
+  }
+  std::vector<ContactIkResult> results;
+  for (const Attempt* at : chosen) {
+    ContactIkResult r = finishResult(model, solver, setup, at->targets, a, at->grasp, at->X_W_base,
+                                     at->q, ik.backoff);
+    r.fingerOfContact = at->fingerOfContact;
+    r.attempts = tried;
+    if (!r.valid) r.reason = describeFailure(*at, ik);
+    results.push_back(std::move(r));
+  }
+  return results;
+}
+
+ContactIkResult solveContactIk(const HandGraspSetup& setup,
+                               const std::vector<DesiredContact>& contacts,
+                               const Vector3D& approach) {
+  return contactIkSolutions(setup, contacts, approach, 1).front();
+}
+
+ContactIkResult refitContactIk(const HandGraspSetup& setup,
+                               const std::vector<DesiredContact>& contacts,
+                               const Vector3D& approach, const ContactIkResult& solution,
+                               const Transform3D& X_W_base, double backoff) {
+  checkInput(setup, contacts, approach);
+  const ContactIkSettings& ik = *setup.contactIk();
+  if (solution.grasp < 0 || static_cast<std::size_t>(solution.grasp) >= ik.grasps.size() ||
+      solution.fingerOfContact.size() != contacts.size()) {
+    throw std::invalid_argument("refitContactIk: the solution does not belong to these contacts");
+  }
+  const Vector3D a = approach.normalized();
+  HandModel model(setup);
+  Solver solver(model, setup, a);
+  const std::vector<Target> targets = targetsOf(contacts, solution.fingerOfContact);
+  const IkGrasp& g = ik.grasps[static_cast<std::size_t>(solution.grasp)];
+  Transform3D X = X_W_base;
+  Q q = solution.qContact;
+  solver.solve(X, q, targets, g.joints, false);
+  ContactIkResult r =
+      finishResult(model, solver, setup, targets, a, solution.grasp, X_W_base, q, backoff);
+  r.fingerOfContact = solution.fingerOfContact;
+  r.attempts = 1;
+  if (!r.valid) {
+    char buffer[160];
+    std::snprintf(buffer, sizeof(buffer),
+                  "refitted fingers miss the contacts: fingertip deviation %.1f mm, direction "
+                  "%.1f deg, approach %.1f deg",
+                  r.positionError * 1e3, r.directionError * rw::math::kRad2Deg,
+                  r.approachError * rw::math::kRad2Deg);
+    r.reason = buffer;
+  }
+  return r;
 }
 
 }  // namespace visgrab::grasp

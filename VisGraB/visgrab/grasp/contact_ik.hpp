@@ -72,4 +72,26 @@ ContactIkResult solveContactIk(const HandGraspSetup& setup,
                                const std::vector<DesiredContact>& contacts,
                                const rw::math::Vector3D& approach);
 
+/// The contact IK's distinct valid solutions, best first by solveContactIk's rule, at most
+/// `maxSolutions` (>= 1); when none is valid, only the best invalid attempt (so the first entry
+/// is always solveContactIk's result). Two attempts are the same solution when their contact
+/// assignment is the same, their bases lie within 1 mm and 1 degree and their joints within
+/// 0.01 rad (or 1 mm). Deterministic, thread-safe.
+/// @throws std::invalid_argument as solveContactIk.
+std::vector<ContactIkResult> contactIkSolutions(const HandGraspSetup& setup,
+                                                const std::vector<DesiredContact>& contacts,
+                                                const rw::math::Vector3D& approach,
+                                                int maxSolutions);
+
+/// `solution` (one of contactIkSolutions' for the same contacts) with its base moved to
+/// X_W_base: the solution's <Grasp> joints are solved again from its qContact towards the same
+/// fingertip assignment (base fixed), the errors measured against the description's limits
+/// (`valid`), and qOpen solved with the fingertips `backoff` short of the contacts; qClosed and
+/// tauMax follow as in solveContactIk. Deterministic, thread-safe.
+/// @throws std::invalid_argument as solveContactIk, or if `solution` has another contact count.
+ContactIkResult refitContactIk(const HandGraspSetup& setup,
+                               const std::vector<DesiredContact>& contacts,
+                               const rw::math::Vector3D& approach, const ContactIkResult& solution,
+                               const rw::math::Transform3D& X_W_base, double backoff);
+
 }  // namespace visgrab::grasp

@@ -1,5 +1,6 @@
 #include "visgrab/grasp/grasp_resolver.hpp"
 
+#include <cstdio>
 #include <stdexcept>
 #include <utility>
 
@@ -44,25 +45,46 @@ ResolvedGrasp ok(const rw::math::Transform3D& X_W_tcp, Q qOpen, Q qClosed, Q tau
   return out;
 }
 
-ResolvedGrasp resolveContacts(const GraspRequest& r, const HandGraspSetup& setup) {
-  ContactIkResult ik;
+ResolvedGrasp resolveContacts(const GraspRequest& r, const HandGraspSetup& setup,
+                              const PlacementTest* scene, const PlacementOptions& options) {
+  std::vector<ContactIkResult> solutions;
   try {
-    ik = solveContactIk(setup, r.contacts, r.approach);
+    solutions = contactIkSolutions(setup, r.contacts, r.approach,
+                                   scene != nullptr ? options.maxSolutions : 1);
   } catch (const std::invalid_argument& e) {
     return inputError(r, e.what());
   }
-  ResolvedGrasp out = ok(ik.X_W_tcp, ik.qOpen, ik.qClosed, ik.tauMax);
-  if (!ik.valid) {
-    out.status = ResolveStatus::kInvalidContacts;
-    out.message = where(r) + ik.reason;
+  ContactIkResult& ik = solutions.front();
+  if (!ik.valid || scene == nullptr) {
+    ResolvedGrasp out = ok(ik.X_W_tcp, ik.qOpen, ik.qClosed, ik.tauMax);
+    if (!ik.valid) {
+      out.status = ResolveStatus::kInvalidContacts;
+      out.message = where(r) + ik.reason;
+    }
+    out.ik = std::move(ik);
+    return out;
   }
-  out.ik = std::move(ik);
+  Placement placement =
+      placeContactGrasp(setup, r.contacts, r.approach, solutions, *scene, options);
+  ResolvedGrasp out =
+      ok(placement.ik.X_W_tcp, placement.ik.qOpen, placement.ik.qClosed, placement.ik.tauMax);
+  if (!placement.found) {
+    char buffer[128];
+    std::snprintf(buffer, sizeof(buffer),
+                  "no collision-free placement among %d candidates (contact slack %.0f mm); "
+                  "least penetration %.1f mm: ",
+                  placement.candidates, options.contactSlack * 1e3,
+                  placement.check.penetration * 1e3);
+    out.status = ResolveStatus::kInCollision;
+    out.message = where(r) + buffer + placement.check.detail;
+  }
+  out.ik = placement.ik;
+  out.placement = std::move(placement);
   return out;
 }
 
-}  // namespace
-
-ResolvedGrasp resolve(const GraspRequest& r, const HandGraspSetup& setup) {
+ResolvedGrasp resolveRequest(const GraspRequest& r, const HandGraspSetup& setup,
+                             const PlacementTest* scene, const PlacementOptions& options) {
   if (r.kind != GraspKind::kContacts && !r.X_W_tcp.matrix().allFinite()) {
     return inputError(r, "the hand pose has a non-finite value");
   }
@@ -96,9 +118,20 @@ ResolvedGrasp resolve(const GraspRequest& r, const HandGraspSetup& setup) {
                 setup.tauRule().evaluate(r.qOpen));
     }
     case GraspKind::kContacts:
-      return resolveContacts(r, setup);
+      return resolveContacts(r, setup, scene, options);
   }
   return inputError(r, "unknown grasp kind");
+}
+
+}  // namespace
+
+ResolvedGrasp resolve(const GraspRequest& r, const HandGraspSetup& setup) {
+  return resolveRequest(r, setup, nullptr, {});
+}
+
+ResolvedGrasp resolve(const GraspRequest& r, const HandGraspSetup& setup,
+                      const PlacementTest& scene, const PlacementOptions& options) {
+  return resolveRequest(r, setup, &scene, options);
 }
 
 const char* resolveStatusName(ResolveStatus status) {
@@ -109,6 +142,8 @@ const char* resolveStatusName(ResolveStatus status) {
       return "invalid_contacts";
     case ResolveStatus::kInputError:
       return "input_error";
+    case ResolveStatus::kInCollision:
+      return "in_collision";
   }
   return "input_error";
 }

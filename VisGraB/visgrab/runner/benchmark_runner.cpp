@@ -79,7 +79,10 @@ class SceneRunner {
   /// The trial record of `job`, or nullopt (and `rejected` set) for a grasp rejected as input.
   std::optional<results::TrialRecord> run(const Job& job, Diagnostic& rejected) const {
     const grasp::GraspRequest& r = *job.request;
-    const grasp::ResolvedGrasp resolved = grasp::resolve(r, *hand_);
+    const grasp::ResolvedGrasp resolved =
+        grasp::resolve(r, *hand_, [this](const rwsim::simulator::GraspParameters& g) {
+          return trial_->checkPlacement(g, dwc_->workcell().defaultState());
+        });
     if (resolved.status == grasp::ResolveStatus::kInputError) {
       rejected = rejection(r, resolved.message);
       return std::nullopt;
@@ -90,8 +93,13 @@ class SceneRunner {
     record.method = r.method;
     record.graspId = r.id;
     record.rank = job.rank;
-    if (resolved.status == grasp::ResolveStatus::kInvalidContacts) {
-      record.outcome = GraspOutcome::kInvalidContacts;
+    if (resolved.status == grasp::ResolveStatus::kInvalidContacts ||
+        resolved.status == grasp::ResolveStatus::kInCollision) {
+      // Nothing to simulate: the contact IK found no configuration, or the placement search
+      // no collision-free placement (the message gives the least penetration).
+      record.outcome = resolved.status == grasp::ResolveStatus::kInCollision
+                           ? GraspOutcome::kInCollision
+                           : GraspOutcome::kInvalidContacts;
       record.detail = resolved.message;
       return record;
     }
@@ -102,6 +110,9 @@ class SceneRunner {
     record.object = objectIdOf(*dwc_, result.object);
     record.simulatedTime = result.simulatedTime;
     record.detail = result.detail;
+    if (resolved.placement && resolved.placement->tests > 1) {
+      record.detail += "; " + resolved.placement->describe();
+    }
     return record;
   }
 

@@ -349,7 +349,7 @@ TrialPicture trialStrip(render::GlRenderer& renderer, const WorkcellDrawing& dra
     throw std::invalid_argument("grasp " + grasp.request.id + " (" + grasp.request.method +
                                 ") is not valid for this hand: " + resolved.message);
   }
-  if (!resolved.ok()) {
+  if (!resolved.placed()) {
     picture.outcome = GraspOutcome::kInvalidContacts;
     picture.note = "the grasp cannot be placed: " + resolved.message;
     const rw::kinematics::State& initial = session.initialState();

@@ -25,7 +25,9 @@ SceneSession::SceneSession(const database::SceneEntry& entry, const grasp::HandG
 }
 
 grasp::ResolvedGrasp SceneSession::resolve(const grasp::GraspRequest& request) const {
-  return grasp::resolve(request, *hand_);
+  return grasp::resolve(request, *hand_, [this](const rwsim::simulator::GraspParameters& g) {
+    return trial_->checkPlacement(g, initial_);
+  });
 }
 
 std::vector<SceneGrasp> sceneGrasps(const database::Database& db, const database::SceneEntry& entry,

@@ -40,7 +40,8 @@ class SceneSession {
   const rw::kinematics::State& initialState() const { return initial_; }
   /// The frames carrying geometry of the rigid bodies that are not the hand (the objects).
   const std::vector<rw::kinematics::FrameId>& objectFrames() const { return objectFrames_; }
-  /// grasp::resolve of `request` with this session's hand.
+  /// grasp::resolve of `request` with this session's hand, contact grasps placed in this scene
+  /// (as the benchmark places them).
   grasp::ResolvedGrasp resolve(const grasp::GraspRequest& request) const;
 
  private:
