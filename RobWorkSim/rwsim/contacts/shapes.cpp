@@ -283,12 +283,15 @@ std::shared_ptr<const ContactShape> ContactShape::build(const rw::geometry::Geom
           detail::tubePieces(p[0], p[0] + p[1], p[2], segments));
     }
     case GeometryType::kCylinder:
-    case GeometryType::kCone: {
+    case GeometryType::kCone:
+    case GeometryType::kFrustum: {
       auto polytope = detail::Polytope::fromConvexMesh(mesh);
       if (!polytope) break;
-      const double top = p[0];
-      const double bottom = geometry.type() == GeometryType::kCylinder ? p[0] : 0.0;
-      return std::make_shared<detail::RoundShape>(bottom, top, 0.5 * p[1], std::move(*polytope));
+      const bool frustum = geometry.type() == GeometryType::kFrustum;
+      const double top = frustum ? p[1] : p[0];
+      const double bottom = frustum || geometry.type() == GeometryType::kCylinder ? p[0] : 0.0;
+      return std::make_shared<detail::RoundShape>(bottom, top, 0.5 * p[frustum ? 2 : 1],
+                                                  std::move(*polytope));
     }
     case GeometryType::kBox:
     case GeometryType::kMesh:

@@ -141,6 +141,27 @@ TEST(RoundContacts, ConeStandsOnItsApexOrOnItsBaseRim) {
   }
 }
 
+TEST(RoundContacts, FrustumStandsOnItsBottomRimAndLiesOnItsSideLine) {
+  // Radii 0.04 (bottom, -h/2) and 0.02 (top), h 0.1: the side line rises at atan(0.02 / 0.1).
+  const double h = 0.1;
+  const auto frustum = Geometry::frustum(0.04, 0.02, h);
+  const auto standing = contacts(*Geometry::box(1, 1, 0.1), pose({0, 0, -0.05}), *frustum,
+                                 pose({0, 0, h / 2 - kPen}), manyPoints());
+  ASSERT_EQ(standing.size(), static_cast<std::size_t>(detail::kRimPoints));
+  for (const ContactPoint& p : standing) {
+    EXPECT_NEAR(std::hypot(p.position.x(), p.position.y()), 0.04, 1e-12);
+  }
+  // Lying: turn it about y until the side line at +x is level, then lower it onto the plane.
+  const double tilt = std::atan2(0.02, h);
+  const Transform3D X = pose({0, 0, 0}, kPi / 2 + tilt, Vector3D::UnitY());
+  const double lowest = (X * Vector3D(0.04, 0, -h / 2)).z();
+  const auto lying =
+      contacts(*Geometry::plane(), pose({0, 0, 0}), *frustum, pose({0, 0, -lowest - kPen}) * X);
+  ASSERT_EQ(lying.size(), 2u);
+  for (const ContactPoint& p : lying) EXPECT_NEAR(p.depth, kPen, 1e-12);
+  EXPECT_NEAR((lying[0].position - lying[1].position).norm(), std::hypot(0.02, h), 1e-12);
+}
+
 TEST(RoundContacts, OverlapDeeperThanTheRoundingFallsBackToTheTessellation) {
   const auto can = Geometry::cylinder(0.03, 0.1);
   const auto c =
