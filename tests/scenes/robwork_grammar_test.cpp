@@ -49,6 +49,7 @@ const std::map<std::string, std::vector<std::string>>& attributeOrder() {
       {"Tube", {"radius", "thickness", "z"}},
       {"Cone", {"radius", "z"}},
       {"Plane", {}},
+      {"Custom", {"type", "param"}},
       {"Polytope", {"file"}},
       {"CollisionSetup", {"file"}},
       {"ProximitySetup", {"file"}},

@@ -26,8 +26,8 @@ constexpr double kConvexTolerance = 1e-6;
 /// Triangles with |cross product| below this fraction of their longest squared edge are skipped.
 constexpr double kDegenerateRatio = 1e-12;
 
-constexpr std::array<const char*, 7> kTypeNames = {"Box",  "Sphere", "Cylinder", "Cone",
-                                                   "Tube", "Plane",  "Polytope"};
+constexpr std::array<const char*, 8> kTypeNames = {"Box",  "Sphere", "Cylinder", "Cone",
+                                                   "Tube", "Plane",  "Frustum",  "Polytope"};
 static_assert(kTypeNames.size() == static_cast<std::size_t>(GeometryType::kMesh) + 1,
               "kTypeNames must name every GeometryType");
 
@@ -147,6 +147,29 @@ std::shared_ptr<const TriMesh> tessellateCone(double r, double h) {
   return b.finish();
 }
 
+std::shared_ptr<const TriMesh> tessellateFrustum(double bottom, double top, double h) {
+  MeshBuilder b;
+  // A zero radius is a single apex vertex; its ring indices all map to it.
+  const Index bottomRing = bottom > 0.0 ? b.ring(bottom, -h / 2) : b.vertex(0, 0, -h / 2);
+  const Index topRing = top > 0.0 ? b.ring(top, h / 2) : b.vertex(0, 0, h / 2);
+  const auto at = [](Index first, double radius, Index i) {
+    return radius > 0.0 ? around(first, i) : first;
+  };
+  const Index bottomCentre = bottom > 0.0 ? b.vertex(0, 0, -h / 2) : bottomRing;
+  const Index topCentre = top > 0.0 ? b.vertex(0, 0, h / 2) : topRing;
+  for (Index i = 0; i < kRoundSegments; ++i) {
+    const Index b0 = at(bottomRing, bottom, i);
+    const Index b1 = at(bottomRing, bottom, i + 1);
+    const Index t0 = at(topRing, top, i);
+    const Index t1 = at(topRing, top, i + 1);
+    if (b0 != b1) b.triangle(b0, b1, t1);
+    if (t0 != t1) b.triangle(b0, t1, t0);
+    if (top > 0.0) b.triangle(topCentre, t0, t1);
+    if (bottom > 0.0) b.triangle(bottomCentre, b1, b0);
+  }
+  return b.finish();
+}
+
 std::shared_ptr<const TriMesh> tessellateTube(double inner, double outer, double h) {
   MeshBuilder b;
   const Index outerBottom = b.ring(outer, -h / 2);
@@ -193,6 +216,8 @@ Aabb primitiveBounds(GeometryType type, const std::vector<double>& p) {
       return symmetricBox(p[0], p[0], p[1] / 2);
     case GeometryType::kTube:
       return symmetricBox(p[0] + p[1], p[0] + p[1], p[2] / 2);
+    case GeometryType::kFrustum:
+      return symmetricBox(std::max(p[0], p[1]), std::max(p[0], p[1]), p[2] / 2);
     case GeometryType::kPlane: {
       Aabb box;
       box.min = Vector3D(-kInf, -kInf, 0.0);
@@ -234,7 +259,8 @@ bool meshIsConvex(const TriMesh& mesh) {
 
 bool primitiveIsConvex(GeometryType type) {
   return type == GeometryType::kBox || type == GeometryType::kSphere ||
-         type == GeometryType::kCylinder || type == GeometryType::kCone;
+         type == GeometryType::kCylinder || type == GeometryType::kCone ||
+         type == GeometryType::kFrustum;
 }
 
 void validateMesh(const TriMesh* mesh, const std::string& sourceFile) {
@@ -306,6 +332,17 @@ std::shared_ptr<const Geometry> Geometry::cone(double radius, double height) {
   requirePositive("Cone", "height", height);
   return std::shared_ptr<const Geometry>(
       new Geometry(GeometryType::kCone, {radius, height}, tessellateCone(radius, height), {}));
+}
+
+std::shared_ptr<const Geometry> Geometry::frustum(double bottomRadius, double topRadius,
+                                                  double height) {
+  requireNonNegative("Frustum", "bottom radius", bottomRadius);
+  requireNonNegative("Frustum", "top radius", topRadius);
+  requirePositive("Frustum", "the larger radius", std::max(bottomRadius, topRadius));
+  requirePositive("Frustum", "height", height);
+  return std::shared_ptr<const Geometry>(
+      new Geometry(GeometryType::kFrustum, {bottomRadius, topRadius, height},
+                   tessellateFrustum(bottomRadius, topRadius, height), {}));
 }
 
 std::shared_ptr<const Geometry> Geometry::tube(double radius, double thickness, double height) {

@@ -35,7 +35,9 @@ struct Aabb {
 };
 
 /// The kinds of geometry a workcell can hold (RobWork's primitives plus meshes).
-enum class GeometryType { kBox, kSphere, kCylinder, kCone, kTube, kPlane, kMesh };
+/// kFrustum is this project's extension, written as <Custom type="Frustum"> (RobWork's mechanism
+/// for primitives it does not know).
+enum class GeometryType { kBox, kSphere, kCylinder, kCone, kTube, kPlane, kFrustum, kMesh };
 
 /// Name of a geometry type as written in workcell XML ("Box", ..., "Polytope").
 const char* geometryTypeName(GeometryType type);
@@ -54,6 +56,10 @@ class Geometry {
   static std::shared_ptr<const Geometry> cylinder(double radius, double height);
   /// Cone along z, base disk at +h/2, apex at -h/2. @throws std::invalid_argument unless > 0.
   static std::shared_ptr<const Geometry> cone(double radius, double height);
+  /// Frustum along z: disk of `bottomRadius` at -h/2, of `topRadius` at +h/2 (a cone when one is
+  /// 0). @throws std::invalid_argument unless the radii are >= 0, not both 0, and height > 0.
+  static std::shared_ptr<const Geometry> frustum(double bottomRadius, double topRadius,
+                                                 double height);
   /// Hollow cylinder. @throws std::invalid_argument unless radius >= 0, thickness, height > 0.
   static std::shared_ptr<const Geometry> tube(double radius, double thickness, double height);
   /// Infinite plane z = 0, normal +z.
@@ -66,7 +72,7 @@ class Geometry {
   /// The kind of geometry.
   GeometryType type() const { return type_; }
   /// Primitive parameters in XML attribute order (Box x y z; Sphere r; Cylinder r h; Cone r h;
-  /// Tube r thickness h); empty for Plane and Mesh.
+  /// Tube r thickness h; Frustum bottom radius, top radius, h); empty for Plane and Mesh.
   const std::vector<double>& parameters() const { return parameters_; }
   /// File the mesh was read from; empty for primitives.
   const std::string& sourceFile() const { return sourceFile_; }
@@ -74,8 +80,8 @@ class Geometry {
   const TriMesh& triangles() const { return *mesh_; }
   /// Shared pointer to the triangles (never null).
   const std::shared_ptr<const TriMesh>& trianglesPtr() const { return mesh_; }
-  /// True for Box, Sphere, Cylinder, Cone and for meshes whose vertices all lie on or behind
-  /// every face plane (within 1e-6 m).
+  /// True for Box, Sphere, Cylinder, Cone, Frustum and for meshes whose vertices all lie on or
+  /// behind every face plane (within 1e-6 m).
   bool isConvex() const { return convex_; }
   /// Bounding box in the geometry's own frame (a Plane gives an infinite box in x and y).
   const Aabb& bounds() const { return bounds_; }

@@ -1,5 +1,6 @@
 #include "rw/geometry/mass_properties.hpp"
 
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -103,6 +104,31 @@ SolidProperties coneSolidProperties(double radius, double height) {
   return makeSolid(v, Vector3D(0.0, 0.0, height / 4.0), ixx, ixx, 0.3 * v * r2);
 }
 
+SolidProperties frustumSolidProperties(double bottomRadius, double topRadius, double height) {
+  // Stacked disks of radius rho(z), linear in z: the volume, first and second moments are
+  // integrals of polynomials of degree <= 4 in z, which 3-point Gauss-Legendre integrates exactly.
+  constexpr std::array<double, 3> kNodes = {-0.77459666924148338, 0.0, 0.77459666924148338};
+  constexpr std::array<double, 3> kWeights = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
+  double v = 0.0;
+  double zMoment = 0.0;
+  double z2Moment = 0.0;
+  double r4 = 0.0;
+  for (std::size_t k = 0; k < kNodes.size(); ++k) {
+    const double z = 0.5 * height * kNodes[k];
+    const double rho = bottomRadius + (topRadius - bottomRadius) * (z / height + 0.5);
+    const double area = std::numbers::pi * rho * rho;
+    const double w = 0.5 * height * kWeights[k];
+    v += w * area;
+    zMoment += w * area * z;
+    z2Moment += w * area * z * z;
+    r4 += w * area * rho * rho;
+  }
+  const double cz = zMoment / v;
+  // A disk of radius rho has 1/4 m rho^2 about a diameter and 1/2 m rho^2 about its axis.
+  const double ixx = 0.25 * r4 + z2Moment - v * cz * cz;
+  return makeSolid(v, Vector3D(0.0, 0.0, cz), ixx, ixx, 0.5 * r4);
+}
+
 SolidProperties tubeSolidProperties(double radius, double thickness, double height) {
   const double inner2 = radius * radius;
   const double outer = radius + thickness;
@@ -125,6 +151,8 @@ SolidProperties solidProperties(const Geometry& geometry) {
       return coneSolidProperties(p[0], p[1]);
     case GeometryType::kTube:
       return tubeSolidProperties(p[0], p[1], p[2]);
+    case GeometryType::kFrustum:
+      return frustumSolidProperties(p[0], p[1], p[2]);
     case GeometryType::kPlane:
       return {};
     case GeometryType::kMesh:

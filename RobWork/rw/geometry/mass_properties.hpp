@@ -33,6 +33,8 @@ SolidProperties sphereSolidProperties(double radius);
 SolidProperties cylinderSolidProperties(double radius, double height);
 /// Solid cone along z, base disk at +h/2, apex at -h/2 (Geometry::cone's convention).
 SolidProperties coneSolidProperties(double radius, double height);
+/// Solid frustum along z: disk of `bottomRadius` at -h/2, of `topRadius` at +h/2.
+SolidProperties frustumSolidProperties(double bottomRadius, double topRadius, double height);
 /// Hollow cylinder along z: inner radius `radius`, outer `radius + thickness`, from -h/2 to h/2.
 SolidProperties tubeSolidProperties(double radius, double thickness, double height);
 

@@ -626,6 +626,12 @@ void Renderer::writeGeometry(const Geometry& geometry) {
                          {"thickness", formatNumber(p[1])},
                          {"z", formatNumber(p[2])}});
       break;
+    case GeometryType::kFrustum:
+      need(3);
+      xml_.leaf("Custom", {{"type", "Frustum"},
+                           {"param", formatNumber(p[0]) + " " + formatNumber(p[1]) + " " +
+                                         formatNumber(p[2])}});
+      break;
     case GeometryType::kPlane:
       xml_.leaf("Plane");
       break;

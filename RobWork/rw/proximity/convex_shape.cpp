@@ -22,6 +22,10 @@ ConvexShape ConvexShape::cone(double radius, double halfHeight) {
   return ConvexShape(Kind::kCone, Vector3D(radius, 0.0, halfHeight), 0.0, {});
 }
 
+ConvexShape ConvexShape::frustum(double radiusBottom, double radiusTop, double halfHeight) {
+  return ConvexShape(Kind::kFrustum, Vector3D(radiusBottom, radiusTop, halfHeight), 0.0, {});
+}
+
 ConvexShape ConvexShape::hull(std::span<const Vector3D> points) {
   return ConvexShape(Kind::kHull, Vector3D::Zero(), 0.0, points);
 }
@@ -101,6 +105,11 @@ Vector3D ConvexShape::support(const Vector3D& d, std::int32_t& hint) const {
       const Vector3D rim = diskSupport(d, dims_.x(), dims_.z());
       const Vector3D apex(0.0, 0.0, -dims_.z());
       return rim.dot(d) >= apex.dot(d) ? rim : apex;
+    }
+    case Kind::kFrustum: {
+      const Vector3D top = diskSupport(d, dims_.y(), dims_.z());
+      const Vector3D bottom = diskSupport(d, dims_.x(), -dims_.z());
+      return top.dot(d) >= bottom.dot(d) ? top : bottom;
     }
     case Kind::kHull:
       return hullSupport(d, hint);

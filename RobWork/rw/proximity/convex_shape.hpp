@@ -8,12 +8,12 @@
 namespace rw::proximity {
 
 /// A convex shape given by its support mapping in its own frame: a point (a sphere is a point
-/// with a margin), a box, a cylinder, a cone or the convex hull of points. The shape is the
-/// core grown by `margin()` in every direction. Hull points are borrowed, not owned.
+/// with a margin), a box, a cylinder, a cone, a frustum or the convex hull of points. The shape is
+/// the core grown by `margin()` in every direction. Hull points are borrowed, not owned.
 class ConvexShape {
  public:
   /// Kinds of core.
-  enum class Kind { kPoint, kBox, kCylinder, kCone, kHull };
+  enum class Kind { kPoint, kBox, kCylinder, kCone, kFrustum, kHull };
 
   /// A sphere of `radius` about the origin (a point core with that margin).
   static ConvexShape sphere(double radius);
@@ -23,6 +23,8 @@ class ConvexShape {
   static ConvexShape cylinder(double radius, double halfHeight);
   /// A cone along z: base disk of `radius` at +halfHeight, apex at -halfHeight.
   static ConvexShape cone(double radius, double halfHeight);
+  /// A frustum along z: disk of `radiusBottom` at -halfHeight, of `radiusTop` at +halfHeight.
+  static ConvexShape frustum(double radiusBottom, double radiusTop, double halfHeight);
   /// The convex hull of `points`. Precondition: not empty; the points outlive the shape.
   static ConvexShape hull(std::span<const rw::math::Vector3D> points);
   /// The vertex graph of a closed convex triangulated surface, for climbing to the support.
@@ -60,7 +62,8 @@ class ConvexShape {
   rw::math::Vector3D hullSupport(const rw::math::Vector3D& direction, std::int32_t& hint) const;
 
   Kind kind_;
-  rw::math::Vector3D dims_;  // box: half extents; cylinder, cone: (radius, unused, half height)
+  rw::math::Vector3D dims_;  // box: half extents; cylinder, cone: (radius, unused, half height);
+                             // frustum: (bottom radius, top radius, half height)
   double margin_;
   std::span<const rw::math::Vector3D> points_;
   HullGraph graph_;

@@ -101,6 +101,12 @@ ProximityModel::ProximityModel(const Geometry& geometry) : type_(geometry.type()
       convexBox_ = centredBox(Vector3D(dims_.x(), dims_.x(), dims_.z()));
       boundRadius_ = std::hypot(dims_.x(), dims_.z());
       return;
+    case GeometryType::kFrustum:
+      dims_ = Vector3D(p.at(0), p.at(1), 0.5 * p.at(2));
+      convexBox_ = centredBox(
+          Vector3D(std::max(dims_.x(), dims_.y()), std::max(dims_.x(), dims_.y()), dims_.z()));
+      boundRadius_ = std::hypot(std::max(dims_.x(), dims_.y()), dims_.z());
+      return;
     case GeometryType::kPlane:
       kind_ = Kind::kPlane;
       boundRadius_ = std::numeric_limits<double>::infinity();
@@ -162,6 +168,8 @@ ConvexShape ProximityModel::convexShape() const {
       return ConvexShape::cylinder(dims_.x(), dims_.z());
     case GeometryType::kCone:
       return ConvexShape::cone(dims_.x(), dims_.z());
+    case GeometryType::kFrustum:
+      return ConvexShape::frustum(dims_.x(), dims_.y(), dims_.z());
     case GeometryType::kTube:
     case GeometryType::kPlane:
     case GeometryType::kMesh:

@@ -10,6 +10,7 @@
 #include "rw/proximity/triangle_queries.hpp"
 #include "rwsim/contacts/convex_contact.hpp"
 #include "rwsim/contacts/manifold.hpp"
+#include "rwsim/contacts/round_contact.hpp"
 #include "rwsim/contacts/shapes.hpp"
 
 namespace rwsim::contacts {
@@ -164,6 +165,9 @@ void halfSpaceAgainst(const ContactShape& b, const Transform3D& X_hb, const Cont
         halfSpaceVertices(p.vertices(), X_hb, margin, ws.gathered);
       }
       break;
+    case Kind::kRound:
+      roundOnHalfSpace(static_cast<const RoundShape&>(b), X_hb, margin, ws, ws.gathered);
+      break;
     case Kind::kMesh:
       halfSpaceMesh(static_cast<const MeshShape&>(b), X_hb, margin, ws);
       break;
@@ -236,6 +240,10 @@ void sphereAgainst(double r, const ContactShape& b, const Transform3D& X_sb,
       }
       break;
     }
+    case Kind::kRound:
+      roundPairContacts({.sphereRadius = r}, {.round = &static_cast<const RoundShape&>(b)}, X_sb,
+                        margin, ws, ws.gathered);
+      break;
     case Kind::kMesh:
       sphereMesh(r, static_cast<const MeshShape&>(b), X_sb, margin, ws);
       break;
@@ -351,6 +359,14 @@ void polytopesAgainst(const PolytopeShape& a, const ContactShape& b, const Trans
     reduceGathered(options, ws, out);
     return;
   }
+  if (b.kind() == Kind::kRound) {
+    const ConvexPiece round{.round = &static_cast<const RoundShape&>(b)};
+    for (const Polytope& p : a.pieces()) {
+      roundPairContacts({.polytope = &p}, round, X_ab, margin, ws, ws.gathered);
+    }
+    reduceGathered(options, ws, out);
+    return;
+  }
   const auto& piecesB = static_cast<const PolytopeShape&>(b).pieces();
   if (a.pieces().size() == 1 && piecesB.size() == 1) {
     const PolytopeView va = a.pieces()[0].view();
@@ -371,6 +387,19 @@ void polytopesAgainst(const PolytopeShape& a, const ContactShape& b, const Trans
   reduceGathered(options, ws, out);
 }
 
+/// Contacts of round shape A with a round shape or (through A's tessellation) a mesh.
+void roundAgainst(const RoundShape& a, const ContactShape& b, const Transform3D& X_ab,
+                  const ContactOptions& options, Workspace& ws, std::vector<ContactPoint>& out) {
+  ws.gathered.clear();
+  if (b.kind() == Kind::kRound) {
+    roundPairContacts({.round = &a}, {.round = &static_cast<const RoundShape&>(b)}, X_ab,
+                      options.margin, ws, ws.gathered);
+  } else if (b.kind() == Kind::kMesh) {
+    polytopeMesh(a.polytope(), static_cast<const MeshShape&>(b), X_ab, options.margin, ws);
+  }
+  reduceGathered(options, ws, out);
+}
+
 /// Contacts of a canonically ordered pair, in A's frame.
 void collideLocal(const ContactShape& a, const ContactShape& b, const Transform3D& X_ab,
                   const ContactOptions& options, Workspace& ws, std::vector<ContactPoint>& out) {
@@ -383,6 +412,9 @@ void collideLocal(const ContactShape& a, const ContactShape& b, const Transform3
       return;
     case Kind::kConvex:
       polytopesAgainst(static_cast<const PolytopeShape&>(a), b, X_ab, options, ws, out);
+      return;
+    case Kind::kRound:
+      roundAgainst(static_cast<const RoundShape&>(a), b, X_ab, options, ws, out);
       return;
     case Kind::kMesh:
       ws.gathered.clear();

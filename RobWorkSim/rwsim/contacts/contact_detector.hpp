@@ -28,8 +28,9 @@ struct ContactOptions {
   int maxPointsPerManifold = 4;
 };
 
-/// Collision geometry prepared for contact generation: convex pieces (primitives, convex meshes),
-/// flat meshes and non-convex meshes (as triangles in a hierarchy), half-spaces. Immutable,
+/// Collision geometry prepared for contact generation: convex pieces (boxes, convex meshes),
+/// round shapes (cylinders, cones, frusta as smooth surfaces), flat meshes and non-convex meshes
+/// (as triangles in a hierarchy), half-spaces. Immutable,
 /// shared between threads.
 class ContactShape {
  public:
@@ -37,7 +38,8 @@ class ContactShape {
   enum class Kind {
     kHalfSpace,  ///< z <= 0 of its frame (a Plane)
     kSphere,     ///< a sphere about the origin
-    kConvex,     ///< one or more convex polytopes (primitives, convex and flat meshes, tubes)
+    kConvex,     ///< one or more convex polytopes (boxes, convex and flat meshes, tubes)
+    kRound,      ///< a frustum about the z axis (cylinders, cones, frusta) with exact support
     kMesh,       ///< triangles under a bounding-volume hierarchy (non-convex meshes)
   };
   virtual ~ContactShape() = default;

@@ -41,6 +41,10 @@ struct Workspace {
   std::vector<rw::math::Vector3D> clipIn;
   /// Clipped polygon.
   std::vector<rw::math::Vector3D> clipOut;
+  /// Support feature of A (round-shape pairs).
+  std::vector<rw::math::Vector3D> featureA;
+  /// Support feature of B (round-shape pairs), moved into A's frame.
+  std::vector<rw::math::Vector3D> featureB;
   /// Candidates of one convex pair.
   std::vector<ContactPoint> candidates;
   /// Candidates of a multi-piece pair (world frame).

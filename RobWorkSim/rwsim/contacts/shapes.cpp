@@ -59,6 +59,31 @@ std::vector<Index> planarHull(const std::vector<Eigen::Vector2d>& q) {
   return hull;
 }
 
+/// Largest rounding of a round shape's rims (m): overlaps deeper than this (or than a quarter of
+/// the shape's half height or radius) fall back to the tessellation.
+constexpr double kMaxRounding = 0.002;
+
+/// The core of a frustum (radii bottom, top over z in [-h, h]) shrunk by `rounding` (every
+/// face moved inwards by it, the part near a cone's apex cut off where the shrunk side passes
+/// the axis): its ConvexShape and centre height.
+RoundCore frustumCore(double bottom, double top, double h, double rounding) {
+  const double height = 2.0 * h;
+  const double slope = (top - bottom) / height;
+  const double inset = rounding * std::hypot(height, top - bottom) / height;
+  const auto shrunk = [&](double z) { return bottom + slope * (z + h) - inset; };
+  double zlo = -h + rounding;
+  double zhi = h - rounding;
+  if (shrunk(zlo) < 0.0) zlo = -h + (inset - bottom) / slope;
+  if (shrunk(zhi) < 0.0) zhi = -h + (inset - bottom) / slope;
+  return {rw::proximity::ConvexShape::frustum(std::max(0.0, shrunk(zlo)),
+                                              std::max(0.0, shrunk(zhi)), 0.5 * (zhi - zlo)),
+          0.5 * (zlo + zhi)};
+}
+
+double roundingOf(double bottom, double top, double h) {
+  return std::min(kMaxRounding, 0.25 * std::min(h, std::max(bottom, top)));
+}
+
 void addQuad(TriMesh& m, std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t d) {
   m.triangles.push_back({a, b, c});
   m.triangles.push_back({a, c, d});
@@ -78,6 +103,38 @@ Aabb HalfSpaceShape::localBounds() const {
   Aabb box;
   box.min = Vector3D::Constant(-kInf);
   box.max = Vector3D(kInf, kInf, 0.0);
+  return box;
+}
+
+RoundShape::RoundShape(double bottom, double top, double halfHeight, Polytope tessellation)
+    : ContactShape(Kind::kRound),
+      bottom_(bottom),
+      top_(top),
+      halfHeight_(halfHeight),
+      rounding_(roundingOf(bottom, top, halfHeight)),
+      core_(frustumCore(bottom, top, halfHeight, rounding_)),
+      polytope_(std::move(tessellation)) {}
+
+double RoundShape::radiusAt(double z) const {
+  return bottom_ + (top_ - bottom_) * (z + halfHeight_) / (2.0 * halfHeight_);
+}
+
+Vector3D RoundShape::support(const Vector3D& d) const {
+  const double planar = std::hypot(d.x(), d.y());
+  const auto rim = [&](double radius, double z) {
+    if (planar <= 0.0) return Vector3D(0.0, 0.0, z);
+    return Vector3D(d.x() * radius / planar, d.y() * radius / planar, z);
+  };
+  const Vector3D topRim = rim(top_, halfHeight_);
+  const Vector3D bottomRim = rim(bottom_, -halfHeight_);
+  return topRim.dot(d) >= bottomRim.dot(d) ? topRim : bottomRim;
+}
+
+Aabb RoundShape::localBounds() const {
+  const double r = std::max(bottom_, top_);
+  Aabb box;
+  box.min = Vector3D(-r, -r, -halfHeight_);
+  box.max = Vector3D(r, r, halfHeight_);
   return box;
 }
 
@@ -225,9 +282,18 @@ std::shared_ptr<const ContactShape> ContactShape::build(const rw::geometry::Geom
       return std::make_shared<detail::PolytopeShape>(
           detail::tubePieces(p[0], p[0] + p[1], p[2], segments));
     }
-    case GeometryType::kBox:
     case GeometryType::kCylinder:
     case GeometryType::kCone:
+    case GeometryType::kFrustum: {
+      auto polytope = detail::Polytope::fromConvexMesh(mesh);
+      if (!polytope) break;
+      const bool frustum = geometry.type() == GeometryType::kFrustum;
+      const double top = frustum ? p[1] : p[0];
+      const double bottom = frustum || geometry.type() == GeometryType::kCylinder ? p[0] : 0.0;
+      return std::make_shared<detail::RoundShape>(bottom, top, 0.5 * p[frustum ? 2 : 1],
+                                                  std::move(*polytope));
+    }
+    case GeometryType::kBox:
     case GeometryType::kMesh:
       break;
   }

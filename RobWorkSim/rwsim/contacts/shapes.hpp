@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "rw/proximity/bvh.hpp"
+#include "rw/proximity/convex_shape.hpp"
 #include "rwsim/contacts/contact_detector.hpp"
 #include "rwsim/contacts/polytope.hpp"
 
@@ -31,6 +32,54 @@ class HalfSpaceShape final : public ContactShape {
   HalfSpaceShape() : ContactShape(Kind::kHalfSpace) {}
   /// Infinite in x and y and below z = 0.
   rw::geometry::Aabb localBounds() const override;
+};
+
+/// A convex core and the height of its centre on the z axis.
+struct RoundCore {
+  /// The core, centred on its own origin.
+  rw::proximity::ConvexShape shape;
+  /// Height of its centre.
+  double offset = 0.0;
+};
+
+/// A solid frustum about the z axis from z = -h to z = +h (a cylinder when the radii are equal,
+/// a cone when one is zero): exact support and features for contacts, and two approximations:
+/// a core (the frustum shrunk by `rounding()`, so that core + rounding is the frustum with its
+/// rims rounded) for GJK, and its tessellation as a polytope for the fallbacks (non-convex
+/// meshes, overlaps deeper than the rounding).
+class RoundShape final : public ContactShape {
+ public:
+  /// A frustum of radii `bottom` (z = -halfHeight) and `top` (z = +halfHeight); `tessellation`
+  /// is its polytope. Precondition: radii >= 0, not both 0; halfHeight > 0.
+  RoundShape(double bottom, double top, double halfHeight, Polytope tessellation);
+  /// Radius at z = -halfHeight().
+  double bottomRadius() const { return bottom_; }
+  /// Radius at z = +halfHeight().
+  double topRadius() const { return top_; }
+  /// Half the height.
+  double halfHeight() const { return halfHeight_; }
+  /// Radius at height z (linear between the caps).
+  double radiusAt(double z) const;
+  /// The point of the frustum farthest along `d` (the top or bottom rim, or a cap's centre).
+  rw::math::Vector3D support(const rw::math::Vector3D& d) const;
+  /// The core (see the class comment), centred at (0, 0, coreOffset()).
+  const rw::proximity::ConvexShape& core() const { return core_.shape; }
+  /// Height of the core's centre on the z axis.
+  double coreOffset() const { return core_.offset; }
+  /// How far the core is grown to give the rounded frustum (m).
+  double rounding() const { return rounding_; }
+  /// The tessellation.
+  const Polytope& polytope() const { return polytope_; }
+  /// Bounding box.
+  rw::geometry::Aabb localBounds() const override;
+
+ private:
+  double bottom_;
+  double top_;
+  double halfHeight_;
+  double rounding_;
+  RoundCore core_;
+  Polytope polytope_;
 };
 
 /// One or more convex polytopes (one for primitives and convex or flat meshes, one per ring

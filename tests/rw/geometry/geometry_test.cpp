@@ -139,6 +139,30 @@ TEST(GeometryTest, ConeHasApexAtMinusHalfHeightAndPyramidVolume) {
   EXPECT_TRUE(cone->isConvex());
 }
 
+TEST(GeometryTest, FrustumIsAClosedConvexSolidBetweenTwoRings) {
+  const double bottom = 0.04;
+  const double top = 0.025;
+  const double h = 0.1;
+  const auto frustum = Geometry::frustum(bottom, top, h);
+  const TriMesh& mesh = frustum->triangles();
+  const int n = ringVertexCount(mesh, bottom, -h / 2);
+  EXPECT_EQ(ringVertexCount(mesh, top, h / 2), n);
+  // Similar polygons: V = h / 3 (A1 + A2 + sqrt(A1 A2)).
+  const double a1 = inscribedPolygonArea(n, bottom);
+  const double a2 = inscribedPolygonArea(n, top);
+  EXPECT_NEAR(signedVolume(mesh), h / 3 * (a1 + a2 + std::sqrt(a1 * a2)), 1e-15);
+  expectClosedOutwardInside(*frustum);
+  expectBounds(*frustum, Vector3D(bottom, bottom, h / 2));
+  EXPECT_TRUE(frustum->isConvex());
+  EXPECT_EQ(frustum->parameters(), (std::vector<double>{bottom, top, h}));
+  // A zero radius is an apex, as in a cone.
+  const auto cone = Geometry::frustum(0.03, 0.0, h);
+  EXPECT_EQ(ringVertexCount(cone->triangles(), 0.0, h / 2), 1);
+  expectClosedOutwardInside(*cone);
+  EXPECT_THROW(Geometry::frustum(0.0, 0.0, h), std::invalid_argument);
+  EXPECT_THROW(Geometry::frustum(-0.01, 0.02, h), std::invalid_argument);
+}
+
 TEST(GeometryTest, TubeIsClosedAnnularSolid) {
   const double inner = 0.02;
   const double thickness = 0.01;

@@ -267,7 +267,19 @@ std::vector<Case> cases() {
                                  "<Custom type=\"gear\" param=\"1 2\"/></Drawable>")}},
        "main.wc.xml",
        3,
-       "Custom geometry (type \"gear\") is not supported"},
+       "unknown Custom geometry type \"gear\"; this project knows \"Frustum\""},
+      {"FrustumWithTwoParams",
+       {{"main.wc.xml", workcell(" <Drawable name=\"d\" refframe=\"Table\">"
+                                 "<Custom type=\"Frustum\" param=\"1 2\"/></Drawable>")}},
+       "main.wc.xml",
+       3,
+       "param must be three numbers: bottom radius, top radius, height (got 2)"},
+      {"FrustumWithNegativeRadius",
+       {{"main.wc.xml", workcell(" <Drawable name=\"d\" refframe=\"Table\">\n"
+                                 "  <Custom type=\"Frustum\" param=\"-1 2 3\"/></Drawable>")}},
+       "main.wc.xml",
+       4,
+       "Frustum"},
       {"MissingMesh",
        {{"main.wc.xml", workcell(" <Drawable name=\"d\" refframe=\"Table\">\n"
                                  "  <Polytope file=\"meshes/nothere\"/></Drawable>")}},

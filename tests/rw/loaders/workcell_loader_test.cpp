@@ -419,6 +419,26 @@ TEST(WorkCellLoader, PrimitivesAndModelOffsets) {
       rw::math::rpyTransform(Eigen::Vector3d(0, 90 * kDeg, 0), Eigen::Vector3d(1, 2, 3)), 1e-15);
 }
 
+TEST(WorkCellLoader, FrustumIsACustomPrimitiveAndWritesBack) {
+  TempDir dir;
+  const auto wc = loadText(dir, R"(<WorkCell name="w">
+    <Frame name="F"/>
+    <Drawable name="Jar" refframe="F"><Custom type="Frustum" param="0.03 0.02 0.1"/></Drawable>
+  </WorkCell>)");
+  ASSERT_NE(wc, nullptr);
+  const auto& geometry = *wc->findObject(wc->findFrame("F"))->collision.at(0).geometry;
+  EXPECT_EQ(geometry.type(), rw::geometry::GeometryType::kFrustum);
+  EXPECT_EQ(geometry.parameters(), (std::vector<double>{0.03, 0.02, 0.1}));
+  EXPECT_VECTOR_NEAR(geometry.bounds().max, Eigen::Vector3d(0.03, 0.03, 0.05), 1e-15);
+  const std::string xml = rw::loaders::writeWorkCell(*wc, dir.path());
+  EXPECT_NE(xml.find(R"(<Custom type="Frustum" param="0.03 0.02 0.1"/>)"), std::string::npos)
+      << xml;
+  const auto copy = loadText(dir, xml);
+  ASSERT_NE(copy, nullptr);
+  EXPECT_EQ(copy->findObject(copy->findFrame("F"))->collision.at(0).geometry->parameters(),
+            geometry.parameters());
+}
+
 TEST(WorkCellLoader, PropertiesKeepTheirTypes) {
   TempDir dir;
   const auto wc = loadText(dir, R"(<WorkCell name="w">

@@ -46,9 +46,20 @@ TEST(ContactShape, BoxIsSixQuads) {
   EXPECT_VECTOR_NEAR(shape->localBounds().max, Vector3D(0.5, 1, 1.5), 1e-12);
 }
 
-TEST(ContactShape, CylinderCapIsOneFace) {
+const detail::RoundShape& asRound(const ContactShape& s) {
+  EXPECT_EQ(s.kind(), ContactShape::Kind::kRound);
+  return static_cast<const detail::RoundShape&>(s);
+}
+
+TEST(ContactShape, CylinderIsRoundWithATessellationWhoseCapIsOneFace) {
   const auto shape = ContactShape::build(*Geometry::cylinder(0.05, 0.2));
-  const Polytope& p = asPolytopes(*shape).pieces().at(0);
+  ASSERT_EQ(shape->kind(), ContactShape::Kind::kRound);
+  const detail::RoundShape& round = asRound(*shape);
+  EXPECT_EQ(round.bottomRadius(), 0.05);
+  EXPECT_EQ(round.topRadius(), 0.05);
+  EXPECT_EQ(round.halfHeight(), 0.1);
+  EXPECT_VECTOR_NEAR(shape->localBounds().max, Vector3D(0.05, 0.05, 0.1), 1e-15);
+  const Polytope& p = round.polytope();
   EXPECT_EQ(p.faces().size(), 34u);     // 32 sides + 2 caps
   EXPECT_EQ(p.vertices().size(), 64u);  // the cap centres are gone
   int caps = 0;
@@ -63,9 +74,13 @@ TEST(ContactShape, CylinderCapIsOneFace) {
   expectValidPolytope(p);
 }
 
-TEST(ContactShape, ConeHasApexAndBase) {
+TEST(ContactShape, ConeIsRoundWithATessellationWithApexAndBase) {
   const auto shape = ContactShape::build(*Geometry::cone(0.05, 0.1));
-  const Polytope& p = asPolytopes(*shape).pieces().at(0);
+  ASSERT_EQ(shape->kind(), ContactShape::Kind::kRound);
+  const detail::RoundShape& round = asRound(*shape);
+  EXPECT_EQ(round.bottomRadius(), 0.0);  // apex at -h/2
+  EXPECT_EQ(round.topRadius(), 0.05);
+  const Polytope& p = round.polytope();
   EXPECT_EQ(p.faces().size(), 33u);
   EXPECT_EQ(p.vertices().size(), 33u);
   expectValidPolytope(p);

@@ -137,7 +137,7 @@ TEST(MassProperties, PrimitivesAgreeWithTheirTessellations) {
   // Round shapes are tessellated with 32 segments (and 16 stacks for the sphere): a few percent.
   const std::vector<std::shared_ptr<const Geometry>> shapes = {
       Geometry::box(0.1, 0.2, 0.3), Geometry::sphere(0.04), Geometry::cone(0.03, 0.12),
-      Geometry::tube(0.02, 0.01, 0.05)};
+      Geometry::frustum(0.03, 0.02, 0.1), Geometry::tube(0.02, 0.01, 0.05)};
   for (const auto& shape : shapes) {
     SCOPED_TRACE(rw::geometry::geometryTypeName(shape->type()));
     const SolidProperties exact = rw::geometry::solidProperties(*shape);
@@ -155,6 +155,29 @@ TEST(MassProperties, ConeCentroidIsAQuarterOfTheHeightFromTheBase) {
   EXPECT_NEAR(cone.volume, kPi * 0.01 * 0.4 / 3, 1e-14);
   EXPECT_NEAR(cone.inertia(2, 2), 0.3 * cone.volume * 0.01, 1e-14);
   EXPECT_NEAR(cone.inertia(0, 0), cone.volume * (3.0 / 20 * 0.01 + 3.0 / 80 * 0.16), 1e-14);
+}
+
+TEST(MassProperties, FrustumMatchesCylinderConeAndTheFrustumVolume) {
+  // Equal radii: the cylinder; a zero bottom radius: the cone (apex at -h/2).
+  const SolidProperties cylinder = rw::geometry::cylinderSolidProperties(0.05, 0.2);
+  const SolidProperties asCylinder = rw::geometry::frustumSolidProperties(0.05, 0.05, 0.2);
+  EXPECT_NEAR(asCylinder.volume, cylinder.volume, 1e-15);
+  EXPECT_VECTOR_NEAR(asCylinder.centroid, cylinder.centroid, 1e-15);
+  EXPECT_TRUE(asCylinder.inertia.isApprox(cylinder.inertia, 1e-12));
+  const SolidProperties cone = rw::geometry::coneSolidProperties(0.1, 0.4);
+  const SolidProperties asCone = rw::geometry::frustumSolidProperties(0.0, 0.1, 0.4);
+  EXPECT_NEAR(asCone.volume, cone.volume, 1e-15);
+  EXPECT_VECTOR_NEAR(asCone.centroid, cone.centroid, 1e-15);
+  EXPECT_TRUE(asCone.inertia.isApprox(cone.inertia, 1e-12));
+  // V = pi h / 3 (a^2 + a b + b^2); centroid h (a^2 + 2ab + 3b^2) / (4 (a^2 + ab + b^2)) above
+  // the bottom.
+  const double a = 0.04;
+  const double b = 0.02;
+  const double h = 0.1;
+  const SolidProperties f = rw::geometry::frustumSolidProperties(a, b, h);
+  EXPECT_NEAR(f.volume, kPi * h / 3 * (a * a + a * b + b * b), 1e-15);
+  EXPECT_NEAR(f.centroid.z() + h / 2,
+              h * (a * a + 2 * a * b + 3 * b * b) / (4 * (a * a + a * b + b * b)), 1e-15);
 }
 
 TEST(MassProperties, OffsetAndRotatedBoxByTheParallelAxisTheorem) {

@@ -90,6 +90,19 @@ void SceneBuilder::addBox(const std::string& name, const Transform3D& X_W, const
   });
 }
 
+void SceneBuilder::addBody(const std::string& name, const Transform3D& X_W,
+                           std::shared_ptr<const rw::geometry::Geometry> geometry, double mass,
+                           const Eigen::Matrix3d& inertia) {
+  const FrameId f = addFrame(*wc_, name, FrameTree::kWorld, FrameType::kMovable, X_W);
+  addGeometry(*wc_, f, name + "Geo", Transform3D::Identity(), std::move(geometry));
+  pending_->steps.push_back([=](DynamicWorkCell& dwc) {
+    Body b = makeBody(name, f, BodyKind::kRigid, "Object");
+    b.mass.mass = mass;
+    b.mass.inertia = inertia;
+    dwc.addBody(b);
+  });
+}
+
 void SceneBuilder::addGripper(const Transform3D& X_W, double gap, double force) {
   auto& wc = *wc_;
   const FrameId base = addFrame(wc, "Gripper.Base", FrameTree::kWorld, FrameType::kMovable, X_W);

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <string>
 #include <vector>
 
 #include "rw/math/rpy.hpp"
@@ -108,6 +109,131 @@ TEST(SimulatorPhysics, BlockSlidesOnA25DegreeSlope) {
   // s = a t^2 / 2 from rest: a from the distance between two times.
   const double a = 2.0 * (s2 - s1) / (0.8 * 0.8 - 0.2 * 0.2);
   EXPECT_NEAR(a, expected, 0.1 * expected) << "s(0.2) " << s1 << ", s(0.8) " << s2;
+}
+
+// Round bodies on a 2 m slope (mu 0.6, enough for rolling without slip): a body whose inertia
+// about its rolling axis is k m r^2 rolls down with a = g sin(angle) / (1 + k).
+struct Roller {
+  std::shared_ptr<const rw::geometry::Geometry> geometry;
+  Transform3D X_slope_body;  // start pose on the slope
+  double mass = 1.0;
+  Eigen::Matrix3d inertia;
+};
+
+Slope rollerOnSlope(double angle, const Roller& roller, double mu = 0.6) {
+  SceneBuilder scene("roll", mu);
+  const Transform3D X_W_slope(Eigen::AngleAxisd(angle, Vector3D::UnitY()));
+  scene.addTable("Slope", X_W_slope * at(0, 0, -0.05), Vector3D(2, 1, 0.1));
+  scene.addBody("Roller", X_W_slope * roller.X_slope_body, roller.geometry, roller.mass,
+                roller.inertia);
+  return {scene.build(), X_W_slope};
+}
+
+/// A cylinder (radius r, height h) lying across the slope (axis along the slope's y), its
+/// centre `x` along the slope; inertia diag(perp, perp, axial) in its frame (axis z).
+Roller lyingCylinder(double r, double h, double x, double axial, double perp) {
+  return {rw::geometry::Geometry::cylinder(r, h),
+          at(x, 0, r) * Transform3D(Eigen::AngleAxisd(std::numbers::pi / 2, Vector3D::UnitX())),
+          1.0, Vector3D(perp, perp, axial).asDiagonal()};
+}
+
+/// Acceleration down the slope from the distances at 0.2 s and 1 s (s = a t^2 / 2 from rest).
+double rollingAcceleration(const Slope& s, double* drift = nullptr) {
+  Simulator sim(*s.dwc);
+  const int body = s.dwc->findBody("Roller");
+  const Vector3D start = s.X_W_slope.inverse() * sim.bodyPose(body).translation();
+  runUntil(sim, 0.2);
+  const double s1 = slid(sim, s, body) - start.x();
+  runUntil(sim, 1.0);
+  const Vector3D end = s.X_W_slope.inverse() * sim.bodyPose(body).translation();
+  const double s2 = end.x() - start.x();
+  if (drift != nullptr) *drift = std::abs(end.y() - start.y()) / s2;
+  const double a = 2.0 * (s2 - s1) / (1.0 - 0.2 * 0.2);
+  ::testing::Test::RecordProperty("acceleration", std::to_string(a));
+  return a;
+}
+
+TEST(SimulatorPhysics, SolidCylinderRollsWithTwoThirdsGSin) {
+  const double angle = 20 * kDeg;
+  const double r = 0.05;
+  const double h = 0.1;
+  const Roller roller = lyingCylinder(r, h, -0.8, r * r / 2, (3 * r * r + h * h) / 12);
+  const double a = rollingAcceleration(rollerOnSlope(angle, roller));
+  const double expected = 2.0 / 3.0 * kG * std::sin(angle);
+  EXPECT_NEAR(a, expected, 0.03 * expected);
+}
+
+TEST(SimulatorPhysics, ThinWalledCylinderRollsWithHalfGSin) {
+  // A thin-walled tube's inertia (m r^2 about the axis) on the cylinder's geometry.
+  const double angle = 20 * kDeg;
+  const double r = 0.05;
+  const double h = 0.1;
+  const Roller roller = lyingCylinder(r, h, -0.8, r * r, r * r / 2 + h * h / 12);
+  const double a = rollingAcceleration(rollerOnSlope(angle, roller));
+  const double expected = 0.5 * kG * std::sin(angle);
+  EXPECT_NEAR(a, expected, 0.03 * expected);
+}
+
+TEST(SimulatorPhysics, SphereRollsWithFiveSeventhsGSin) {
+  const double angle = 20 * kDeg;
+  const double r = 0.05;
+  const Roller roller{rw::geometry::Geometry::sphere(r), at(-0.9, 0, r), 1.0,
+                      Eigen::Matrix3d::Identity() * (0.4 * r * r)};
+  const double a = rollingAcceleration(rollerOnSlope(angle, roller));
+  const double expected = 5.0 / 7.0 * kG * std::sin(angle);
+  EXPECT_NEAR(a, expected, 0.03 * expected);
+}
+
+TEST(SimulatorPhysics, CanRollsStraightDownTheSlope) {
+  // A can's size (r 3.3 cm, 12 cm tall): sideways drift under 1 % of the distance rolled.
+  const double r = 0.033;
+  const double h = 0.12;
+  double drift = 1.0;
+  const double a = rollingAcceleration(
+      rollerOnSlope(20 * kDeg, lyingCylinder(r, h, -0.8, r * r / 2, (3 * r * r + h * h) / 12)),
+      &drift);
+  EXPECT_GT(a, 0.0);
+  EXPECT_LT(drift, 0.01);
+  RecordProperty("drift", std::to_string(drift));
+}
+
+/// A squat cylinder (r 5 cm, 5 cm tall, tips only beyond 63 degrees) standing on the slope.
+Slope standingCylinder(double angle) {
+  const double r = 0.05;
+  const double h = 0.05;
+  const Roller standing{
+      rw::geometry::Geometry::cylinder(r, h), at(0, 0, h / 2), 0.5,
+      Vector3D(0.5 * (3 * r * r + h * h) / 12, 0.5 * (3 * r * r + h * h) / 12, 0.5 * r * r / 2)
+          .asDiagonal()};
+  return rollerOnSlope(angle, standing, 0.4);
+}
+
+TEST(SimulatorPhysics, StandingCylinderHoldsBelowTheFrictionAngle) {
+  // mu 0.4: the friction angle is atan(0.4) = 21.8 degrees.
+  const Slope s = standingCylinder(18 * kDeg);
+  Simulator sim(*s.dwc);
+  const int body = s.dwc->findBody("Roller");
+  runUntil(sim, 1.0);
+  EXPECT_LT(std::abs(slid(sim, s, body)), 1e-3);
+  EXPECT_LT(sim.bodyLinearVelocity(body).norm(), 1e-3);
+}
+
+TEST(SimulatorPhysics, StandingCylinderSlidesAboveTheFrictionAngle) {
+  const double angle = 25 * kDeg;
+  const Slope s = standingCylinder(angle);
+  Simulator sim(*s.dwc);
+  const int body = s.dwc->findBody("Roller");
+  const double expected = kG * (std::sin(angle) - 0.4 * std::cos(angle));
+  runUntil(sim, 0.2);
+  const double s1 = slid(sim, s, body);
+  runUntil(sim, 0.8);
+  const double s2 = slid(sim, s, body);
+  const double a = 2.0 * (s2 - s1) / (0.8 * 0.8 - 0.2 * 0.2);
+  EXPECT_NEAR(a, expected, 0.1 * expected) << "s(0.2) " << s1 << ", s(0.8) " << s2;
+  RecordProperty("acceleration", std::to_string(a));
+  // It slides upright: no tumbling.
+  EXPECT_NEAR((s.X_W_slope.linear().transpose() * sim.bodyPose(body).linear()).col(2).z(), 1.0,
+              1e-3);
 }
 
 TEST(SimulatorPhysics, FreeFallFollowsGravity) {

@@ -214,11 +214,24 @@ std::optional<GeometryDesc> readGeometry(const XmlElement& element, DiagnosticSi
     return g;
   }
   if (element.name == "Custom") {
-    sink.error(element.location, element.describe() + ": Custom geometry (type \"" +
-                                     element.attributeOr("type", "") +
-                                     "\") is not supported by this project; use a primitive or "
-                                     "a Polytope");
-    return std::nullopt;
+    // RobWork looks Custom primitives up by type; this project knows one, the Frustum.
+    const std::string type = element.attributeOr("type", "");
+    if (type != "Frustum") {
+      sink.error(element.location, element.describe() + ": unknown Custom geometry type \"" + type +
+                                       "\"; this project knows \"Frustum\"");
+      return std::nullopt;
+    }
+    const std::string problem = parseNumberList(element.attributeOr("param", ""), g.parameters);
+    if (!problem.empty() || g.parameters.size() != 3) {
+      sink.error(element.location,
+                 element.describe() +
+                     ": param must be three numbers: bottom radius, top radius, height" +
+                     (problem.empty() ? " (got " + std::to_string(g.parameters.size()) + ")"
+                                      : " (" + problem + ")"));
+      return std::nullopt;
+    }
+    g.type = GeometryType::kFrustum;
+    return g;
   }
   for (const PrimitiveRule& rule : kPrimitives) {
     if (rule.element != element.name) continue;

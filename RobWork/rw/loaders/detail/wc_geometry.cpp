@@ -40,6 +40,8 @@ class GeometryMaker {
           return Geometry::cone(p.at(0), p.at(1));
         case GeometryType::kTube:
           return Geometry::tube(p.at(0), p.at(1), p.at(2));
+        case GeometryType::kFrustum:
+          return Geometry::frustum(p.at(0), p.at(1), p.at(2));
         case GeometryType::kPlane:
           return Geometry::plane();
         case GeometryType::kMesh:
