@@ -12,6 +12,7 @@
 #include <memory>
 #include <numbers>
 #include <optional>
+#include <random>
 #include <sstream>
 #include <stdexcept>
 
@@ -62,54 +63,140 @@ Vector3D tangentOf(const Vector3D& n) {
   return Vector3D(-n.y(), n.x(), 0.0).normalized();
 }
 
-bool allFinite(const Contact3D& c, bool useForce) {
-  return c.position.allFinite() && c.normal.allFinite() && std::isfinite(c.mu) &&
-         (!useForce || std::isfinite(c.normalForce));
+// A linearised friction cone: edges scale * (axis + mu * unit tangent), applied at position.
+struct Cone {
+  Vector3D position;
+  Vector3D axis;  // unit
+  double mu = 0.0;
+  double scale = 1.0;
+  int cluster = -1;
+};
+
+// Axis (not normalised) and scale of a contact's cone under `force`.
+std::pair<Vector3D, double> axisAndScale(const Contact3D& c, GwsForce force) {
+  switch (force) {
+    case GwsForce::kMeasuredNormalForce:
+      return {c.normal, c.normalForce};
+    case GwsForce::kMeasuredForce:
+      return {c.force, c.force.norm()};
+    case GwsForce::kUnitNormal:
+      break;
+  }
+  return {c.normal, 1.0};
 }
 
-// Checks and normalises the contacts; drops contacts without measured force. nullopt if invalid.
-std::optional<std::vector<Contact3D>> validContacts(std::span<const Contact3D> contacts,
-                                                    const Vector3D& c, double r, bool useForce) {
+bool allFinite(const Contact3D& c, GwsForce force) {
+  const bool finite = c.position.allFinite() && c.normal.allFinite() && std::isfinite(c.mu);
+  switch (force) {
+    case GwsForce::kMeasuredNormalForce:
+      return finite && std::isfinite(c.normalForce);
+    case GwsForce::kMeasuredForce:
+      return finite && c.force.allFinite();
+    case GwsForce::kUnitNormal:
+      break;
+  }
+  return finite;
+}
+
+// Checks the contacts and turns them into cones; drops cones with a measured force below
+// kGwsMinForce. nullopt if invalid.
+std::optional<std::vector<Cone>> validCones(std::span<const Contact3D> contacts, const Vector3D& c,
+                                            double r, GwsForce force) {
   if (!c.allFinite() || !std::isfinite(r) || r <= 0.0) return std::nullopt;
-  std::vector<Contact3D> out;
+  std::vector<Cone> out;
   out.reserve(contacts.size());
   for (const Contact3D& contact : contacts) {
-    if (!allFinite(contact, useForce) || contact.mu < 0.0) return std::nullopt;
-    if (useForce && contact.normalForce < 0.0) return std::nullopt;
-    const double length = contact.normal.norm();
-    if (!(length > 1e-12)) return std::nullopt;
-    if (useForce && contact.normalForce == 0.0) continue;
-    Contact3D normalised = contact;
-    normalised.normal /= length;
-    if (!useForce) normalised.normalForce = 1.0;
-    out.push_back(normalised);
+    if (!allFinite(contact, force) || contact.mu < 0.0) return std::nullopt;
+    if (!(contact.normal.norm() > 1e-12)) return std::nullopt;
+    if (force == GwsForce::kMeasuredNormalForce && contact.normalForce < 0.0) return std::nullopt;
+    const auto [axis, scale] = axisAndScale(contact, force);
+    if (force != GwsForce::kUnitNormal && scale < kGwsMinForce) continue;
+    out.push_back(Cone{contact.position, axis / axis.norm(), contact.mu, scale, contact.cluster});
   }
   return out;
 }
 
-std::array<double, 8> sortKey(const Contact3D& c) {
-  return {c.position.x(), c.position.y(), c.position.z(), c.normal.x(),
-          c.normal.y(),   c.normal.z(),   c.mu,           c.normalForce};
+std::array<double, 9> sortKey(const Cone& c) {
+  return {c.position.x(), c.position.y(), c.position.z(),
+          c.axis.x(),     c.axis.y(),     c.axis.z(),
+          c.mu,           c.scale,        static_cast<double>(c.cluster)};
 }
 
-bool sameContact(const Contact3D& a, const Contact3D& b) {
+bool sameCone(const Cone& a, const Cone& b) {
   return (a.position - b.position).norm() <= kDuplicateTolerance &&
-         (a.normal - b.normal).norm() <= kDuplicateTolerance &&
+         (a.axis - b.axis).norm() <= kDuplicateTolerance &&
          std::abs(a.mu - b.mu) <= kDuplicateTolerance &&
-         std::abs(a.normalForce - b.normalForce) <= kDuplicateTolerance;
+         std::abs(a.scale - b.scale) <= kDuplicateTolerance && a.cluster == b.cluster;
 }
 
-// Sorts contacts lexicographically (a canonical order) and keeps the first of near-duplicates.
-std::vector<Contact3D> canonicalContacts(std::vector<Contact3D> contacts) {
-  std::sort(contacts.begin(), contacts.end(),
-            [](const Contact3D& a, const Contact3D& b) { return sortKey(a) < sortKey(b); });
-  std::vector<Contact3D> kept;
-  for (const Contact3D& c : contacts) {
-    const bool duplicate = std::any_of(kept.begin(), kept.end(),
-                                       [&](const Contact3D& k) { return sameContact(k, c); });
+// Sorts cones lexicographically (a canonical order) and keeps the first of near-duplicates.
+std::vector<Cone> canonicalCones(std::vector<Cone> cones) {
+  std::sort(cones.begin(), cones.end(),
+            [](const Cone& a, const Cone& b) { return sortKey(a) < sortKey(b); });
+  std::vector<Cone> kept;
+  for (const Cone& c : cones) {
+    const bool duplicate =
+        std::any_of(kept.begin(), kept.end(), [&](const Cone& k) { return sameCone(k, c); });
     if (!duplicate) kept.push_back(c);
   }
   return kept;
+}
+
+// One cone per cluster id >= 0 (scale-weighted means, summed scale); cones of cluster -1 stay.
+// The input is canonical, so each sum runs in a fixed order; the output is canonical again.
+std::vector<Cone> mergeClusters(const std::vector<Cone>& cones) {
+  std::vector<Cone> out;
+  std::vector<int> done;
+  for (std::size_t i = 0; i < cones.size(); ++i) {
+    const int id = cones[i].cluster;
+    if (id < 0) {
+      out.push_back(cones[i]);
+      continue;
+    }
+    if (std::find(done.begin(), done.end(), id) != done.end()) continue;
+    done.push_back(id);
+    Vector3D position = Vector3D::Zero();
+    Vector3D axis = Vector3D::Zero();
+    double mu = 0.0;
+    double scale = 0.0;
+    for (std::size_t j = i; j < cones.size(); ++j) {
+      const Cone& c = cones[j];
+      if (c.cluster != id) continue;
+      position += c.scale * c.position;
+      axis += c.scale * c.axis;
+      mu += c.scale * c.mu;
+      scale += c.scale;
+    }
+    // A cluster whose axes cancel has no direction; keep its first cone's.
+    const double length = axis.norm();
+    out.push_back(Cone{position / scale, length > 1e-12 ? Vector3D(axis / length) : cones[i].axis,
+                       mu / scale, scale, id});
+  }
+  return canonicalCones(std::move(out));
+}
+
+// Uniform double in [-a, a] from the top 53 bits of one draw (the same on every platform, unlike
+// std::uniform_real_distribution).
+double jitter(std::mt19937_64& rng, double a) {
+  const double u = static_cast<double>(rng() >> 11) * 0x1.0p-53;
+  return a * (2.0 * u - 1.0);
+}
+
+// The VisGraB-era rule: each cone followed by a jittered copy (see GwsOptions).
+std::vector<Cone> withJitteredCopies(const std::vector<Cone>& cones, const GwsOptions& options) {
+  std::mt19937_64 rng(options.jitterSeed);
+  std::vector<Cone> out;
+  out.reserve(2 * cones.size());
+  for (const Cone& c : cones) {
+    out.push_back(c);
+    Cone copy = c;
+    for (int k = 0; k < 3; ++k) copy.axis(k) += jitter(rng, options.jitterAxis);
+    for (int k = 0; k < 3; ++k) copy.position(k) += jitter(rng, options.jitterPosition);
+    const double length = copy.axis.norm();
+    copy.axis = length > 1e-12 ? Vector3D(copy.axis / length) : c.axis;
+    out.push_back(copy);
+  }
+  return out;
 }
 
 bool lexLess(const Wrench6D& a, const Wrench6D& b) {
@@ -233,28 +320,19 @@ GwsResult hullEpsilon(const std::vector<Wrench6D>& points) {
   return result;
 }
 
-}  // namespace
-
-std::string_view toString(GwsStatus status) {
-  return kStatusNames.at(static_cast<std::size_t>(status));
-}
-
-std::vector<Wrench6D> contactWrenches(std::span<const Contact3D> contacts,
-                                      const Vector3D& centerOfMass, double maxRadius,
-                                      const GwsOptions& options) {
-  const int m = options.coneEdges;
-  if (m < 3) throw std::invalid_argument("GwsOptions::coneEdges must be at least 3");
+// The edge wrenches of each cone, `edges` per cone, in cone order.
+std::vector<Wrench6D> coneWrenches(const std::vector<Cone>& cones, const Vector3D& centerOfMass,
+                                   double maxRadius, int edges) {
   std::vector<Wrench6D> wrenches;
-  wrenches.reserve(contacts.size() * static_cast<std::size_t>(m));
-  for (const Contact3D& c : contacts) {
-    const double scale = options.useMeasuredNormalForce ? c.normalForce : 1.0;
-    const Vector3D n = c.normal;
+  wrenches.reserve(cones.size() * static_cast<std::size_t>(edges));
+  for (const Cone& c : cones) {
+    const Vector3D& n = c.axis;
     const Vector3D t = tangentOf(n);
     const Vector3D b = n.cross(t);
     const Vector3D arm = c.position - centerOfMass;
-    for (int k = 0; k < m; ++k) {
-      const double angle = 2.0 * std::numbers::pi * k / m;
-      const Vector3D f = scale * (n + c.mu * (std::cos(angle) * t + std::sin(angle) * b));
+    for (int k = 0; k < edges; ++k) {
+      const double angle = 2.0 * std::numbers::pi * k / edges;
+      const Vector3D f = c.scale * (n + c.mu * (std::cos(angle) * t + std::sin(angle) * b));
       Wrench6D w;
       w.head<3>() = f;
       w.tail<3>() = arm.cross(f) / maxRadius;
@@ -264,22 +342,49 @@ std::vector<Wrench6D> contactWrenches(std::span<const Contact3D> contacts,
   return wrenches;
 }
 
+}  // namespace
+
+std::string_view toString(GwsStatus status) {
+  return kStatusNames.at(static_cast<std::size_t>(status));
+}
+
+std::vector<Wrench6D> contactWrenches(std::span<const Contact3D> contacts,
+                                      const Vector3D& centerOfMass, double maxRadius,
+                                      const GwsOptions& options) {
+  if (options.coneEdges < 3)
+    throw std::invalid_argument("GwsOptions::coneEdges must be at least 3");
+  std::vector<Cone> cones;
+  cones.reserve(contacts.size());
+  for (const Contact3D& c : contacts) {
+    const auto [axis, scale] = axisAndScale(c, options.force);
+    cones.push_back(Cone{c.position, axis.normalized(), c.mu, scale, c.cluster});
+  }
+  return coneWrenches(cones, centerOfMass, maxRadius, options.coneEdges);
+}
+
 GwsResult gwsEpsilon(std::span<const Contact3D> contacts, const Vector3D& centerOfMass,
                      double maxRadius, const GwsOptions& options) {
   if (options.coneEdges < 3) {
     throw std::invalid_argument("GwsOptions::coneEdges must be at least 3");
   }
-  const auto valid =
-      validContacts(contacts, centerOfMass, maxRadius, options.useMeasuredNormalForce);
+  if (options.duplicateBelow < 0) {
+    throw std::invalid_argument("GwsOptions::duplicateBelow must not be negative");
+  }
+  const auto valid = validCones(contacts, centerOfMass, maxRadius, options.force);
   if (!valid) {
     GwsResult result;
     result.status = GwsStatus::kInvalidInput;
     return result;
   }
-  const std::vector<Contact3D> canonical = canonicalContacts(*valid);
-  const std::vector<Wrench6D> wrenches =
-      contactWrenches(canonical, centerOfMass, maxRadius, options);
-  return gwsEpsilonOfWrenches(wrenches);
+  std::vector<Cone> cones = canonicalCones(*valid);
+  if (options.mergeClusters) cones = mergeClusters(cones);
+  if (static_cast<int>(cones.size()) < options.duplicateBelow) {
+    cones = withJitteredCopies(cones, options);
+  }
+  GwsResult result =
+      gwsEpsilonOfWrenches(coneWrenches(cones, centerOfMass, maxRadius, options.coneEdges));
+  result.cones = static_cast<int>(cones.size());
+  return result;
 }
 
 GwsResult gwsEpsilonOfWrenches(std::span<const Wrench6D> wrenches) {
