@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <csetjmp>
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
@@ -50,7 +51,8 @@ constexpr double kInsideTolerance = 1e-12;
 // make merging fail (QH6347 wide merge, QH6271 dupridge); Qhull's own remedy is joggle, so we
 // retry with "QJ QR-2": "QR-2" fixes the random seed at 2 without rotating the input, so the
 // retry is deterministic too. Such sets have epsilon <= their thickness, i.e. tiny.
-// With a fixed input order (we sort it) both runs are deterministic.
+// With a fixed input order (we sort it) both runs are deterministic. The lazy hull
+// (runQhullLazy) uses the exact options too; Qhull's incremental qh_addpoint needs no joggle.
 constexpr char kExactOptions[] = "qhull Qx C-0";
 constexpr char kJoggleOptions[] = "qhull QJ QR-2";
 
@@ -284,8 +286,143 @@ HullOutcome runQhull(const std::vector<Wrench6D>& points, std::string_view qhull
   return out;
 }
 
+// Adds `point` to the hull if Qhull finds it outside. Qhull reports errors with longjmp, so
+// nothing here may need a destructor. Returns Qhull's exit code (0: fine).
+int addPoint(qhT* qh, double* point) {
+  const int exitCode = setjmp(qh->errexit);
+  if (exitCode == 0) {
+    qh->NOerrexit = False;
+    realT distance = 0.0;
+    boolT outside = False;
+    facetT* facet = qh_findbestfacet(qh, point, !qh_ALL, &distance, &outside);
+    if (outside) qh_addpoint(qh, point, facet, !qh_ALL);
+  }
+  qh->NOerrexit = True;
+  return exitCode;
+}
+
+// Index of the first point with the largest dot product with `direction`.
+std::size_t supportIndex(const std::vector<Wrench6D>& points, const Wrench6D& direction) {
+  std::size_t best = 0;
+  for (std::size_t i = 1; i < points.size(); ++i) {
+    if (direction.dot(points[i]) > direction.dot(points[best])) best = i;
+  }
+  return best;
+}
+
+// Where the lazy hull starts: the support points of the 12 directions +-e_i; while they span
+// fewer than 6 dimensions (smallest singular value of the centred points <= tolerance), also the
+// support points of +-v, v the direction they are flat in (at most 6 times). Ascending, distinct;
+// empty if no full-dimensional start was found.
+std::vector<std::size_t> lazyStart(const std::vector<Wrench6D>& points, double tolerance) {
+  std::vector<std::size_t> chosen;
+  auto add = [&](const Wrench6D& direction) {
+    const std::size_t i = supportIndex(points, direction);
+    if (std::find(chosen.begin(), chosen.end(), i) != chosen.end()) return false;
+    chosen.push_back(i);
+    return true;
+  };
+  for (int axis = 0; axis < 6; ++axis) {
+    add(Wrench6D::Unit(axis));
+    add(-Wrench6D::Unit(axis));
+  }
+  for (int round = 0; round < 6; ++round) {
+    Eigen::Matrix<double, Eigen::Dynamic, 6> centred(static_cast<Eigen::Index>(chosen.size()), 6);
+    Wrench6D mean = Wrench6D::Zero();
+    for (const std::size_t i : chosen) mean += points[i];
+    mean /= static_cast<double>(chosen.size());
+    for (std::size_t k = 0; k < chosen.size(); ++k) {
+      centred.row(static_cast<Eigen::Index>(k)) = (points[chosen[k]] - mean).transpose();
+    }
+    const Eigen::JacobiSVD<Eigen::Matrix<double, Eigen::Dynamic, 6>> svd(centred,
+                                                                         Eigen::ComputeFullV);
+    if (chosen.size() >= static_cast<std::size_t>(kMinHullPoints) &&
+        svd.singularValues()(5) > tolerance) {
+      std::sort(chosen.begin(), chosen.end());
+      return chosen;
+    }
+    const Wrench6D flat = svd.matrixV().col(5);
+    const bool grew = add(flat);
+    if (!add(-flat) && !grew) break;
+  }
+  return {};
+}
+
+// Epsilon by a lazily grown hull (the expanding-polytope idea of EPA, with Qhull keeping the
+// hull): start from lazyStart(); repeat: take the facet nearest to the origin
+// (signed: negative when the origin is beyond it); if no point of `points` lies more than
+// `tolerance` beyond its hyperplane, that hyperplane supports the whole set, so the set's
+// epsilon is at most its distance, and at least it, because the partial hull lies inside the
+// whole hull: done; else add the point farthest beyond it. Exact like the full hull (to
+// `tolerance`), but the partial hull usually has far fewer facets. exitCode -1 when it does
+// not apply (the start is flat or Qhull does not take a point it should): use the full hull.
+HullOutcome runQhullLazy(const std::vector<Wrench6D>& points, std::string_view qhullOptions,
+                         double tolerance) {
+  HullOutcome out;
+  out.exitCode = -1;
+  const std::vector<std::size_t> start = lazyStart(points, tolerance);
+  if (start.empty()) return out;
+  std::vector<Wrench6D> startPoints;
+  for (const std::size_t i : start) startPoints.push_back(points[i]);
+  std::vector<double> coordinates;
+  coordinates.reserve(points.size() * 6);
+  for (const Wrench6D& w : points) coordinates.insert(coordinates.end(), w.data(), w.data() + 6);
+  std::vector<double> startCoordinates;
+  for (const Wrench6D& w : startPoints) {
+    startCoordinates.insert(startCoordinates.end(), w.data(), w.data() + 6);
+  }
+  std::vector<bool> added(points.size(), false);
+  for (const std::size_t i : start) added[i] = true;
+  std::string options(qhullOptions);
+  ErrorCapture errors;
+  auto qh = std::make_unique<qhT>();
+  qh_zero(qh.get(), errors.file());
+  out.exitCode =
+      qh_new_qhull(qh.get(), 6, static_cast<int>(startPoints.size()), startCoordinates.data(),
+                   False, options.data(), nullptr, errors.file());
+  while (out.exitCode == qh_ERRnone) {
+    facetT* nearest = nullptr;
+    int facets = 0;
+    for (facetT* f = qh->facet_list; f != nullptr && f->next != nullptr; f = f->next) {
+      if (nearest == nullptr || -f->offset < -nearest->offset) nearest = f;
+      ++facets;
+    }
+    if (nearest == nullptr) {
+      out.exitCode = -1;
+      break;
+    }
+    const Eigen::Map<const Wrench6D> normal(nearest->normal);
+    std::size_t farthest = 0;
+    double beyond = -std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const double d = normal.dot(points[i]) + nearest->offset;
+      if (d > beyond) {
+        beyond = d;
+        farthest = i;
+      }
+    }
+    if (beyond <= tolerance) {
+      out.facets = facets;
+      out.minFacetDistance = -nearest->offset;
+      break;
+    }
+    if (added[farthest]) {
+      out.exitCode = -1;
+      break;
+    }
+    added[farthest] = true;
+    out.exitCode = addPoint(qh.get(), coordinates.data() + 6 * farthest);
+  }
+  if (out.exitCode > 0) out.message = errors.text();
+  qh_freeqhull(qh.get(), !qh_ALL);
+  int curLong = 0;
+  int totLong = 0;
+  qh_memfreeshort(qh.get(), &curLong, &totLong);
+  return out;
+}
+
 // Epsilon of a canonical point set with at least kMinHullPoints points.
-GwsResult hullEpsilon(const std::vector<Wrench6D>& points) {
+GwsResult hullEpsilon(const std::vector<Wrench6D>& points, GwsHull method) {
   GwsResult result;
   result.points = static_cast<int>(points.size());
   double maxNorm = 0.0;
@@ -299,7 +436,15 @@ GwsResult hullEpsilon(const std::vector<Wrench6D>& points) {
     result.detail = detail.str();
     return result;
   }
-  HullOutcome hull = runQhull(points, kExactOptions);
+  HullOutcome hull;
+  hull.exitCode = -1;
+  if (method == GwsHull::kLazy) {
+    hull = runQhullLazy(points, kExactOptions, kInsideTolerance * maxNorm);
+  }
+  if (hull.exitCode != qh_ERRnone) {
+    result.wholeHull = true;
+    hull = runQhull(points, kExactOptions);
+  }
   if (hull.exitCode != qh_ERRnone) {
     result.joggled = true;
     hull = runQhull(points, kJoggleOptions);
@@ -381,13 +526,13 @@ GwsResult gwsEpsilon(std::span<const Contact3D> contacts, const Vector3D& center
   if (static_cast<int>(cones.size()) < options.duplicateBelow) {
     cones = withJitteredCopies(cones, options);
   }
-  GwsResult result =
-      gwsEpsilonOfWrenches(coneWrenches(cones, centerOfMass, maxRadius, options.coneEdges));
+  GwsResult result = gwsEpsilonOfWrenches(
+      coneWrenches(cones, centerOfMass, maxRadius, options.coneEdges), options.hull);
   result.cones = static_cast<int>(cones.size());
   return result;
 }
 
-GwsResult gwsEpsilonOfWrenches(std::span<const Wrench6D> wrenches) {
+GwsResult gwsEpsilonOfWrenches(std::span<const Wrench6D> wrenches, GwsHull hull) {
   const bool finite = std::all_of(wrenches.begin(), wrenches.end(),
                                   [](const Wrench6D& w) { return w.allFinite(); });
   GwsResult result;
@@ -401,7 +546,7 @@ GwsResult gwsEpsilonOfWrenches(std::span<const Wrench6D> wrenches) {
     result.status = GwsStatus::kTooFewPoints;
     return result;
   }
-  return hullEpsilon(points);
+  return hullEpsilon(points, hull);
 }
 
 }  // namespace rw::graspplanning

@@ -22,6 +22,7 @@ using rw::graspplanning::contactWrenches;
 using rw::graspplanning::gwsEpsilon;
 using rw::graspplanning::gwsEpsilonOfWrenches;
 using rw::graspplanning::GwsForce;
+using rw::graspplanning::GwsHull;
 using rw::graspplanning::GwsOptions;
 using rw::graspplanning::GwsResult;
 using rw::graspplanning::GwsStatus;
@@ -376,9 +377,10 @@ TEST(GwsEpsilon, RandomGraspsMatchBruteForce) {
   EXPECT_LT(forceClosures, 35);
 }
 
-TEST(GwsEpsilon, NearlyFlatInputFallsBackToJoggleAndMatchesBruteForce) {
+TEST(GwsEpsilon, NearlyFlatInputMatchesBruteForceLazyAndWholeWithJoggle) {
   // Two antipodal contacts plus a copy of each moved by ~0.2 mm: with Qhull 2020.2 the exact
-  // (merging) run fails here with QH6271 (dupridge), so the fixed-seed joggle retry is used.
+  // (merging) whole hull fails here with QH6271 (dupridge), so the fixed-seed joggle retry is
+  // used. The lazily grown hull never meets the failing merge and is exact.
   auto contact = [](double px, double py, double pz, double nx, double ny, double nz) {
     Contact3D c;
     c.position = Vector3D(px, py, pz);
@@ -395,7 +397,10 @@ TEST(GwsEpsilon, NearlyFlatInputFallsBackToJoggleAndMatchesBruteForce) {
               -0.39710529378657061, -0.89920084991240368, -0.1836987130153411),
       contact(-0.019801494080376687, -0.044759903165769256, -0.0092363935045969882,
               0.39722062814479925, 0.89918737631139045, 0.18351521696711923)};
-  const GwsResult r = gwsEpsilon(contacts, Vector3D::Zero(), kRadius);
+  const GwsResult lazy = gwsEpsilon(contacts, Vector3D::Zero(), kRadius);
+  const GwsResult r =
+      gwsEpsilon(contacts, Vector3D::Zero(), kRadius, GwsOptions{.hull = GwsHull::kWhole});
+  EXPECT_TRUE(r.wholeHull);
   // Joggle moves the points by ~1e-10, so epsilon is only that accurate (2e-8 relative here).
   EXPECT_TRUE(r.joggled) << "Qhull now builds this hull exactly; pick another input to keep "
                             "the joggle fallback covered";
@@ -403,7 +408,12 @@ TEST(GwsEpsilon, NearlyFlatInputFallsBackToJoggleAndMatchesBruteForce) {
   const double truth =
       bruteForceEpsilon(referenceWrenches(contacts, Vector3D::Zero(), kRadius, 10));
   EXPECT_NEAR(r.epsilon, truth, 1e-6 * truth);
-  EXPECT_EQ(gwsEpsilon(contacts, Vector3D::Zero(), kRadius).epsilon, r.epsilon);
+  EXPECT_EQ(
+      gwsEpsilon(contacts, Vector3D::Zero(), kRadius, GwsOptions{.hull = GwsHull::kWhole}).epsilon,
+      r.epsilon);
+  EXPECT_FALSE(lazy.wholeHull);
+  EXPECT_FALSE(lazy.joggled);
+  EXPECT_NEAR(lazy.epsilon, truth, kExactRelative * truth);
 }
 
 TEST(GwsEpsilon, IndependentOfContactOrder) {
@@ -739,6 +749,59 @@ TEST(GwsPaper, NegativeDuplicateBelowIsAProgrammerError) {
   EXPECT_THROW(
       gwsEpsilon(equatorGrasp(0.6), Vector3D::Zero(), kRadius, GwsOptions{.duplicateBelow = -1}),
       std::invalid_argument);
+}
+
+TEST(GwsLazyHull, EqualsTheWholeHullOnRandomGrasps) {
+  // Both exact: the lazy hull's epsilon is the whole hull's to 1e-12 of the largest wrench, on
+  // 60 random grasps of 2-8 contacts (measured forces, the jitter rule), both outcomes included.
+  std::mt19937 rng(20261124);
+  std::normal_distribution<double> gauss;
+  std::uniform_real_distribution<double> uniform(0.2, 3.0);
+  auto randomUnit = [&] { return Vector3D(gauss(rng), gauss(rng), gauss(rng)).normalized(); };
+  int forceClosures = 0;
+  int lazy = 0;
+  for (int trial = 0; trial < 60; ++trial) {
+    std::vector<Contact3D> contacts;
+    const int count = 2 + trial % 7;
+    for (int i = 0; i < count; ++i) {
+      const Vector3D u = randomUnit();
+      const Vector3D f = uniform(rng) * (-u + 0.3 * randomUnit());
+      contacts.push_back(forceContact(u, f, 0.3 + 0.1 * (trial % 5)));
+    }
+    GwsOptions options = kPaper;
+    options.duplicateBelow = 4;
+    const GwsResult a = gwsEpsilon(contacts, Vector3D(0.003, 0, -0.002), kRadius, options);
+    options.hull = GwsHull::kWhole;
+    const GwsResult b = gwsEpsilon(contacts, Vector3D(0.003, 0, -0.002), kRadius, options);
+    double maxNorm = 0.0;
+    for (const Wrench6D& w : contactWrenches(contacts, Vector3D::Zero(), kRadius, kPaper)) {
+      maxNorm = std::max(maxNorm, w.norm());
+    }
+    EXPECT_NEAR(a.epsilon, b.epsilon, 1e-12 * 2.0 * maxNorm) << "trial " << trial;
+    EXPECT_EQ(a.forceClosure, b.forceClosure) << "trial " << trial;
+    EXPECT_TRUE(b.wholeHull);
+    forceClosures += a.forceClosure ? 1 : 0;
+    lazy += a.wholeHull ? 0 : 1;
+  }
+  EXPECT_GT(forceClosures, 10);
+  EXPECT_LT(forceClosures, 55);
+  EXPECT_GT(lazy, 50);
+}
+
+TEST(GwsLazyHull, GrowsAFlatStart) {
+  // A = (1, ..., 1) and -A win all 12 axis directions, so the start is a segment; it must grow
+  // along its flat directions into the small cross-polytope around the origin.
+  std::vector<Wrench6D> points = {Wrench6D::Ones(), -Wrench6D::Ones()};
+  for (int i = 0; i < 6; ++i) {
+    points.emplace_back(0.1 * Wrench6D::Unit(i));
+    points.emplace_back(-0.1 * Wrench6D::Unit(i));
+  }
+  const GwsResult lazy = gwsEpsilonOfWrenches(points);
+  const GwsResult whole = gwsEpsilonOfWrenches(points, GwsHull::kWhole);
+  ASSERT_TRUE(whole.forceClosure);
+  EXPECT_FALSE(lazy.wholeHull);
+  EXPECT_NEAR(lazy.epsilon, whole.epsilon, kExactRelative * whole.epsilon);
+  EXPECT_NEAR(lazy.epsilon, bruteForceEpsilon(points), kExactRelative * whole.epsilon);
 }
 
 }  // namespace
