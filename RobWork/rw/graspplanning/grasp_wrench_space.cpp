@@ -295,7 +295,11 @@ int addPoint(qhT* qh, double* point) {
     realT distance = 0.0;
     boolT outside = False;
     facetT* facet = qh_findbestfacet(qh, point, !qh_ALL, &distance, &outside);
-    if (outside) qh_addpoint(qh, point, facet, !qh_ALL);
+    if (outside) {
+      // A point outside qh_new_qhull's array goes into other_points, so qh_pointid knows it.
+      qh_setappend(qh, &qh->other_points, point);
+      qh_addpoint(qh, point, facet, !qh_ALL);
+    }
   }
   qh->NOerrexit = True;
   return exitCode;
