@@ -57,6 +57,7 @@ enum GraspColumn {
   kOutcomeColumn,
   kQLiftColumn,
   kQGwsColumn,
+  kQGwsUnitColumn,
   kColumnCount
 };
 
@@ -77,7 +78,10 @@ QIcon swatch(const QColor& colour) {
   return QIcon(pixmap);
 }
 
-QString number(double value, int decimals) { return QString::number(value, 'f', decimals); }
+// `value` with `decimals` decimals; "–" for NaN (a Q_GWS not computed, from older results).
+QString number(double value, int decimals) {
+  return std::isnan(value) ? QString::fromUtf8("–") : QString::number(value, 'f', decimals);
+}
 
 // The busy cursor while a long operation runs.
 class BusyCursor {
@@ -185,7 +189,8 @@ void ViewerWindow::buildWidgets() {
 
   // Right: the scene's grasps.
   graspTable_ = new QTableWidget(0, kColumnCount, splitter);
-  graspTable_->setHorizontalHeaderLabels({"#", "method", "id", "outcome", "Q_lift", "Q_GWS"});
+  graspTable_->setHorizontalHeaderLabels(
+      {"#", "method", "id", "outcome", "Q_lift", "Q_GWS", "Q_GWS,unit"});
   graspTable_->setSelectionBehavior(QAbstractItemView::SelectRows);
   graspTable_->setSelectionMode(QAbstractItemView::SingleSelection);
   graspTable_->setEditTriggers(QAbstractItemView::NoEditTriggers);
@@ -321,7 +326,8 @@ void ViewerWindow::fillGraspTable() {
     const int row = static_cast<int>(i);
     const auto cell = [&](int column, const QString& text) {
       auto* item = new QTableWidgetItem(text);
-      if (column == kNumberColumn || column == kQLiftColumn || column == kQGwsColumn) {
+      if (column == kNumberColumn || column == kQLiftColumn || column == kQGwsColumn ||
+          column == kQGwsUnitColumn) {
         item->setTextAlignment(Qt::AlignRight | Qt::AlignVCenter);
       }
       graspTable_->setItem(row, column, item);
@@ -336,10 +342,12 @@ void ViewerWindow::fillGraspTable() {
       outcome->setIcon(swatch(outcomeQColor(g.record->outcome)));
       cell(kQLiftColumn, number(g.record->qLift, 3));
       cell(kQGwsColumn, number(g.record->qGws, 4));
+      cell(kQGwsUnitColumn, number(g.record->qGwsUnit, 4));
     } else {
       cell(kOutcomeColumn, data_.results ? "not run" : "");
       cell(kQLiftColumn, "");
       cell(kQGwsColumn, "");
+      cell(kQGwsUnitColumn, "");
     }
   }
   fitGraspTable();
@@ -447,6 +455,7 @@ void ViewerWindow::showReplayedOutcome(std::size_t index) {
       ->setIcon(swatch(outcomeQColor(outcome)));
   set(kQLiftColumn, number(replay_->result.qLift, 3));
   set(kQGwsColumn, number(replay_->result.qGws, 4));
+  set(kQGwsUnitColumn, number(replay_->result.qGwsUnit, 4));
   fitGraspTable();
 }
 
@@ -468,7 +477,7 @@ void ViewerWindow::clearReplay() {
 QString ViewerWindow::replayOutcome() const {
   if (!replay_) return {};
   const auto& r = replay_->result;
-  return qs(view::outcomeCaption(r.outcome, r.qLift, r.qGws));
+  return qs(view::outcomeCaption(r.outcome, r.qLift, r.qGws, r.qGwsUnit));
 }
 
 void ViewerWindow::showMoment(Moment moment) {
@@ -506,7 +515,8 @@ void ViewerWindow::showFrame(std::size_t index) {
           .arg(qs(f.phase).toHtmlEscaped(), number(f.time, 3))
           .arg(static_cast<qulonglong>(frame_ + 1))
           .arg(static_cast<qulonglong>(replay_->frames.size()))
-          .arg(colour.name(), qs(view::outcomeCaption(r.outcome, r.qLift, r.qGws)).toHtmlEscaped());
+          .arg(colour.name(),
+               qs(view::outcomeCaption(r.outcome, r.qLift, r.qGws, r.qGwsUnit)).toHtmlEscaped());
   if (!replayNote_.isEmpty()) text += "<br><i>" + replayNote_.toHtmlEscaped() + "</i>";
   info_->setText(text);
 }

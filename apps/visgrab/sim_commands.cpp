@@ -228,7 +228,9 @@ std::string handName(const Arguments& a, const DynamicWorkCell& dwc) {
 void printResult(const rwsim::simulator::GraspTrialResult& r, const DynamicWorkCell& dwc) {
   std::cout << "outcome: " << rwsim::simulator::outcomeName(r.outcome) << " (RobWork code "
             << rwsim::simulator::robworkCode(r.outcome) << ")\n"
-            << "Q_lift: " << fmt(r.qLift) << "\nQ_GWS: " << fmt(r.qGws) << "\n"
+            << "Q_lift: " << fmt(r.qLift) << "\nQ_GWS: " << fmt(r.qGws)
+            << " (cones on the measured contact forces, the paper's)\nQ_GWS,unit: "
+            << fmt(r.qGwsUnit) << " (unit normal forces)\n"
             << "object: "
             << (r.object >= 0 ? dwc.bodies()[static_cast<std::size_t>(r.object)].name : "-")
             << "\nsimulated time: " << fmt(r.simulatedTime) << " s\n"
@@ -240,11 +242,14 @@ void printResult(const rwsim::simulator::GraspTrialResult& r, const DynamicWorkC
   }
   if (!r.detail.empty()) std::cout << "detail: " << r.detail << "\n";
   std::cout << "contacts after lifting (object frame; position m, normal into the object, "
-               "normal force N, mu): "
+               "normal force N, mu, whole force N, hand link): "
             << r.contacts.size() << "\n";
   for (const auto& c : r.contacts) {
     std::cout << "  p " << vectorText(c.position) << "  n " << vectorText(c.normal, 4) << "  f "
-              << fmt(c.normalForce, 4) << "  mu " << fmt(c.mu, 3) << "\n";
+              << fmt(c.normalForce, 4) << "  mu " << fmt(c.mu, 3) << "  F "
+              << vectorText(c.force, 4) << "  link "
+              << (c.handBody >= 0 ? dwc.bodies()[static_cast<std::size_t>(c.handBody)].name : "-")
+              << "\n";
   }
 }
 

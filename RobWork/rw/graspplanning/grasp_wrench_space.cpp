@@ -6,12 +6,14 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <csetjmp>
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
 #include <memory>
 #include <numbers>
 #include <optional>
+#include <random>
 #include <sstream>
 #include <stdexcept>
 
@@ -49,7 +51,8 @@ constexpr double kInsideTolerance = 1e-12;
 // make merging fail (QH6347 wide merge, QH6271 dupridge); Qhull's own remedy is joggle, so we
 // retry with "QJ QR-2": "QR-2" fixes the random seed at 2 without rotating the input, so the
 // retry is deterministic too. Such sets have epsilon <= their thickness, i.e. tiny.
-// With a fixed input order (we sort it) both runs are deterministic.
+// With a fixed input order (we sort it) both runs are deterministic. The lazy hull
+// (runQhullLazy) uses the exact options too; Qhull's incremental qh_addpoint needs no joggle.
 constexpr char kExactOptions[] = "qhull Qx C-0";
 constexpr char kJoggleOptions[] = "qhull QJ QR-2";
 
@@ -62,54 +65,140 @@ Vector3D tangentOf(const Vector3D& n) {
   return Vector3D(-n.y(), n.x(), 0.0).normalized();
 }
 
-bool allFinite(const Contact3D& c, bool useForce) {
-  return c.position.allFinite() && c.normal.allFinite() && std::isfinite(c.mu) &&
-         (!useForce || std::isfinite(c.normalForce));
+// A linearised friction cone: edges scale * (axis + mu * unit tangent), applied at position.
+struct Cone {
+  Vector3D position;
+  Vector3D axis;  // unit
+  double mu = 0.0;
+  double scale = 1.0;
+  int cluster = -1;
+};
+
+// Axis (not normalised) and scale of a contact's cone under `force`.
+std::pair<Vector3D, double> axisAndScale(const Contact3D& c, GwsForce force) {
+  switch (force) {
+    case GwsForce::kMeasuredNormalForce:
+      return {c.normal, c.normalForce};
+    case GwsForce::kMeasuredForce:
+      return {c.force, c.force.norm()};
+    case GwsForce::kUnitNormal:
+      break;
+  }
+  return {c.normal, 1.0};
 }
 
-// Checks and normalises the contacts; drops contacts without measured force. nullopt if invalid.
-std::optional<std::vector<Contact3D>> validContacts(std::span<const Contact3D> contacts,
-                                                    const Vector3D& c, double r, bool useForce) {
+bool allFinite(const Contact3D& c, GwsForce force) {
+  const bool finite = c.position.allFinite() && c.normal.allFinite() && std::isfinite(c.mu);
+  switch (force) {
+    case GwsForce::kMeasuredNormalForce:
+      return finite && std::isfinite(c.normalForce);
+    case GwsForce::kMeasuredForce:
+      return finite && c.force.allFinite();
+    case GwsForce::kUnitNormal:
+      break;
+  }
+  return finite;
+}
+
+// Checks the contacts and turns them into cones; drops cones with a measured force below
+// kGwsMinForce. nullopt if invalid.
+std::optional<std::vector<Cone>> validCones(std::span<const Contact3D> contacts, const Vector3D& c,
+                                            double r, GwsForce force) {
   if (!c.allFinite() || !std::isfinite(r) || r <= 0.0) return std::nullopt;
-  std::vector<Contact3D> out;
+  std::vector<Cone> out;
   out.reserve(contacts.size());
   for (const Contact3D& contact : contacts) {
-    if (!allFinite(contact, useForce) || contact.mu < 0.0) return std::nullopt;
-    if (useForce && contact.normalForce < 0.0) return std::nullopt;
-    const double length = contact.normal.norm();
-    if (!(length > 1e-12)) return std::nullopt;
-    if (useForce && contact.normalForce == 0.0) continue;
-    Contact3D normalised = contact;
-    normalised.normal /= length;
-    if (!useForce) normalised.normalForce = 1.0;
-    out.push_back(normalised);
+    if (!allFinite(contact, force) || contact.mu < 0.0) return std::nullopt;
+    if (!(contact.normal.norm() > 1e-12)) return std::nullopt;
+    if (force == GwsForce::kMeasuredNormalForce && contact.normalForce < 0.0) return std::nullopt;
+    const auto [axis, scale] = axisAndScale(contact, force);
+    if (force != GwsForce::kUnitNormal && scale < kGwsMinForce) continue;
+    out.push_back(Cone{contact.position, axis / axis.norm(), contact.mu, scale, contact.cluster});
   }
   return out;
 }
 
-std::array<double, 8> sortKey(const Contact3D& c) {
-  return {c.position.x(), c.position.y(), c.position.z(), c.normal.x(),
-          c.normal.y(),   c.normal.z(),   c.mu,           c.normalForce};
+std::array<double, 9> sortKey(const Cone& c) {
+  return {c.position.x(), c.position.y(), c.position.z(),
+          c.axis.x(),     c.axis.y(),     c.axis.z(),
+          c.mu,           c.scale,        static_cast<double>(c.cluster)};
 }
 
-bool sameContact(const Contact3D& a, const Contact3D& b) {
+bool sameCone(const Cone& a, const Cone& b) {
   return (a.position - b.position).norm() <= kDuplicateTolerance &&
-         (a.normal - b.normal).norm() <= kDuplicateTolerance &&
+         (a.axis - b.axis).norm() <= kDuplicateTolerance &&
          std::abs(a.mu - b.mu) <= kDuplicateTolerance &&
-         std::abs(a.normalForce - b.normalForce) <= kDuplicateTolerance;
+         std::abs(a.scale - b.scale) <= kDuplicateTolerance && a.cluster == b.cluster;
 }
 
-// Sorts contacts lexicographically (a canonical order) and keeps the first of near-duplicates.
-std::vector<Contact3D> canonicalContacts(std::vector<Contact3D> contacts) {
-  std::sort(contacts.begin(), contacts.end(),
-            [](const Contact3D& a, const Contact3D& b) { return sortKey(a) < sortKey(b); });
-  std::vector<Contact3D> kept;
-  for (const Contact3D& c : contacts) {
-    const bool duplicate = std::any_of(kept.begin(), kept.end(),
-                                       [&](const Contact3D& k) { return sameContact(k, c); });
+// Sorts cones lexicographically (a canonical order) and keeps the first of near-duplicates.
+std::vector<Cone> canonicalCones(std::vector<Cone> cones) {
+  std::sort(cones.begin(), cones.end(),
+            [](const Cone& a, const Cone& b) { return sortKey(a) < sortKey(b); });
+  std::vector<Cone> kept;
+  for (const Cone& c : cones) {
+    const bool duplicate =
+        std::any_of(kept.begin(), kept.end(), [&](const Cone& k) { return sameCone(k, c); });
     if (!duplicate) kept.push_back(c);
   }
   return kept;
+}
+
+// One cone per cluster id >= 0 (scale-weighted means, summed scale); cones of cluster -1 stay.
+// The input is canonical, so each sum runs in a fixed order; the output is canonical again.
+std::vector<Cone> mergeClusters(const std::vector<Cone>& cones) {
+  std::vector<Cone> out;
+  std::vector<int> done;
+  for (std::size_t i = 0; i < cones.size(); ++i) {
+    const int id = cones[i].cluster;
+    if (id < 0) {
+      out.push_back(cones[i]);
+      continue;
+    }
+    if (std::find(done.begin(), done.end(), id) != done.end()) continue;
+    done.push_back(id);
+    Vector3D position = Vector3D::Zero();
+    Vector3D axis = Vector3D::Zero();
+    double mu = 0.0;
+    double scale = 0.0;
+    for (std::size_t j = i; j < cones.size(); ++j) {
+      const Cone& c = cones[j];
+      if (c.cluster != id) continue;
+      position += c.scale * c.position;
+      axis += c.scale * c.axis;
+      mu += c.scale * c.mu;
+      scale += c.scale;
+    }
+    // A cluster whose axes cancel has no direction; keep its first cone's.
+    const double length = axis.norm();
+    out.push_back(Cone{position / scale, length > 1e-12 ? Vector3D(axis / length) : cones[i].axis,
+                       mu / scale, scale, id});
+  }
+  return canonicalCones(std::move(out));
+}
+
+// Uniform double in [-a, a] from the top 53 bits of one draw (the same on every platform, unlike
+// std::uniform_real_distribution).
+double jitter(std::mt19937_64& rng, double a) {
+  const double u = static_cast<double>(rng() >> 11) * 0x1.0p-53;
+  return a * (2.0 * u - 1.0);
+}
+
+// The VisGraB-era rule: each cone followed by a jittered copy (see GwsOptions).
+std::vector<Cone> withJitteredCopies(const std::vector<Cone>& cones, const GwsOptions& options) {
+  std::mt19937_64 rng(options.jitterSeed);
+  std::vector<Cone> out;
+  out.reserve(2 * cones.size());
+  for (const Cone& c : cones) {
+    out.push_back(c);
+    Cone copy = c;
+    for (int k = 0; k < 3; ++k) copy.axis(k) += jitter(rng, options.jitterAxis);
+    for (int k = 0; k < 3; ++k) copy.position(k) += jitter(rng, options.jitterPosition);
+    const double length = copy.axis.norm();
+    copy.axis = length > 1e-12 ? Vector3D(copy.axis / length) : c.axis;
+    out.push_back(copy);
+  }
+  return out;
 }
 
 bool lexLess(const Wrench6D& a, const Wrench6D& b) {
@@ -197,8 +286,147 @@ HullOutcome runQhull(const std::vector<Wrench6D>& points, std::string_view qhull
   return out;
 }
 
+// Adds `point` to the hull if Qhull finds it outside. Qhull reports errors with longjmp, so
+// nothing here may need a destructor. Returns Qhull's exit code (0: fine).
+int addPoint(qhT* qh, double* point) {
+  const int exitCode = setjmp(qh->errexit);
+  if (exitCode == 0) {
+    qh->NOerrexit = False;
+    realT distance = 0.0;
+    boolT outside = False;
+    facetT* facet = qh_findbestfacet(qh, point, !qh_ALL, &distance, &outside);
+    if (outside) {
+      // A point outside qh_new_qhull's array goes into other_points, so qh_pointid knows it.
+      qh_setappend(qh, &qh->other_points, point);
+      qh_addpoint(qh, point, facet, !qh_ALL);
+    }
+  }
+  qh->NOerrexit = True;
+  return exitCode;
+}
+
+// Index of the first point with the largest dot product with `direction`.
+std::size_t supportIndex(const std::vector<Wrench6D>& points, const Wrench6D& direction) {
+  std::size_t best = 0;
+  for (std::size_t i = 1; i < points.size(); ++i) {
+    if (direction.dot(points[i]) > direction.dot(points[best])) best = i;
+  }
+  return best;
+}
+
+// Where the lazy hull starts: the support points of the 12 directions +-e_i; while they span
+// fewer than 6 dimensions (smallest singular value of the centred points <= tolerance), also the
+// support points of +-v, v the direction they are flat in (at most 6 times). Ascending, distinct;
+// empty if no full-dimensional start was found.
+std::vector<std::size_t> lazyStart(const std::vector<Wrench6D>& points, double tolerance) {
+  std::vector<std::size_t> chosen;
+  auto add = [&](const Wrench6D& direction) {
+    const std::size_t i = supportIndex(points, direction);
+    if (std::find(chosen.begin(), chosen.end(), i) != chosen.end()) return false;
+    chosen.push_back(i);
+    return true;
+  };
+  for (int axis = 0; axis < 6; ++axis) {
+    add(Wrench6D::Unit(axis));
+    add(-Wrench6D::Unit(axis));
+  }
+  for (int round = 0; round < 6; ++round) {
+    Eigen::Matrix<double, Eigen::Dynamic, 6> centred(static_cast<Eigen::Index>(chosen.size()), 6);
+    Wrench6D mean = Wrench6D::Zero();
+    for (const std::size_t i : chosen) mean += points[i];
+    mean /= static_cast<double>(chosen.size());
+    for (std::size_t k = 0; k < chosen.size(); ++k) {
+      centred.row(static_cast<Eigen::Index>(k)) = (points[chosen[k]] - mean).transpose();
+    }
+    const Eigen::JacobiSVD<Eigen::Matrix<double, Eigen::Dynamic, 6>> svd(centred,
+                                                                         Eigen::ComputeFullV);
+    if (chosen.size() >= static_cast<std::size_t>(kMinHullPoints) &&
+        svd.singularValues()(5) > tolerance) {
+      std::sort(chosen.begin(), chosen.end());
+      return chosen;
+    }
+    const Wrench6D flat = svd.matrixV().col(5);
+    const bool grew = add(flat);
+    if (!add(-flat) && !grew) break;
+  }
+  return {};
+}
+
+// Epsilon by a lazily grown hull (the expanding-polytope idea of EPA, with Qhull keeping the
+// hull): start from lazyStart(); repeat: take the facet nearest to the origin
+// (signed: negative when the origin is beyond it); if no point of `points` lies more than
+// `tolerance` beyond its hyperplane, that hyperplane supports the whole set, so the set's
+// epsilon is at most its distance, and at least it, because the partial hull lies inside the
+// whole hull: done; else add the point farthest beyond it. Exact like the full hull (to
+// `tolerance`), but the partial hull usually has far fewer facets. exitCode -1 when it does
+// not apply (the start is flat or Qhull does not take a point it should): use the full hull.
+HullOutcome runQhullLazy(const std::vector<Wrench6D>& points, std::string_view qhullOptions,
+                         double tolerance) {
+  HullOutcome out;
+  out.exitCode = -1;
+  const std::vector<std::size_t> start = lazyStart(points, tolerance);
+  if (start.empty()) return out;
+  std::vector<Wrench6D> startPoints;
+  for (const std::size_t i : start) startPoints.push_back(points[i]);
+  std::vector<double> coordinates;
+  coordinates.reserve(points.size() * 6);
+  for (const Wrench6D& w : points) coordinates.insert(coordinates.end(), w.data(), w.data() + 6);
+  std::vector<double> startCoordinates;
+  for (const Wrench6D& w : startPoints) {
+    startCoordinates.insert(startCoordinates.end(), w.data(), w.data() + 6);
+  }
+  std::vector<bool> added(points.size(), false);
+  for (const std::size_t i : start) added[i] = true;
+  std::string options(qhullOptions);
+  ErrorCapture errors;
+  auto qh = std::make_unique<qhT>();
+  qh_zero(qh.get(), errors.file());
+  out.exitCode =
+      qh_new_qhull(qh.get(), 6, static_cast<int>(startPoints.size()), startCoordinates.data(),
+                   False, options.data(), nullptr, errors.file());
+  while (out.exitCode == qh_ERRnone) {
+    facetT* nearest = nullptr;
+    int facets = 0;
+    for (facetT* f = qh->facet_list; f != nullptr && f->next != nullptr; f = f->next) {
+      if (nearest == nullptr || -f->offset < -nearest->offset) nearest = f;
+      ++facets;
+    }
+    if (nearest == nullptr) {
+      out.exitCode = -1;
+      break;
+    }
+    const Eigen::Map<const Wrench6D> normal(nearest->normal);
+    std::size_t farthest = 0;
+    double beyond = -std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const double d = normal.dot(points[i]) + nearest->offset;
+      if (d > beyond) {
+        beyond = d;
+        farthest = i;
+      }
+    }
+    if (beyond <= tolerance) {
+      out.facets = facets;
+      out.minFacetDistance = -nearest->offset;
+      break;
+    }
+    if (added[farthest]) {
+      out.exitCode = -1;
+      break;
+    }
+    added[farthest] = true;
+    out.exitCode = addPoint(qh.get(), coordinates.data() + 6 * farthest);
+  }
+  if (out.exitCode > 0) out.message = errors.text();
+  qh_freeqhull(qh.get(), !qh_ALL);
+  int curLong = 0;
+  int totLong = 0;
+  qh_memfreeshort(qh.get(), &curLong, &totLong);
+  return out;
+}
+
 // Epsilon of a canonical point set with at least kMinHullPoints points.
-GwsResult hullEpsilon(const std::vector<Wrench6D>& points) {
+GwsResult hullEpsilon(const std::vector<Wrench6D>& points, GwsHull method) {
   GwsResult result;
   result.points = static_cast<int>(points.size());
   double maxNorm = 0.0;
@@ -212,7 +440,15 @@ GwsResult hullEpsilon(const std::vector<Wrench6D>& points) {
     result.detail = detail.str();
     return result;
   }
-  HullOutcome hull = runQhull(points, kExactOptions);
+  HullOutcome hull;
+  hull.exitCode = -1;
+  if (method == GwsHull::kLazy) {
+    hull = runQhullLazy(points, kExactOptions, kInsideTolerance * maxNorm);
+  }
+  if (hull.exitCode != qh_ERRnone) {
+    result.wholeHull = true;
+    hull = runQhull(points, kExactOptions);
+  }
   if (hull.exitCode != qh_ERRnone) {
     result.joggled = true;
     hull = runQhull(points, kJoggleOptions);
@@ -233,28 +469,19 @@ GwsResult hullEpsilon(const std::vector<Wrench6D>& points) {
   return result;
 }
 
-}  // namespace
-
-std::string_view toString(GwsStatus status) {
-  return kStatusNames.at(static_cast<std::size_t>(status));
-}
-
-std::vector<Wrench6D> contactWrenches(std::span<const Contact3D> contacts,
-                                      const Vector3D& centerOfMass, double maxRadius,
-                                      const GwsOptions& options) {
-  const int m = options.coneEdges;
-  if (m < 3) throw std::invalid_argument("GwsOptions::coneEdges must be at least 3");
+// The edge wrenches of each cone, `edges` per cone, in cone order.
+std::vector<Wrench6D> coneWrenches(const std::vector<Cone>& cones, const Vector3D& centerOfMass,
+                                   double maxRadius, int edges) {
   std::vector<Wrench6D> wrenches;
-  wrenches.reserve(contacts.size() * static_cast<std::size_t>(m));
-  for (const Contact3D& c : contacts) {
-    const double scale = options.useMeasuredNormalForce ? c.normalForce : 1.0;
-    const Vector3D n = c.normal;
+  wrenches.reserve(cones.size() * static_cast<std::size_t>(edges));
+  for (const Cone& c : cones) {
+    const Vector3D& n = c.axis;
     const Vector3D t = tangentOf(n);
     const Vector3D b = n.cross(t);
     const Vector3D arm = c.position - centerOfMass;
-    for (int k = 0; k < m; ++k) {
-      const double angle = 2.0 * std::numbers::pi * k / m;
-      const Vector3D f = scale * (n + c.mu * (std::cos(angle) * t + std::sin(angle) * b));
+    for (int k = 0; k < edges; ++k) {
+      const double angle = 2.0 * std::numbers::pi * k / edges;
+      const Vector3D f = c.scale * (n + c.mu * (std::cos(angle) * t + std::sin(angle) * b));
       Wrench6D w;
       w.head<3>() = f;
       w.tail<3>() = arm.cross(f) / maxRadius;
@@ -264,25 +491,52 @@ std::vector<Wrench6D> contactWrenches(std::span<const Contact3D> contacts,
   return wrenches;
 }
 
+}  // namespace
+
+std::string_view toString(GwsStatus status) {
+  return kStatusNames.at(static_cast<std::size_t>(status));
+}
+
+std::vector<Wrench6D> contactWrenches(std::span<const Contact3D> contacts,
+                                      const Vector3D& centerOfMass, double maxRadius,
+                                      const GwsOptions& options) {
+  if (options.coneEdges < 3)
+    throw std::invalid_argument("GwsOptions::coneEdges must be at least 3");
+  std::vector<Cone> cones;
+  cones.reserve(contacts.size());
+  for (const Contact3D& c : contacts) {
+    const auto [axis, scale] = axisAndScale(c, options.force);
+    cones.push_back(Cone{c.position, axis.normalized(), c.mu, scale, c.cluster});
+  }
+  return coneWrenches(cones, centerOfMass, maxRadius, options.coneEdges);
+}
+
 GwsResult gwsEpsilon(std::span<const Contact3D> contacts, const Vector3D& centerOfMass,
                      double maxRadius, const GwsOptions& options) {
   if (options.coneEdges < 3) {
     throw std::invalid_argument("GwsOptions::coneEdges must be at least 3");
   }
-  const auto valid =
-      validContacts(contacts, centerOfMass, maxRadius, options.useMeasuredNormalForce);
+  if (options.duplicateBelow < 0) {
+    throw std::invalid_argument("GwsOptions::duplicateBelow must not be negative");
+  }
+  const auto valid = validCones(contacts, centerOfMass, maxRadius, options.force);
   if (!valid) {
     GwsResult result;
     result.status = GwsStatus::kInvalidInput;
     return result;
   }
-  const std::vector<Contact3D> canonical = canonicalContacts(*valid);
-  const std::vector<Wrench6D> wrenches =
-      contactWrenches(canonical, centerOfMass, maxRadius, options);
-  return gwsEpsilonOfWrenches(wrenches);
+  std::vector<Cone> cones = canonicalCones(*valid);
+  if (options.mergeClusters) cones = mergeClusters(cones);
+  if (static_cast<int>(cones.size()) < options.duplicateBelow) {
+    cones = withJitteredCopies(cones, options);
+  }
+  GwsResult result = gwsEpsilonOfWrenches(
+      coneWrenches(cones, centerOfMass, maxRadius, options.coneEdges), options.hull);
+  result.cones = static_cast<int>(cones.size());
+  return result;
 }
 
-GwsResult gwsEpsilonOfWrenches(std::span<const Wrench6D> wrenches) {
+GwsResult gwsEpsilonOfWrenches(std::span<const Wrench6D> wrenches, GwsHull hull) {
   const bool finite = std::all_of(wrenches.begin(), wrenches.end(),
                                   [](const Wrench6D& w) { return w.allFinite(); });
   GwsResult result;
@@ -296,7 +550,7 @@ GwsResult gwsEpsilonOfWrenches(std::span<const Wrench6D> wrenches) {
     result.status = GwsStatus::kTooFewPoints;
     return result;
   }
-  return hullEpsilon(points);
+  return hullEpsilon(points, hull);
 }
 
 }  // namespace rw::graspplanning

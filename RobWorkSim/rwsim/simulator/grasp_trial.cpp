@@ -13,6 +13,7 @@
 #include "rwsim/control/pd_controller.hpp"
 #include "rwsim/control/ramp_trajectory.hpp"
 #include "rwsim/simulator/detail/trial_support.hpp"
+#include "rwsim/simulator/grasp_quality.hpp"
 
 namespace rwsim::simulator {
 
@@ -336,11 +337,14 @@ void TrialRun::evaluate(const Transform3D& X_h0, const Transform3D& X_o0) {
   result_.contacts = detail::objectContacts(dwc_, sim_.contacts(), data_.isHandBody, object, X_o1,
                                             setup_.contactForceThreshold);
   const auto& body = dwc_.bodies()[static_cast<std::size_t>(object)];
-  result_.qGws = !setup_.computeGws
-                     ? 0.0
-                     : detail::graspWrenchQuality(result_.contacts, body.mass.cog,
-                                                  data_.radius[static_cast<std::size_t>(object)],
-                                                  setup_.gwsConeEdges);
+  if (setup_.computeGws) {
+    GwsQualityOptions options;
+    options.coneEdges = setup_.gwsConeEdges;
+    const GwsQualities q = gwsQualities(result_.contacts, body.mass.cog,
+                                        data_.radius[static_cast<std::size_t>(object)], options);
+    result_.qGws = q.qGws;
+    result_.qGwsUnit = q.qGwsUnit;
+  }
   finish(
       drift < setup_.slipThreshold ? GraspOutcome::kStable : GraspOutcome::kSlipped,
       "object drift " + std::to_string(drift) + " m during a lift of " + std::to_string(h) + " m");

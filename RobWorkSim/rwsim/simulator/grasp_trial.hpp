@@ -103,9 +103,10 @@ struct GraspTrialSetup {
   double settleTime = 0.2;
   /// A contact counts when its normal force exceeds this, N (the legacy plugin's filter).
   double contactForceThreshold = 1e-4;
-  /// Cone edges for Q_GWS (RobWork: 10).
+  /// Cone edges for Q_GWS and Q_GWS,unit (RobWork: 10).
   int gwsConeEdges = 10;
-  /// Compute Q_GWS (a 6-D hull, often the dearest part of a trial); false leaves it 0.
+  /// Compute Q_GWS and Q_GWS,unit (6-D hulls, often the dearest part of a trial); false leaves
+  /// both 0.
   bool computeGws = true;
   /// Simulator settings.
   SimulatorOptions simulator;
@@ -127,6 +128,10 @@ struct TrialContact {
   double normalForce = 0.0;
   /// Friction coefficient of the pair.
   double mu = 0.0;
+  /// The whole contact force on the object (normal and friction), N: the paper's f_i.
+  rw::math::Vector3D force = rw::math::Vector3D::Zero();
+  /// Body index (in DynamicWorkCell::bodies()) of the hand link that touches the object.
+  int handBody = -1;
 };
 
 /// What a trial measured.
@@ -135,8 +140,13 @@ struct GraspTrialResult {
   GraspOutcome outcome = GraspOutcome::kSimulationFailure;
   /// Paper eq. 5 (0 when not held).
   double qLift = 0.0;
-  /// Ferrari-Canny epsilon after lifting (paper eq. 6-7; 0 when not held).
+  /// Q_GWS as the paper's tables computed it (§2.4.1, eq. 6-7): Ferrari-Canny L1 epsilon after
+  /// lifting with cones centred on the measured contact forces (see graspQualities()); 0 when
+  /// not held.
   double qGws = 0.0;
+  /// The same with unit normal forces and cones on the contact normals (RobWork's
+  /// GraspTaskSimulator; this project's Q_GWS before the paper's definition); 0 when not held.
+  double qGwsUnit = 0.0;
   /// Body index of the grasped object (-1 if none).
   int object = -1;
   /// Hand configuration when the fingers came to rest.
@@ -187,9 +197,9 @@ struct PlacementCheck {
 ///     liftAcceleration) with the controller still closing, then settles for settleTime.
 ///  5. No hand contact on the object: kDropped. Else, with h and o the hand's and the object's
 ///     displacement during lifting, drift = |o - h|, Q_lift = max(0, 1 - drift / |h|) (paper
-///     eq. 5), kStable if drift < slipThreshold, else kSlipped; Q_GWS from the contacts after
-///     lifting (unit normal forces, gwsConeEdges edges, torques about the object's COG over r,
-///     the largest distance of its collision geometry from the COG).
+///     eq. 5), kStable if drift < slipThreshold, else kSlipped; Q_GWS and Q_GWS,unit from the
+///     contacts after lifting (graspQualities(): gwsConeEdges edges, torques about the object's
+///     COG over r, the largest distance of its collision geometry from the COG).
 /// A failing step gives kSimulationFailure, passing timeLimit kTimeout (detail says why).
 class GraspTrial {
  public:

@@ -66,6 +66,7 @@ GroupResult analyseGroup(const std::vector<const SceneTally*>& scenes, int maxAt
   r.attempts.exact.assign(static_cast<std::size_t>(maxAttempts), 0.0);
   double qLift = 0.0;
   double qGws = 0.0;
+  double qGwsUnit = 0.0;
   double gaSum = 0.0;
   double gaGivenSum = 0.0;
   std::vector<SceneOutcomes> outcomes;
@@ -88,7 +89,8 @@ GroupResult analyseGroup(const std::vector<const SceneTally*>& scenes, int maxAt
       if (!success) continue;
       ++q.successes;
       qLift += t.qLift;
-      qGws += t.qGws;
+      qGws += t.qGws;  // NaN (not computed) makes the mean NaN: shown as undefined
+      qGwsUnit += t.qGwsUnit;
       if (firstGiven == 0) firstGiven = i + 1;
     }
     d.grasps += n;
@@ -109,6 +111,7 @@ GroupResult analyseGroup(const std::vector<const SceneTally*>& scenes, int maxAt
   }
   q.meanQLift = q.successes > 0 ? qLift / q.successes : kNaN;
   q.meanQGws = q.successes > 0 ? qGws / q.successes : kNaN;
+  q.meanQGwsUnit = q.successes > 0 ? qGwsUnit / q.successes : kNaN;
   f.p = f.scenes > 0 ? static_cast<double>(f.scenesWithSuccess) / f.scenes : kNaN;
   f.ga = f.scenesWithSuccess > 0 ? gaSum / f.scenesWithSuccess : kNaN;
   f.gaGivenOrder = f.scenesWithSuccess > 0 ? gaGivenSum / f.scenesWithSuccess : kNaN;

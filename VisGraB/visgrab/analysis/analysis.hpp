@@ -86,8 +86,11 @@ struct QualityMeans {
   int successes = 0;
   /// Mean Q_lift (NaN without successes).
   double meanQLift = 0.0;
-  /// Mean Q_GWS (NaN without successes).
+  /// Mean Q_GWS, the paper's definition (NaN without successes, or if one of them lacks it: a
+  /// trial read from a version 1 trials.csv).
   double meanQGws = 0.0;
+  /// Mean Q_GWS with unit normal forces (NaN without successes or if one of them lacks it).
+  double meanQGwsUnit = 0.0;
 };
 
 /// Analysis 3 (Figure 7): success rate against the number of attempts n = 1..maxAttempts, the

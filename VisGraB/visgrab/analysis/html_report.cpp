@@ -179,23 +179,27 @@ std::string methodLegendLines(const Analysis& a) {
   return html + "(lines: exact expectation; dots: randomized trials)</p>\n";
 }
 
-/// Table 1 or 2 for one table (texture): rows as in the paper, two values per method, and for a
-/// method named like one of the paper's grasp types the paper's two values beside them.
+/// Table 1 or 2 for one table (texture): rows as in the paper, per method its values (`heads`,
+/// `cells` gives them in the same order), and for a method named like one of the paper's grasp
+/// types the paper's two values right after the first two (the ones they compare with); further
+/// values (e.g. Q_GWS,unit) come after those.
 template <typename Cells>
 std::string conditionTable(const Analysis& a, std::size_t table, PaperTable paperTable,
-                           std::string_view first, std::string_view second, Cells cells) {
+                           const std::vector<std::string_view>& heads, Cells cells) {
+  const std::size_t own = heads.size();
   std::string html = "<table>\n<thead><tr><th colspan=\"2\"></th>";
   for (const MethodColumn& c : a.columns) {
-    html += std::string("<th colspan=\"") + (isPaperMethod(c.method) ? "4" : "2") + "\">" +
+    html += "<th colspan=\"" + std::to_string(own + (isPaperMethod(c.method) ? 2 : 0)) + "\">" +
             escapeHtml(c.label) + "</th>";
   }
   html += "</tr>\n<tr><th colspan=\"2\"></th>";
   for (const MethodColumn& c : a.columns) {
-    html += "<th>" + std::string(first) + "</th><th>" + std::string(second) + "</th>";
+    html += "<th>" + std::string(heads[0]) + "</th><th>" + std::string(heads[1]) + "</th>";
     if (isPaperMethod(c.method)) {
-      html += "<th class=\"paper\">paper " + std::string(first) +
-              "</th><th class=\"paper\">paper " + std::string(second) + "</th>";
+      html += "<th class=\"paper\">paper " + std::string(heads[0]) +
+              "</th><th class=\"paper\">paper " + std::string(heads[1]) + "</th>";
     }
+    for (std::size_t k = 2; k < own; ++k) html += "<th>" + std::string(heads[k]) + "</th>";
   }
   html += "</tr></thead>\n<tbody>\n";
   const auto rows = tableGroups(table);
@@ -203,15 +207,16 @@ std::string conditionTable(const Analysis& a, std::size_t table, PaperTable pape
     html +=
         "<tr><th>" + std::string(kRowKinds[r]) + "</th><th>" + std::string(kRowNames[r]) + "</th>";
     for (std::size_t c = 0; c < a.columns.size(); ++c) {
-      const auto [x, y] = cells(a.results[rows[r]][c]);
-      html += "<td>" + x + "</td><td>" + y + "</td>";
+      const std::vector<std::string> values = cells(a.results[rows[r]][c]);
+      html += "<td>" + values[0] + "</td><td>" + values[1] + "</td>";
       if (isPaperMethod(a.columns[c].method)) {
-        const auto values = paperValues(paperTable, a.groups[rows[r]].key, a.columns[c].method);
+        const auto paper = paperValues(paperTable, a.groups[rows[r]].key, a.columns[c].method);
         for (std::size_t k = 0; k < 2; ++k) {
           html +=
-              "<td class=\"paper\">" + (values ? fixed((*values)[k], 2) : std::string()) + "</td>";
+              "<td class=\"paper\">" + (paper ? fixed((*paper)[k], 2) : std::string()) + "</td>";
         }
       }
+      for (std::size_t k = 2; k < own; ++k) html += "<td>" + values[k] + "</td>";
     }
     html += "</tr>\n";
   }
@@ -359,12 +364,15 @@ std::string htmlReport(const Analysis& a, const std::vector<Showcase>& showcases
   html += "<h2>Table 1: grasp quality of the successful grasps</h2>\n";
   for (std::size_t t = 0; t < 2; ++t) {
     html += "<h3>" + std::string(t == 0 ? "Textured" : "Non-textured") + " background</h3>\n";
-    html += conditionTable(a, t, PaperTable::kQuality, "Q<sub>lift</sub>", "Q<sub>GWS</sub>",
+    html += conditionTable(a, t, PaperTable::kQuality,
+                           {"Q<sub>lift</sub>", "Q<sub>GWS</sub>", "Q<sub>GWS,unit</sub>"},
                            [](const GroupResult& r) {
-                             return std::make_pair(fixed(r.quality.meanQLift, 2),
-                                                   fixed(r.quality.meanQGws, 2));
+                             return std::vector<std::string>{fixed(r.quality.meanQLift, 2),
+                                                             fixed(r.quality.meanQGws, 2),
+                                                             fixed(r.quality.meanQGwsUnit, 2)};
                            });
   }
+  html += "<p>" + escapeHtml(std::string(kQualityColumnsNote)) + "</p>\n";
   if (hasPaperColumns(a)) {
     html += "<p>" + escapeHtml(paperColumnsNote(PaperTable::kQuality)) + "</p>\n";
   }
@@ -383,8 +391,8 @@ std::string htmlReport(const Analysis& a, const std::vector<Showcase>& showcases
       "(n+1)/(k+1), averaged over the scenes with a success.</p>\n";
   for (std::size_t t = 0; t < 2; ++t) {
     html += "<h3>" + std::string(t == 0 ? "Textured" : "Non-textured") + " background</h3>\n";
-    html += conditionTable(a, t, PaperTable::kFirstSuccess, "p", "ga", [](const GroupResult& r) {
-      return std::make_pair(fixed(r.firstSuccess.p, 2), fixed(r.firstSuccess.ga, 2));
+    html += conditionTable(a, t, PaperTable::kFirstSuccess, {"p", "ga"}, [](const GroupResult& r) {
+      return std::vector<std::string>{fixed(r.firstSuccess.p, 2), fixed(r.firstSuccess.ga, 2)};
     });
   }
   if (hasPaperColumns(a)) {

@@ -143,7 +143,8 @@ std::optional<std::array<double, 2>> paperValues(PaperTable table, std::string_v
 
 std::string paperColumnsNote(PaperTable table) {
   const bool quality = table == PaperTable::kQuality;
-  return std::string(quality ? "paper Q_lift, paper Q_GWS: the paper's Table 1 (its Q_l, Q_GWS)"
+  return std::string(quality ? "paper Q_lift, paper Q_GWS: the paper's Table 1 (its Q_l, Q_GWS; "
+                               "compare with Q_GWS, not Q_GWS,unit)"
                              : "paper p, paper ga: the paper's Table 2") +
          " for its grasp type of the same name (docs/paper-tables.csv); empty for other methods "
          "and for rows the paper does not have.";

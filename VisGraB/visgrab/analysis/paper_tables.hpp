@@ -59,6 +59,16 @@ std::optional<std::array<double, 2>> paperValues(PaperTable table, std::string_v
 /// The sentence under a table with paper columns that says what they are.
 std::string paperColumnsNote(PaperTable table);
 
+/// The note under Table 1 on its two Q_GWS columns (docs/report.md gives the definitions). It
+/// does not mention the paper: paperColumnsNote() says which column the paper's compares with.
+inline constexpr std::string_view kQualityColumnsNote =
+    "Q_GWS: friction cones centred on the measured contact forces and scaled by them, a grasp "
+    "with fewer than 4 contacts getting a jittered copy of each (as VisGraB's original simulator "
+    "computed its tables). Q_GWS,unit: unit normal forces on the contact normals (RobWork's "
+    "GraspTaskSimulator; this project's Q_GWS before). Both: 10 cone edges, torques over the "
+    "object's largest radius. '–' where a successful trial lacks the value (trials written "
+    "before Q_GWS,unit existed have no Q_GWS).";
+
 /// The "Comparing with the paper" note (docs/paper-comparison.md as compiled in).
 struct PaperComparisonNote {
   /// The heading (the file's "# " line, without the "# ").

@@ -92,6 +92,7 @@ std::string markdownTables12(const Analysis& a) {
   std::string md = "\n## Grasp quality of the successful grasps (Table 1)\n\n";
   std::vector<std::string> head = {"group", "method", "successes", "Q_lift", "Q_GWS"};
   if (paper) head.insert(head.end(), {"paper Q_lift", "paper Q_GWS"});
+  head.emplace_back("Q_GWS,unit");
   md += mdRow(head) + mdRule(head.size());
   for (std::size_t g = 0; g < a.groups.size(); ++g) {
     for (std::size_t c = 0; c < a.columns.size(); ++c) {
@@ -103,9 +104,11 @@ std::string markdownTables12(const Analysis& a) {
         const auto cells = paperCells(PaperTable::kQuality, a.groups[g].key, a.columns[c]);
         row.insert(row.end(), cells.begin(), cells.end());
       }
+      row.push_back(fixed(q.meanQGwsUnit, 2));
       md += mdRow(row);
     }
   }
+  md += "\n" + std::string(kQualityColumnsNote) + "\n";
   if (paper) md += "\n" + paperColumnsNote(PaperTable::kQuality) + "\n";
   md +=
       "\n## Scenes with a success and attempts to the first success (Table 2)\n\n"
@@ -192,8 +195,8 @@ void writeCsvTables(const Analysis& a, const std::filesystem::path& outDir) {
   for (const auto& info : kOutcomeTable) header.push_back("share_" + std::string(info.name));
   header.push_back("share_no_grasp");
   std::string distribution = line(header);
-  std::string quality = line(
-      {"group", "method", "successes", "mean_q_lift", "mean_q_gws", "paper_q_lift", "paper_q_gws"});
+  std::string quality = line({"group", "method", "successes", "mean_q_lift", "mean_q_gws",
+                              "paper_q_lift", "paper_q_gws", "mean_q_gws_unit"});
   std::string attempts = line({"group", "method", "attempts", "exact", "randomized"});
   std::string first = line({"group", "method", "scenes", "scenes_with_success", "p", "ga",
                             "ga_randomized", "ga_given_order", "paper_p", "paper_ga"});
@@ -211,9 +214,9 @@ void writeCsvTables(const Analysis& a, const std::filesystem::path& outDir) {
       row.push_back(csvNumber(d.noGraspShare));
       distribution += line(row);
       const auto paperQuality = paperCsvFields(PaperTable::kQuality, key, a.columns[c]);
-      quality +=
-          line({key, label, std::to_string(r.quality.successes), csvNumber(r.quality.meanQLift),
-                csvNumber(r.quality.meanQGws), paperQuality[0], paperQuality[1]});
+      quality += line({key, label, std::to_string(r.quality.successes),
+                       csvNumber(r.quality.meanQLift), csvNumber(r.quality.meanQGws),
+                       paperQuality[0], paperQuality[1], csvNumber(r.quality.meanQGwsUnit)});
       for (std::size_t n = 0; n < r.attempts.exact.size(); ++n) {
         attempts += line({key, label, std::to_string(n + 1), csvNumber(r.attempts.exact[n]),
                           csvNumber(r.attempts.randomized[n])});

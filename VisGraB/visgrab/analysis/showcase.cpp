@@ -4,6 +4,8 @@
 #include <array>
 #include <cstdio>
 
+#include "visgrab/analysis/detail/format.hpp"
+
 namespace visgrab::analysis {
 
 namespace {
@@ -90,9 +92,10 @@ std::string showcaseCaption(const Showcase& showcase) {
                      std::to_string(t.rank + 1) + "), " +
                      std::string(rwsim::simulator::outcomeName(t.outcome));
   if (results::isSuccess(t.outcome)) {
-    char q[80];
-    std::snprintf(q, sizeof q, ", Q_lift %.3f, Q_GWS %.4f", t.qLift, t.qGws);
+    char q[40];
+    std::snprintf(q, sizeof q, ", Q_lift %.3f", t.qLift);
     text += q;
+    text += ", Q_GWS " + detail::fixed(t.qGws, 4) + ", Q_GWS,unit " + detail::fixed(t.qGwsUnit, 4);
   }
   return text;
 }

@@ -40,7 +40,8 @@ struct Showcase {
 std::vector<Showcase> chooseShowcases(const Analysis& analysis,
                                       const std::vector<results::RunResults>& runs);
 
-/// "best: plain/single/cocacola/01 s2EGA1-03 (rank 3), stable, Q_lift 0.934, Q_GWS 0.0121".
+/// "best: plain/single/cocacola/01 s2EGA1-03 (rank 3), stable, Q_lift 0.934, Q_GWS 0.4210,
+/// Q_GWS,unit 0.0121" ("–" for a value the trial lacks).
 std::string showcaseCaption(const Showcase& showcase);
 
 /// Draws pictures for showcases: sets Showcase::image (a file it wrote below the report folder)

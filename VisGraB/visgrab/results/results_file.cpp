@@ -1,6 +1,7 @@
 #include "visgrab/results/results_file.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <limits>
 #include <map>
@@ -22,9 +23,13 @@ using rw::loaders::LoadError;
 namespace {
 
 constexpr std::string_view kTrialsColumns =
+    "scene,method,grasp,rank,outcome,robwork_code,q_lift,q_gws,q_gws_unit,object,simulated_time,"
+    "detail";
+// Version 1 (before q_gws_unit): its q_gws was computed with unit normal forces.
+constexpr std::string_view kTrialsColumnsVersion1 =
     "scene,method,grasp,rank,outcome,robwork_code,q_lift,q_gws,object,simulated_time,detail";
 constexpr std::string_view kRunColumns = "record,id,texture,kind,arrangement,objects,pose,count";
-constexpr std::size_t kTrialFieldCount = 11;
+constexpr std::size_t kTrialFieldCount = 12;
 constexpr std::size_t kRunFieldCount = 8;
 
 [[noreturn]] void fail(const std::string& file, int line, const std::string& message) {
@@ -35,9 +40,15 @@ constexpr std::size_t kRunFieldCount = 8;
   throw LoadError({d});
 }
 
-std::string versionLine(std::string_view what) {
-  return "# visgrab " + std::string(what) + " " + std::to_string(kResultsFormatVersion);
+int currentVersion(std::string_view what) {
+  return what == "trials" ? kTrialsFormatVersion : kRunFormatVersion;
 }
+
+std::string versionLine(std::string_view what, int version) {
+  return "# visgrab " + std::string(what) + " " + std::to_string(version);
+}
+
+std::string versionLine(std::string_view what) { return versionLine(what, currentVersion(what)); }
 
 /// The lines of `text`: each with its 1-based number; `torn` tells whether the last one had no
 /// line break. A '\r' before the break is removed.
@@ -66,8 +77,10 @@ Lines splitLines(std::string_view text) {
   return out;
 }
 
-void checkHeader(const Lines& lines, std::string_view what, std::string_view columns,
-                 const std::string& file) {
+// Checks the two header lines against the current version or, if given, an older `version`
+// with its `oldColumns`; returns the version found.
+int checkHeader(const Lines& lines, std::string_view what, std::string_view columns,
+                const std::string& file, int oldVersion = 0, std::string_view oldColumns = {}) {
   const std::size_t complete = lines.lines.size() - (lines.torn ? 1 : 0);
   const std::string expected = versionLine(what);
   if (complete < 1) fail(file, 1, "missing header line '" + expected + "'");
@@ -77,14 +90,26 @@ void checkHeader(const Lines& lines, std::string_view what, std::string_view col
     fail(file, 1,
          "expected the header line '" + expected + "', found '" + std::string(first) + "'");
   }
-  if (first != expected) {
+  const bool old = oldVersion > 0 && first == versionLine(what, oldVersion);
+  if (first != expected && !old) {
+    std::string supported = std::to_string(currentVersion(what));
+    if (oldVersion > 0) supported += " or " + std::to_string(oldVersion);
     fail(file, 1,
          "format version '" + std::string(first.substr(prefix.size())) +
-             "' is not supported (expected " + std::to_string(kResultsFormatVersion) + ")");
+             "' is not supported (expected " + supported + ")");
   }
-  if (complete < 2 || lines.lines[1] != columns) {
-    fail(file, 2, "expected the column line '" + std::string(columns) + "'");
+  const std::string_view wanted = old ? oldColumns : columns;
+  if (complete < 2 || lines.lines[1] != wanted) {
+    fail(file, 2, "expected the column line '" + std::string(wanted) + "'");
   }
+  return old ? oldVersion : currentVersion(what);
+}
+
+// A Q value: empty means "not computed" (NaN).
+std::string formatQuality(double q) { return std::isnan(q) ? std::string() : formatDouble(q); }
+
+double parseQuality(const std::string& field) {
+  return field.empty() ? std::numeric_limits<double>::quiet_NaN() : parseDouble(field);
 }
 
 std::string joinObjects(const std::vector<int>& objects) {
@@ -161,7 +186,8 @@ std::string formatTrialLine(const TrialRecord& t) {
   line += std::string(rwsim::simulator::outcomeName(t.outcome)) + ',';
   line += std::to_string(rwsim::simulator::robworkCode(t.outcome)) + ',';
   line += formatDouble(t.qLift) + ',';
-  line += formatDouble(t.qGws) + ',';
+  line += formatQuality(t.qGws) + ',';
+  line += formatQuality(t.qGwsUnit) + ',';
   line += std::to_string(t.object) + ',';
   line += formatDouble(t.simulatedTime) + ',';
   line += csvField(t.detail, true) + '\n';
@@ -205,10 +231,17 @@ TrialsFile parseTrials(std::string_view text, const std::string& file) {
     // file is empty: nothing to read; the writer starts the file afresh.
     out.tornLastLine = lines.torn;
     out.completeBytes = 0;
-    if (!trialsHeader().starts_with(text)) checkHeader(lines, "trials", kTrialsColumns, file);
+    const std::string v1Header =
+        versionLine("trials", 1) + "\n" + std::string(kTrialsColumnsVersion1) + "\n";
+    if (!trialsHeader().starts_with(text) && !v1Header.starts_with(text)) {
+      checkHeader(lines, "trials", kTrialsColumns, file);
+    }
     return out;
   }
-  checkHeader(lines, "trials", kTrialsColumns, file);
+  out.version = checkHeader(lines, "trials", kTrialsColumns, file, 1, kTrialsColumnsVersion1);
+  const bool v1 = out.version == 1;
+  const std::size_t fieldCount = v1 ? kTrialFieldCount - 1 : kTrialFieldCount;
+  const std::string_view columns = v1 ? kTrialsColumnsVersion1 : kTrialsColumns;
   out.tornLastLine = lines.torn;
   out.completeBytes = lines.completeBytes;
   std::map<std::tuple<std::string, std::string, std::string>, int> seen;
@@ -222,11 +255,13 @@ TrialsFile parseTrials(std::string_view text, const std::string& file) {
     } catch (const std::invalid_argument& e) {
       fail(file, lineNo, e.what());
     }
-    if (f.size() != kTrialFieldCount) {
+    if (f.size() != fieldCount) {
       fail(file, lineNo,
-           std::to_string(f.size()) + " fields, expected " + std::to_string(kTrialFieldCount) +
-               " (" + std::string(kTrialsColumns) + ")");
+           std::to_string(f.size()) + " fields, expected " + std::to_string(fieldCount) + " (" +
+               std::string(columns) + ")");
     }
+    // Version 1 has no q_gws_unit: shift the later fields into place.
+    if (v1) f.insert(f.begin() + 8, std::string());
     TrialRecord t;
     t.sceneId = f[0];
     t.method = f[1];
@@ -245,17 +280,24 @@ TrialsFile parseTrials(std::string_view text, const std::string& file) {
                  std::to_string(rwsim::simulator::robworkCode(t.outcome)) + ")");
       }
       t.qLift = parseDouble(f[6]);
-      t.qGws = parseDouble(f[7]);
-      t.object = parseInt(f[8]);
-      t.simulatedTime = parseDouble(f[9]);
+      if (v1) {
+        // Its q_gws was the unit-force epsilon; the paper's Q_GWS was not computed.
+        t.qGwsUnit = parseDouble(f[7]);
+        t.qGws = std::numeric_limits<double>::quiet_NaN();
+      } else {
+        t.qGws = parseQuality(f[7]);
+        t.qGwsUnit = parseQuality(f[8]);
+      }
+      t.object = parseInt(f[9]);
+      t.simulatedTime = parseDouble(f[10]);
     } catch (const std::invalid_argument& e) {
       fail(file, lineNo, e.what());
     }
     if (t.rank < 0) fail(file, lineNo, "negative rank " + f[3]);
     if (t.object < 0 || t.object > database::kObjectCount) {
-      fail(file, lineNo, "object " + f[8] + " is not 0..18");
+      fail(file, lineNo, "object " + f[9] + " is not 0..18");
     }
-    t.detail = f[10];
+    t.detail = f[11];
     const auto [it, inserted] =
         seen.emplace(std::make_tuple(t.sceneId, t.method, t.graspId), lineNo);
     if (!inserted) {

@@ -10,9 +10,12 @@
 #include "visgrab/results/trial_record.hpp"
 
 /// The files of a run's result folder (docs/report.md describes them):
-///  - `trials.csv`: the line `# visgrab trials <version>`, the column line
-///    `scene,method,grasp,rank,outcome,robwork_code,q_lift,q_gws,object,simulated_time,detail`,
-///    then one line per finished trial (detail always quoted, see csvField).
+///  - `trials.csv`: the line `# visgrab trials 2`, the column line
+///    `scene,method,grasp,rank,outcome,robwork_code,q_lift,q_gws,q_gws_unit,object,
+///    simulated_time,detail` (one line), then one line per finished trial (detail always quoted,
+///    see csvField; an empty q_gws or q_gws_unit is "not computed", NaN). Version 1 files (no
+///    q_gws_unit) are still read: their q_gws was computed with unit normal forces, so it becomes
+///    qGwsUnit and qGws is NaN (the paper's Q_GWS was not computed).
 ///  - `run.csv`: the line `# visgrab run <version>`, the column line
 ///    `record,id,texture,kind,arrangement,objects,pose,count`, then one `scene` record per scene
 ///    (conditions empty when unknown; objects separated by spaces), one `method` record per
@@ -23,8 +26,11 @@ namespace visgrab::results {
 inline constexpr std::string_view kTrialsFileName = "trials.csv";
 /// Name of the run file in a result folder.
 inline constexpr std::string_view kRunFileName = "run.csv";
-/// Format version written in both files' first line.
-inline constexpr int kResultsFormatVersion = 1;
+/// Format version written in the first line of trials.csv (2: q_gws is the paper's Q_GWS and
+/// q_gws_unit the unit-force one; 1: q_gws was the unit-force one, no q_gws_unit).
+inline constexpr int kTrialsFormatVersion = 2;
+/// Format version written in the first line of run.csv.
+inline constexpr int kRunFormatVersion = 1;
 
 /// The two header lines of trials.csv (each ending in '\n').
 std::string trialsHeader();
@@ -44,12 +50,15 @@ struct TrialsFile {
   /// Bytes up to and including the last complete line (where appending may continue); 0 when
   /// not even the header is complete.
   std::size_t completeBytes = 0;
+  /// Format version of the file (kTrialsFormatVersion or 1; see above).
+  int version = kTrialsFormatVersion;
 };
 
-/// Reads trials.csv text; `file` names it in errors. A last line without a line break is torn
-/// (see TrialsFile) and dropped, whatever it holds. @throws rw::loaders::LoadError with
-/// `file:line` for a wrong header or version, a malformed line, an unknown outcome, a RobWork code
-/// that does not match the outcome, or a trial (scene, method, grasp) given twice.
+/// Reads trials.csv text of version 2 or 1; `file` names it in errors. A last line without a
+/// line break is torn (see TrialsFile) and dropped, whatever it holds. @throws
+/// rw::loaders::LoadError with `file:line` for a wrong header or version, a malformed line, an
+/// unknown outcome, a RobWork code that does not match the outcome, or a trial (scene, method,
+/// grasp) given twice.
 TrialsFile parseTrials(std::string_view text, const std::string& file);
 
 /// Reads run.csv text (scenes, methods, rejected; no trials). @throws rw::loaders::LoadError with

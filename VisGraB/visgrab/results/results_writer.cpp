@@ -49,6 +49,14 @@ ResultsWriter::ResultsWriter(fs::path dir, Options options)
     droppedTorn_ = file.tornLastLine;
     keep = file.completeBytes;
     resumed_ = file.trials.size();
+    if (file.version != kTrialsFormatVersion && file.completeBytes > 0) {
+      // An older format: rewrite it in the current one before appending (its trials keep what
+      // they had; see parseTrials), so the file never mixes formats.
+      std::string text = trialsHeader();
+      for (const TrialRecord& t : file.trials) text += formatTrialLine(t);
+      database::writeFileAtomically(trialsPath, text);
+      keep = text.size();
+    }
     for (TrialRecord& t : file.trials) {
       keys_.emplace(t.sceneId, t.method, t.graspId);
       trials_.push_back(std::move(t));

@@ -16,7 +16,9 @@ namespace visgrab::results {
 /// Writes a run's result folder as the run goes (see results_file.hpp for the formats): every
 /// finished trial is appended to trials.csv as one line and handed to the operating system at
 /// once, so a killed run loses nothing but the trial being written. Opening a folder that has a
-/// trials.csv reads it back for resume (contains()); a torn last line is dropped and cut off.
+/// trials.csv reads it back for resume (contains()); a torn last line is dropped and cut off. A
+/// trials.csv of an older format version is rewritten in the current one first (atomically);
+/// its trials keep the values they had (version 1: q_gws not computed, see parseTrials).
 /// append(), contains(), trials() and writeRun() may be called from several threads.
 class ResultsWriter {
  public:

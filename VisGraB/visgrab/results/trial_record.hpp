@@ -28,8 +28,12 @@ struct TrialRecord {
   rwsim::simulator::GraspOutcome outcome = rwsim::simulator::GraspOutcome::kSimulationFailure;
   /// Paper eq. 5 (0 unless held).
   double qLift = 0.0;
-  /// Paper eq. 6-7 (0 unless held).
+  /// Paper eq. 6-7 as the paper's tables computed it: cones on the measured contact forces (0
+  /// unless held; GraspTrialResult::qGws).
   double qGws = 0.0;
+  /// Unit normal forces on the contact normals (0 unless held; GraspTrialResult::qGwsUnit); NaN
+  /// when read from a trials.csv written before this column existed.
+  double qGwsUnit = 0.0;
   /// Id (1..18) of the object the hand held or touched most (in a pair: the one grasped, as the
   /// paper reports "the object closest to the hand"); 0 when no object was touched.
   int object = 0;

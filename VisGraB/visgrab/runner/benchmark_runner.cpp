@@ -107,6 +107,7 @@ class SceneRunner {
     record.outcome = result.outcome;
     record.qLift = result.qLift;
     record.qGws = result.qGws;
+    record.qGwsUnit = result.qGwsUnit;
     record.object = objectIdOf(*dwc_, result.object);
     record.simulatedTime = result.simulatedTime;
     record.detail = result.detail;

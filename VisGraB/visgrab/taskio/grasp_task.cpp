@@ -110,13 +110,14 @@ GraspTarget& targetAt(GraspTask& task, std::size_t index) {
 }
 
 void setResult(GraspTarget& target, rwsim::simulator::GraspOutcome outcome, double qLift,
-               double qGws, const rw::math::Q& qGrasp) {
+               double qGws, double qGwsUnit, const rw::math::Q& qGrasp) {
   if (!target.result) target.result.emplace();
   GraspResult& r = *target.result;
   r.testStatus = rwsim::simulator::robworkCode(outcome);
   r.liftResult = qLift;
   r.qualityAfterLifting = rw::math::Q::Constant(1, qLift);
-  r.qualityBeforeLifting = rw::math::Q::Constant(1, qGws);
+  r.qualityBeforeLifting = rw::math::Q(2);
+  r.qualityBeforeLifting << qGws, qGwsUnit;
   r.gripperConfigurationGrasp = qGrasp;
 }
 

@@ -162,9 +162,10 @@ GraspTask fromGraspRequests(const std::vector<grasp::GraspRequest>& requests,
 GraspTarget& targetAt(GraspTask& task, std::size_t index);
 
 /// Writes a trial's result into `target`: TestStatus = RobWork code of `outcome`,
-/// QualityAfterLifting = {qLift}, LiftResult = qLift, QualityBeforeLifting = {qGws},
+/// QualityAfterLifting = {qLift}, LiftResult = qLift, QualityBeforeLifting = {qGws, qGwsUnit}
+/// (the VisGraB-era plugin's q0, GWS with the measured forces, and q1, with unit forces),
 /// GripperConfiguration = qGrasp. Other result fields are kept.
 void setResult(GraspTarget& target, rwsim::simulator::GraspOutcome outcome, double qLift,
-               double qGws, const rw::math::Q& qGrasp);
+               double qGws, double qGwsUnit, const rw::math::Q& qGrasp);
 
 }  // namespace visgrab::taskio

@@ -101,12 +101,16 @@ Eigen::Vector3f outcomeColour(GraspOutcome outcome) {
                          render::decodeSrgb(static_cast<float>(ink[2] / 255.0)));
 }
 
-std::string outcomeCaption(GraspOutcome outcome, double qLift, double qGws) {
+std::string outcomeCaption(GraspOutcome outcome, double qLift, double qGws, double qGwsUnit) {
   std::string text(rwsim::simulator::outcomeName(outcome));
   if (outcome == GraspOutcome::kStable || outcome == GraspOutcome::kSlipped) {
-    char q[96];
-    std::snprintf(q, sizeof q, "   Q_lift %.3f   Q_GWS %.4f", qLift, qGws);
-    text += q;
+    const auto value = [](const char* name, double q, int digits) {
+      if (std::isnan(q)) return "   " + std::string(name) + " -";  // ASCII: drawn by OpenCV
+      char buffer[64];
+      std::snprintf(buffer, sizeof buffer, "   %s %.*f", name, digits, q);
+      return std::string(buffer);
+    };
+    text += value("Q_lift", qLift, 3) + value("Q_GWS", qGws, 4) + value("Q_GWS,unit", qGwsUnit, 4);
   }
   return text;
 }
@@ -184,8 +188,8 @@ visual::RgbImage graspStrip(render::GlRenderer& renderer, const WorkcellDrawing&
   cv::Mat strip;
   cv::hconcat(panels, strip);
   const auto& r = replay.result;
-  return fromMat(
-      titled(strip, title, outcomeCaption(r.outcome, r.qLift, r.qGws), outcomeInk(r.outcome)));
+  return fromMat(titled(strip, title, outcomeCaption(r.outcome, r.qLift, r.qGws, r.qGwsUnit),
+                        outcomeInk(r.outcome)));
 }
 
 visual::RgbImage graspMontage(render::GlRenderer& renderer, const WorkcellDrawing& drawing,

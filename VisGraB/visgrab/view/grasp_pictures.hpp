@@ -55,7 +55,7 @@ visual::RgbImage renderState(render::GlRenderer& renderer, const WorkcellDrawing
 
 /// The paper's three moments of a trial side by side (placed, closed, lifted), each captioned
 /// with the phase and time, under a title bar with `title` and the outcome in its colour with
-/// Q_lift and Q_GWS. All panels share one camera, framed on the objects and the hand.
+/// Q_lift, Q_GWS and Q_GWS,unit. All panels share one camera, framed on the objects and the hand.
 visual::RgbImage graspStrip(render::GlRenderer& renderer, const WorkcellDrawing& drawing,
                             const SceneSession& session, const TrialReplay& replay,
                             const std::string& title, const PictureOptions& options);
@@ -108,7 +108,9 @@ TrialPicture trialStrip(render::GlRenderer& renderer, const WorkcellDrawing& dra
                         const SceneSession& session, const SceneGrasp& grasp,
                         const PictureOptions& options);
 
-/// "stable  Q_lift 0.93  Q_GWS 0.012" (the qualities only for held grasps).
-std::string outcomeCaption(rwsim::simulator::GraspOutcome outcome, double qLift, double qGws);
+/// "stable   Q_lift 0.930   Q_GWS 0.4210   Q_GWS,unit 0.0120" (the qualities only for held
+/// grasps; "-" for a value that was not computed, NaN).
+std::string outcomeCaption(rwsim::simulator::GraspOutcome outcome, double qLift, double qGws,
+                           double qGwsUnit);
 
 }  // namespace visgrab::view

@@ -21,6 +21,8 @@ using rw::graspplanning::Contact3D;
 using rw::graspplanning::contactWrenches;
 using rw::graspplanning::gwsEpsilon;
 using rw::graspplanning::gwsEpsilonOfWrenches;
+using rw::graspplanning::GwsForce;
+using rw::graspplanning::GwsHull;
 using rw::graspplanning::GwsOptions;
 using rw::graspplanning::GwsResult;
 using rw::graspplanning::GwsStatus;
@@ -236,7 +238,7 @@ TEST(GwsEpsilon, InvalidInputGivesZero) {
   expectZero(gwsEpsilon(good, c, -kRadius), bad);
   expectZero(gwsEpsilon(good, c, inf), bad);
   expectZero(gwsEpsilon(good, c, nan), bad);
-  const GwsOptions measured{.useMeasuredNormalForce = true};
+  const GwsOptions measured{.force = GwsForce::kMeasuredNormalForce};
   expectZero(
       gwsEpsilon(withChange([](Contact3D& k) { k.normalForce = -1.0; }), c, kRadius, measured),
       bad);
@@ -375,9 +377,10 @@ TEST(GwsEpsilon, RandomGraspsMatchBruteForce) {
   EXPECT_LT(forceClosures, 35);
 }
 
-TEST(GwsEpsilon, NearlyFlatInputFallsBackToJoggleAndMatchesBruteForce) {
+TEST(GwsEpsilon, NearlyFlatInputMatchesBruteForceLazyAndWholeWithJoggle) {
   // Two antipodal contacts plus a copy of each moved by ~0.2 mm: with Qhull 2020.2 the exact
-  // (merging) run fails here with QH6271 (dupridge), so the fixed-seed joggle retry is used.
+  // (merging) whole hull fails here with QH6271 (dupridge), so the fixed-seed joggle retry is
+  // used. The lazily grown hull never meets the failing merge and is exact.
   auto contact = [](double px, double py, double pz, double nx, double ny, double nz) {
     Contact3D c;
     c.position = Vector3D(px, py, pz);
@@ -394,7 +397,10 @@ TEST(GwsEpsilon, NearlyFlatInputFallsBackToJoggleAndMatchesBruteForce) {
               -0.39710529378657061, -0.89920084991240368, -0.1836987130153411),
       contact(-0.019801494080376687, -0.044759903165769256, -0.0092363935045969882,
               0.39722062814479925, 0.89918737631139045, 0.18351521696711923)};
-  const GwsResult r = gwsEpsilon(contacts, Vector3D::Zero(), kRadius);
+  const GwsResult lazy = gwsEpsilon(contacts, Vector3D::Zero(), kRadius);
+  const GwsResult r =
+      gwsEpsilon(contacts, Vector3D::Zero(), kRadius, GwsOptions{.hull = GwsHull::kWhole});
+  EXPECT_TRUE(r.wholeHull);
   // Joggle moves the points by ~1e-10, so epsilon is only that accurate (2e-8 relative here).
   EXPECT_TRUE(r.joggled) << "Qhull now builds this hull exactly; pick another input to keep "
                             "the joggle fallback covered";
@@ -402,7 +408,12 @@ TEST(GwsEpsilon, NearlyFlatInputFallsBackToJoggleAndMatchesBruteForce) {
   const double truth =
       bruteForceEpsilon(referenceWrenches(contacts, Vector3D::Zero(), kRadius, 10));
   EXPECT_NEAR(r.epsilon, truth, 1e-6 * truth);
-  EXPECT_EQ(gwsEpsilon(contacts, Vector3D::Zero(), kRadius).epsilon, r.epsilon);
+  EXPECT_EQ(
+      gwsEpsilon(contacts, Vector3D::Zero(), kRadius, GwsOptions{.hull = GwsHull::kWhole}).epsilon,
+      r.epsilon);
+  EXPECT_FALSE(lazy.wholeHull);
+  EXPECT_FALSE(lazy.joggled);
+  EXPECT_NEAR(lazy.epsilon, truth, kExactRelative * truth);
 }
 
 TEST(GwsEpsilon, IndependentOfContactOrder) {
@@ -479,7 +490,7 @@ TEST(GwsEpsilon, ScalingTheWholeGraspKeepsEpsilon) {
 
 TEST(GwsEpsilon, MeasuredNormalForcesScaleEpsilon) {
   std::vector<Contact3D> contacts = equatorGrasp(0.6);
-  const GwsOptions measured{.useMeasuredNormalForce = true};
+  const GwsOptions measured{.force = GwsForce::kMeasuredNormalForce};
   const double unit = gwsEpsilon(contacts, Vector3D::Zero(), kRadius).epsilon;
   EXPECT_EQ(gwsEpsilon(contacts, Vector3D::Zero(), kRadius, measured).epsilon, unit);
   for (Contact3D& c : contacts) c.normalForce = 3.0;
@@ -514,6 +525,283 @@ TEST(GwsEpsilon, ConcurrentCallsAgree) {
     ASSERT_EQ(perThread.size(), static_cast<std::size_t>(kRepeats));
     for (double e : perThread) EXPECT_EQ(e, reference.epsilon);
   }
+}
+
+// ---- The paper's Q_GWS: cones on the measured contact forces, the VisGraB-era jitter rule ----
+
+// A contact on the sphere in direction u that applies `force` (normal and friction) to it.
+Contact3D forceContact(const Vector3D& u, const Vector3D& force, double mu) {
+  Contact3D c = sphereContact(u, mu);
+  c.force = force;
+  c.normalForce = force.dot(c.normal);
+  return c;
+}
+
+// Eq. 6 with the cone centred on the force f (written independently of the library, like
+// referenceWrenches): edges |f| (f/|f| + mu R(2 pi k/m, f/|f|) t).
+std::vector<Wrench6D> referenceForceWrenches(const std::vector<Contact3D>& contacts,
+                                             const Vector3D& c, double r, int edges) {
+  std::vector<Contact3D> axes = contacts;
+  for (Contact3D& k : axes) k.normal = k.force.normalized();
+  std::vector<Wrench6D> points = referenceWrenches(axes, c, r, edges);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    points[i] *= contacts[i / static_cast<std::size_t>(edges)].force.norm();
+  }
+  return points;
+}
+
+const GwsOptions kPaper{.force = GwsForce::kMeasuredForce};
+
+// Three contacts 120 degrees apart on the equator, each pushing with its own force (different
+// magnitudes, tilted out of the normal by friction).
+std::vector<Contact3D> paperThreeContacts() {
+  std::vector<Contact3D> contacts;
+  const std::array<Vector3D, 3> friction = {Vector3D(0, 0, 0.4), Vector3D(0, 0.1, -0.2),
+                                            Vector3D(0, 0, 0.1)};
+  const std::array<double, 3> magnitude = {2.0, 1.0, 3.5};
+  for (int i = 0; i < 3; ++i) {
+    const double a = 2.0 * kPi * i / 3.0;
+    const Vector3D u(std::cos(a), std::sin(a), 0.0);
+    contacts.push_back(forceContact(u, -magnitude[i] * u + friction[i], 0.5));
+  }
+  return contacts;
+}
+
+TEST(GwsPaper, EqualForcesOnTheNormalsScaleTheUnitEpsilon) {
+  // Worked by hand: with f_i = F n_i every edge wrench is F times the unit one, so the hull is
+  // F times the unit hull and epsilon is F times the unit epsilon.
+  std::vector<Contact3D> contacts = equatorGrasp(0.6);
+  for (Contact3D& c : contacts) c.force = 2.5 * c.normal;
+  const double unit = gwsEpsilon(contacts, Vector3D::Zero(), kRadius).epsilon;
+  ASSERT_GT(unit, 0.0);
+  EXPECT_NEAR(gwsEpsilon(contacts, Vector3D::Zero(), kRadius, kPaper).epsilon, 2.5 * unit,
+              1e-12 * unit);
+}
+
+TEST(GwsPaper, ThreeContactsAt120DegreesWithDifferentForcesMatchBruteForce) {
+  const std::vector<Contact3D> contacts = paperThreeContacts();
+  const GwsResult r = gwsEpsilon(contacts, Vector3D::Zero(), kRadius, kPaper);
+  ASSERT_TRUE(r.forceClosure) << r.detail;
+  EXPECT_EQ(r.cones, 3);
+  EXPECT_EQ(r.points, 30);
+  const double truth =
+      bruteForceEpsilon(referenceForceWrenches(contacts, Vector3D::Zero(), kRadius, 10));
+  ASSERT_GT(truth, 0.0);
+  EXPECT_NEAR(r.epsilon, truth, kExactRelative * truth);
+  // The definition matters: neither the unit cones nor the measured normal forces give it.
+  const double unit = gwsEpsilon(contacts, Vector3D::Zero(), kRadius).epsilon;
+  const double normal = gwsEpsilon(contacts, Vector3D::Zero(), kRadius,
+                                   GwsOptions{.force = GwsForce::kMeasuredNormalForce})
+                            .epsilon;
+  EXPECT_GT(std::abs(r.epsilon - unit), 1e-3 * truth);
+  EXPECT_GT(std::abs(r.epsilon - normal), 1e-3 * truth);
+  RecordProperty("epsilon", std::to_string(r.epsilon));
+}
+
+TEST(GwsPaper, ForcesBelowTheThresholdAreSkipped) {
+  std::vector<Contact3D> contacts = paperThreeContacts();
+  const double reference = gwsEpsilon(contacts, Vector3D::Zero(), kRadius, kPaper).epsilon;
+  contacts.push_back(
+      forceContact(Vector3D::UnitZ(), Vector3D(0, 0, -0.5 * rw::graspplanning::kGwsMinForce), 0.5));
+  EXPECT_EQ(gwsEpsilon(contacts, Vector3D::Zero(), kRadius, kPaper).epsilon, reference);
+  contacts.back().force.z() = std::numeric_limits<double>::quiet_NaN();
+  expectZero(gwsEpsilon(contacts, Vector3D::Zero(), kRadius, kPaper), GwsStatus::kInvalidInput);
+}
+
+// Uniform in [-a, a] from the top 53 bits of one 64-bit Mersenne Twister draw (the documented
+// rule, written here again).
+double referenceJitter(std::mt19937_64& rng, double a) {
+  return a * (2.0 * std::ldexp(static_cast<double>(rng() >> 11), -53) - 1.0);
+}
+
+TEST(GwsPaper, TwoAntipodalContactsGetJitteredCopies) {
+  // Antipodal along x, squeezed with 2 N and 3 N (the forces need not balance for the measure).
+  const std::vector<Contact3D> two = {
+      forceContact(Vector3D::UnitX(), Vector3D(-3.0, 0.0, 0.2), 0.6),
+      forceContact(-Vector3D::UnitX(), Vector3D(2.0, 0.1, 0.0), 0.6)};
+  // Without the rule the wrenches span 5 dimensions: no torque about the x axis.
+  expectZero(gwsEpsilon(two, Vector3D::Zero(), kRadius, kPaper), GwsStatus::kFlat);
+
+  GwsOptions rule = kPaper;
+  rule.duplicateBelow = 4;
+  const GwsResult r = gwsEpsilon(two, Vector3D::Zero(), kRadius, rule);
+  ASSERT_TRUE(r.forceClosure) << rw::graspplanning::toString(r.status) << ": " << r.detail;
+  EXPECT_EQ(r.cones, 4);
+  EXPECT_EQ(r.points, 40);
+
+  // The same jitter built independently: canonical order is by position (x first), so the
+  // contact at -x comes first; per contact three axis draws, then three position draws.
+  std::vector<Contact3D> ordered = {two[1], two[0]};
+  std::mt19937_64 rng(rw::graspplanning::kGwsJitterSeed);
+  std::vector<Contact3D> jittered;
+  for (const Contact3D& c : ordered) {
+    jittered.push_back(c);
+    Contact3D copy = c;
+    Vector3D axis = c.force.normalized();
+    for (int k = 0; k < 3; ++k) axis(k) += referenceJitter(rng, 0.1);
+    for (int k = 0; k < 3; ++k) copy.position(k) += referenceJitter(rng, 0.002);
+    copy.force = c.force.norm() * axis.normalized();
+    jittered.push_back(copy);
+  }
+  const double truth =
+      bruteForceEpsilon(referenceForceWrenches(jittered, Vector3D::Zero(), kRadius, 10));
+  ASSERT_GT(truth, 0.0);
+  EXPECT_NEAR(r.epsilon, truth, 1e-9 * truth);
+
+  // Bounds by hand: a ball of radius epsilon fits in the hull, so epsilon is at most the largest
+  // torque about x over r of any edge, |p_y f_z - p_z f_y| / r. The originals lie on the x axis
+  // (no such torque); the copies have |p_y|, |p_z| <= 2 mm, and |f_y|, |f_z| <= |f| (|a_y| + mu)
+  // where the jittered axis has |a_y|, |a_z| <= (0.07 + 0.1) / 0.89 (both forces are within 0.07
+  // of the x axis per component, and |a_x| >= 0.99 - 0.1 before renormalising).
+  const double fMax = std::hypot(3.0, 0.2);
+  const double torqueBound = 2.0 * 0.002 * fMax * ((0.07 + 0.1) / 0.89 + 0.6) / kRadius;
+  EXPECT_LE(r.epsilon, torqueBound);
+  EXPECT_GT(r.epsilon, 1e-4);
+  RecordProperty("epsilon", std::to_string(r.epsilon));
+
+  // Deterministic: again, in reverse order, and in other threads.
+  const std::vector<Contact3D> reversed = {two[1], two[0]};
+  EXPECT_EQ(gwsEpsilon(two, Vector3D::Zero(), kRadius, rule).epsilon, r.epsilon);
+  EXPECT_EQ(gwsEpsilon(reversed, Vector3D::Zero(), kRadius, rule).epsilon, r.epsilon);
+  std::vector<double> inThreads(3, 0.0);
+  {
+    std::vector<std::jthread> threads;
+    for (double& out : inThreads) {
+      threads.emplace_back(
+          [&two, &rule, &out] { out = gwsEpsilon(two, Vector3D::Zero(), kRadius, rule).epsilon; });
+    }
+  }
+  for (double e : inThreads) EXPECT_EQ(e, r.epsilon);
+}
+
+TEST(GwsPaper, FourContactsAreNotJittered) {
+  std::vector<Contact3D> contacts = tetrahedralGrasp(0.3);
+  for (Contact3D& c : contacts) c.force = 1.5 * c.normal;
+  GwsOptions rule = kPaper;
+  rule.duplicateBelow = 4;
+  const GwsResult r = gwsEpsilon(contacts, Vector3D::Zero(), kRadius, rule);
+  EXPECT_EQ(r.cones, 4);
+  EXPECT_EQ(r.epsilon, gwsEpsilon(contacts, Vector3D::Zero(), kRadius, kPaper).epsilon);
+}
+
+TEST(GwsPaper, PermutedContactsGiveIdenticalValues) {
+  // Five contacts, two of them in one cluster, with merging and the jitter rule on: every
+  // permutation gives the same bits.
+  std::vector<Contact3D> contacts = paperThreeContacts();
+  contacts.push_back(forceContact(Vector3D(0.2, 0.1, 1.0), Vector3D(0.0, 0.05, -1.0), 0.5));
+  contacts.push_back(forceContact(Vector3D(-0.3, 0.1, -1.0), Vector3D(0.1, 0.0, 0.8), 0.5));
+  contacts[1].cluster = 7;
+  contacts[3].cluster = 7;
+  GwsOptions options = kPaper;
+  options.mergeClusters = true;
+  options.duplicateBelow = 5;  // 4 cones after merging: jittered
+  options.coneEdges = 6;       // 48 points keep 120 hulls quick
+  const GwsResult reference = gwsEpsilon(contacts, Vector3D::Zero(), kRadius, options);
+  ASSERT_TRUE(reference.forceClosure);
+  EXPECT_EQ(reference.cones, 8);
+  std::vector<int> order = {0, 1, 2, 3, 4};
+  int permutations = 0;
+  do {
+    std::vector<Contact3D> permuted;
+    for (int i : order) permuted.push_back(contacts[static_cast<std::size_t>(i)]);
+    const GwsResult r = gwsEpsilon(permuted, Vector3D::Zero(), kRadius, options);
+    EXPECT_EQ(r.epsilon, reference.epsilon);
+    EXPECT_EQ(r.facets, reference.facets);
+    ++permutations;
+  } while (std::next_permutation(order.begin(), order.end()));
+  EXPECT_EQ(permutations, 120);
+}
+
+TEST(GwsPaper, MergingAClusterGivesOneConeAtTheForceWeightedMean) {
+  // Two contacts of one finger link, 1 N and 3 N on the same axis: one cone of 4 N at the
+  // 1:3 point between them.
+  std::vector<Contact3D> contacts = paperThreeContacts();
+  Contact3D a = contacts[0];
+  Contact3D b = contacts[0];
+  a.position += Vector3D(0.0, 0.004, 0.0);
+  b.position += Vector3D(0.0, -0.002, 0.002);
+  const Vector3D axis = contacts[0].force.normalized();
+  a.force = 1.0 * axis;
+  b.force = 3.0 * axis;
+  a.cluster = 0;
+  b.cluster = 0;
+  Contact3D merged = contacts[0];
+  merged.position = (1.0 * a.position + 3.0 * b.position) / 4.0;
+  merged.force = 4.0 * axis;
+  GwsOptions merge = kPaper;
+  merge.mergeClusters = true;
+  const GwsResult r = gwsEpsilon(std::vector<Contact3D>{a, b, contacts[1], contacts[2]},
+                                 Vector3D::Zero(), kRadius, merge);
+  EXPECT_EQ(r.cones, 3);
+  const double expected = gwsEpsilon(std::vector<Contact3D>{merged, contacts[1], contacts[2]},
+                                     Vector3D::Zero(), kRadius, kPaper)
+                              .epsilon;
+  ASSERT_GT(expected, 0.0);
+  EXPECT_NEAR(r.epsilon, expected, 1e-12 * expected);
+  // Without merging both cones stay.
+  EXPECT_EQ(gwsEpsilon(std::vector<Contact3D>{a, b, contacts[1], contacts[2]}, Vector3D::Zero(),
+                       kRadius, kPaper)
+                .cones,
+            4);
+}
+
+TEST(GwsPaper, NegativeDuplicateBelowIsAProgrammerError) {
+  EXPECT_THROW(
+      gwsEpsilon(equatorGrasp(0.6), Vector3D::Zero(), kRadius, GwsOptions{.duplicateBelow = -1}),
+      std::invalid_argument);
+}
+
+TEST(GwsLazyHull, EqualsTheWholeHullOnRandomGrasps) {
+  // Both exact: the lazy hull's epsilon is the whole hull's to 1e-12 of the largest wrench, on
+  // 60 random grasps of 2-8 contacts (measured forces, the jitter rule), both outcomes included.
+  std::mt19937 rng(20261124);
+  std::normal_distribution<double> gauss;
+  std::uniform_real_distribution<double> uniform(0.2, 3.0);
+  auto randomUnit = [&] { return Vector3D(gauss(rng), gauss(rng), gauss(rng)).normalized(); };
+  int forceClosures = 0;
+  int lazy = 0;
+  for (int trial = 0; trial < 60; ++trial) {
+    std::vector<Contact3D> contacts;
+    const int count = 2 + trial % 7;
+    for (int i = 0; i < count; ++i) {
+      const Vector3D u = randomUnit();
+      const Vector3D f = uniform(rng) * (-u + 0.3 * randomUnit());
+      contacts.push_back(forceContact(u, f, 0.3 + 0.1 * (trial % 5)));
+    }
+    GwsOptions options = kPaper;
+    options.duplicateBelow = 4;
+    const GwsResult a = gwsEpsilon(contacts, Vector3D(0.003, 0, -0.002), kRadius, options);
+    options.hull = GwsHull::kWhole;
+    const GwsResult b = gwsEpsilon(contacts, Vector3D(0.003, 0, -0.002), kRadius, options);
+    double maxNorm = 0.0;
+    for (const Wrench6D& w : contactWrenches(contacts, Vector3D::Zero(), kRadius, kPaper)) {
+      maxNorm = std::max(maxNorm, w.norm());
+    }
+    EXPECT_NEAR(a.epsilon, b.epsilon, 1e-12 * 2.0 * maxNorm) << "trial " << trial;
+    EXPECT_EQ(a.forceClosure, b.forceClosure) << "trial " << trial;
+    EXPECT_TRUE(b.wholeHull);
+    forceClosures += a.forceClosure ? 1 : 0;
+    lazy += a.wholeHull ? 0 : 1;
+  }
+  EXPECT_GT(forceClosures, 10);
+  EXPECT_LT(forceClosures, 55);
+  EXPECT_GT(lazy, 50);
+}
+
+TEST(GwsLazyHull, GrowsAFlatStart) {
+  // A = (1, ..., 1) and -A win all 12 axis directions, so the start is a segment; it must grow
+  // along its flat directions into the small cross-polytope around the origin.
+  std::vector<Wrench6D> points = {Wrench6D::Ones(), -Wrench6D::Ones()};
+  for (int i = 0; i < 6; ++i) {
+    points.emplace_back(0.1 * Wrench6D::Unit(i));
+    points.emplace_back(-0.1 * Wrench6D::Unit(i));
+  }
+  const GwsResult lazy = gwsEpsilonOfWrenches(points);
+  const GwsResult whole = gwsEpsilonOfWrenches(points, GwsHull::kWhole);
+  ASSERT_TRUE(whole.forceClosure);
+  EXPECT_FALSE(lazy.wholeHull);
+  EXPECT_NEAR(lazy.epsilon, whole.epsilon, kExactRelative * whole.epsilon);
+  EXPECT_NEAR(lazy.epsilon, bruteForceEpsilon(points), kExactRelative * whole.epsilon);
 }
 
 }  // namespace

@@ -4,12 +4,14 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <future>
 #include <numbers>
 #include <stdexcept>
 
 #include "rw/math/rpy.hpp"
 #include "rwsim/loaders/dynamic_workcell_loader.hpp"
+#include "rwsim/simulator/grasp_quality.hpp"
 #include "sim_test_scenes.hpp"
 #include "support/test_support.hpp"
 
@@ -83,10 +85,15 @@ TEST(GraspTrialGripper, CentredGraspIsStable) {
     // Jaw contacts are on the box's +-y faces, pushing inwards.
     EXPECT_NEAR(std::abs(c.position.y()), 0.03, 0.002);
     EXPECT_NEAR(c.normal.y() * c.position.y(), -0.03, 0.003);
+    // The whole force: its normal part is the normal force, friction stays inside the cone.
+    EXPECT_NEAR(c.force.dot(c.normal), c.normalForce, 1e-9 * c.normalForce);
+    EXPECT_LE((c.force - c.normalForce * c.normal).norm(), c.mu * c.normalForce * (1 + 1e-6));
+    EXPECT_TRUE(trial.isHandBody(c.handBody));
   }
   // Two parallel flat contacts (friction about their common normal is not modelled): a flat
   // hull, epsilon 0 - as RobWork's measure gives for two point contacts.
   EXPECT_GE(r.qGws, 0.0);
+  EXPECT_GE(r.qGwsUnit, 0.0);
 }
 
 TEST(GraspTrialGripper, GraspBesideTheBoxMisses) {
@@ -199,6 +206,35 @@ TEST_F(SdhBoxTrial, CentredCylinderGraspIsStable) {
   EXPECT_GT(r.qLift, 0.9);
   EXPECT_GE(r.contacts.size(), 3u);
   EXPECT_GT(r.qGws, 0.0);
+  EXPECT_GT(r.qGwsUnit, 0.0);
+  // The trial's columns are gwsQualities() of its contacts (box: centre of mass at its centre,
+  // r its half diagonal).
+  const auto& box = dwc_->bodies()[static_cast<std::size_t>(r.object)];
+  const double radius = std::sqrt(0.03 * 0.03 * 2 + 0.05 * 0.05);
+  const auto q = rwsim::simulator::gwsQualities(r.contacts, box.mass.cog, radius);
+  EXPECT_NEAR(q.qGws, r.qGws, 1e-9 * r.qGws);
+  EXPECT_NEAR(q.qGwsUnit, r.qGwsUnit, 1e-9 * r.qGwsUnit);
+}
+
+TEST_F(SdhBoxTrial, LazyHullGivesTheWholeHullsValuesOnRealContacts) {
+  // The lazy hull is the trial's only speed-up; on the contacts of real trials (three poses,
+  // the cylinder pre-shape) it must agree with the whole hull to rounding.
+  rwsim::simulator::GwsQualityOptions whole;
+  whole.hull = rw::graspplanning::GwsHull::kWhole;
+  int held = 0;
+  for (const double dx : {0.0, 0.004, 0.008}) {
+    const auto r =
+        trial().run(cylinderGrasp(Vector3D(dx, 0, 0.05)), dwc_->workcell().defaultState());
+    if (r.outcome != GraspOutcome::kStable && r.outcome != GraspOutcome::kSlipped) continue;
+    ++held;
+    const auto& box = dwc_->bodies()[static_cast<std::size_t>(r.object)];
+    const double radius = std::sqrt(0.03 * 0.03 * 2 + 0.05 * 0.05);
+    const auto a = rwsim::simulator::gwsQualities(r.contacts, box.mass.cog, radius);
+    const auto b = rwsim::simulator::gwsQualities(r.contacts, box.mass.cog, radius, whole);
+    EXPECT_NEAR(a.qGws, b.qGws, 1e-10 * b.qGws) << "dx " << dx;
+    EXPECT_NEAR(a.qGwsUnit, b.qGwsUnit, 1e-10 * b.qGwsUnit) << "dx " << dx;
+  }
+  EXPECT_GE(held, 2);
 }
 
 TEST_F(SdhBoxTrial, GraspBesideTheBoxMisses) {
@@ -225,6 +261,7 @@ void expectSame(const GraspTrialResult& a, const GraspTrialResult& b) {
   EXPECT_EQ(a.outcome, b.outcome);
   EXPECT_EQ(a.qLift, b.qLift);
   EXPECT_EQ(a.qGws, b.qGws);
+  EXPECT_EQ(a.qGwsUnit, b.qGwsUnit);
   EXPECT_EQ(a.simulatedTime, b.simulatedTime);
   EXPECT_EQ(a.qGrasp, b.qGrasp);
   EXPECT_EQ(a.objectLift, b.objectLift);
@@ -232,6 +269,7 @@ void expectSame(const GraspTrialResult& a, const GraspTrialResult& b) {
   for (std::size_t i = 0; i < a.contacts.size(); ++i) {
     EXPECT_EQ(a.contacts[i].position, b.contacts[i].position);
     EXPECT_EQ(a.contacts[i].normalForce, b.contacts[i].normalForce);
+    EXPECT_EQ(a.contacts[i].force, b.contacts[i].force);
   }
 }
 
@@ -247,6 +285,54 @@ TEST_F(SdhBoxTrial, DeterministicTwiceAndInTwoThreads) {
     expectSame(a.get(), first);
     expectSame(b.get(), first);
   }
+}
+
+}  // namespace
+
+namespace {
+
+rwsim::simulator::TrialContact pushing(const Vector3D& position, const Vector3D& force) {
+  rwsim::simulator::TrialContact c;
+  c.position = position;
+  c.normal = force.normalized();
+  c.normalForce = force.norm();
+  c.force = force;
+  c.mu = 0.5;
+  c.handBody = 3;
+  return c;
+}
+
+TEST(GwsQualities, TwoContactsGetTheJitterRuleOnlyInQGws) {
+  // Two antipodal fingertips: with unit forces the hull is flat (0); the paper's column copies
+  // each contact with jitter and is positive, as rw::graspplanning computes it with those options.
+  const std::vector<rwsim::simulator::TrialContact> two = {
+      pushing(Vector3D(0.03, 0, 0), Vector3D(-2.0, 0, 0.3)),
+      pushing(Vector3D(-0.03, 0, 0), Vector3D(2.0, 0, 0.3))};
+  const auto q = rwsim::simulator::gwsQualities(two, Vector3D::Zero(), 0.04);
+  EXPECT_EQ(q.qGwsUnit, 0.0);
+  EXPECT_GT(q.qGws, 0.0);
+  std::vector<rw::graspplanning::Contact3D> c3(2);
+  for (std::size_t i = 0; i < 2; ++i) {
+    c3[i].position = two[i].position;
+    c3[i].normal = two[i].normal;
+    c3[i].force = two[i].force;
+    c3[i].mu = 0.5;
+  }
+  const rw::graspplanning::GwsOptions paper{.force = rw::graspplanning::GwsForce::kMeasuredForce,
+                                            .duplicateBelow = 4};
+  EXPECT_EQ(q.qGws, rw::graspplanning::gwsEpsilon(c3, Vector3D::Zero(), 0.04, paper).epsilon);
+  // In the other order: the same bits.
+  const std::vector<rwsim::simulator::TrialContact> swapped = {two[1], two[0]};
+  EXPECT_EQ(rwsim::simulator::gwsQualities(swapped, Vector3D::Zero(), 0.04).qGws, q.qGws);
+}
+
+TEST(GwsQualities, NoContactsOrNoRadiusGiveZero) {
+  const auto none = rwsim::simulator::gwsQualities({}, Vector3D::Zero(), 0.04);
+  EXPECT_EQ(none.qGws, 0.0);
+  EXPECT_EQ(none.qGwsUnit, 0.0);
+  const std::vector<rwsim::simulator::TrialContact> one = {
+      pushing(Vector3D(0.03, 0, 0), Vector3D(-2.0, 0, 0))};
+  EXPECT_EQ(rwsim::simulator::gwsQualities(one, Vector3D::Zero(), 0.0).qGws, 0.0);
 }
 
 }  // namespace

@@ -57,6 +57,7 @@ TEST(SimCli, GraspReportsOutcomeCodeAndQualities) {
   EXPECT_NE(r.output.find("outcome: stable (RobWork code 1)"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("Q_lift: 0.9"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("Q_GWS: "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("Q_GWS,unit: "), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("contacts after lifting"), std::string::npos) << r.output;
 }
 

@@ -88,12 +88,29 @@ TEST_F(AnalysisTest, DistributionWeighsEverySceneEqually) {
   EXPECT_EQ(result(a, "plain-double-apart", 0).distribution.scenes, 0);
 }
 
+TEST(AnalysisQualityTest, TrialsWithoutThePapersQGwsMakeItsMeanUndefined) {
+  // A version 1 trials.csv has only the unit-force value: its trials' Q_GWS is NaN, so Table 1
+  // shows no Q_GWS for their groups (never the unit value in its place), but Q_GWS,unit.
+  results::RunResults run = test_runs::runA();
+  for (results::TrialRecord& t : run.trials) {
+    if (t.sceneId == run.scenes[1].id) t.qGws = std::nan("");  // S1
+  }
+  const Analysis b = analyze({run});
+  const QualityMeans& s = result(b, "textured-single-standing", 0).quality;
+  EXPECT_TRUE(std::isnan(s.meanQGws));
+  EXPECT_NEAR(s.meanQGwsUnit, 0.03, kTol);
+  EXPECT_NEAR(s.meanQLift, 0.7, kTol);
+  // Groups without S1 keep their value: lying = S2's stable (0.6).
+  EXPECT_NEAR(result(b, "textured-single-lying", 0).quality.meanQGws, 0.6, kTol);
+}
+
 TEST_F(AnalysisTest, QualityMeansOverSuccessfulGrasps) {
   // standing: S1's stable (0.9, 0.4) and slipped (0.5, 0.2) -> (0.7, 0.3)
   const QualityMeans& s = result(a, "textured-single-standing", 0).quality;
   EXPECT_EQ(s.successes, 2);
   EXPECT_NEAR(s.meanQLift, 0.7, kTol);
   EXPECT_NEAR(s.meanQGws, 0.3, kTol);
+  EXPECT_NEAR(s.meanQGwsUnit, 0.03, kTol);  // (0.04 + 0.02) / 2
   // single all: + S2's stable (0.4, 0.6) -> ((0.9+0.5+0.4)/3, (0.4+0.2+0.6)/3) = (0.6, 0.4)
   const QualityMeans& all = result(a, "textured-single-all", 0).quality;
   EXPECT_EQ(all.successes, 3);
@@ -103,6 +120,7 @@ TEST_F(AnalysisTest, QualityMeansOverSuccessfulGrasps) {
   const QualityMeans& t = result(a, "textured-all", 0).quality;
   EXPECT_NEAR(t.meanQLift, 0.7, kTol);
   EXPECT_NEAR(t.meanQGws, 0.425, kTol);
+  EXPECT_NEAR(t.meanQGwsUnit, 0.0425, kTol);  // (0.04 + 0.02 + 0.06 + 0.05) / 4
   // double close: S5 has no success -> undefined.
   EXPECT_TRUE(std::isnan(result(a, "textured-double-close", 0).quality.meanQLift));
   // runB's "A" is its own column: S1 stable (0.6, 0.3).

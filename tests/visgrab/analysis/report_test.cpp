@@ -118,8 +118,13 @@ TEST_F(ReportFilesTest, HtmlIsWellFormedSelfContainedAndHasTheNumbers) {
   EXPECT_EQ(html.find("x<&>"), std::string::npos);
   // Table 2, textured single standing, runA: p = 0.50, ga = 5/3 = 1.67 (analysis_test.cpp).
   EXPECT_NE(html.find("<td>0.50</td><td>1.67</td>"), std::string::npos);
-  // Table 1, textured single standing, runA: Q_lift 0.70, Q_GWS 0.30.
-  EXPECT_NE(html.find("<td>0.70</td><td>0.30</td>"), std::string::npos);
+  // Table 1, textured single standing, runA: Q_lift 0.70, Q_GWS 0.30, Q_GWS,unit 0.03.
+  EXPECT_NE(html.find("<td>0.70</td><td>0.30</td><td>0.03</td>"), std::string::npos);
+  EXPECT_NE(html.find("<th>Q<sub>lift</sub></th><th>Q<sub>GWS</sub></th>"
+                      "<th>Q<sub>GWS,unit</sub></th>"),
+            std::string::npos);
+  EXPECT_NE(html.find("as VisGraB&#39;s original simulator computed its tables"),
+            std::string::npos);
   // Figure 6: the grey share of textured single standing for runA is 0.500.
   EXPECT_NE(html.find("runA: A, no grasp suggested: 0.500"), std::string::npos);
   EXPECT_NE(html.find("fill=\"#a6a6a6\""), std::string::npos);
@@ -147,7 +152,16 @@ TEST_F(ReportFilesTest, MarkdownAndCsvHaveTheNumbers) {
   const std::string objects = readText(dir.path() / "objects.csv");
   EXPECT_NE(objects.find("textured,runA: A,double,e,cocacola+saltcylinder,apart,3,1,"),
             std::string::npos);
-  EXPECT_TRUE(std::filesystem::exists(dir.path() / "quality.csv"));
+  // Table 1 with both Q_GWS columns and the note defining them.
+  EXPECT_NE(md.find("| group | method | successes | Q_lift | Q_GWS | Q_GWS,unit |"),
+            std::string::npos);
+  EXPECT_NE(md.find("| textured, single, standing | runA: A | 2 | 0.70 | 0.30 | 0.03 |"),
+            std::string::npos);
+  EXPECT_NE(md.find("Q_GWS,unit: unit normal forces"), std::string::npos);
+  const std::string quality = readText(dir.path() / "quality.csv");
+  EXPECT_NE(quality.find("\ntextured-single-standing,runA: A,2,0.7,0.30000000000000004,,,0.03\n"),
+            std::string::npos)
+      << quality;
 }
 
 TEST_F(ReportFilesTest, NoPaperColumnsWithoutThePapersMethods) {
@@ -161,13 +175,14 @@ TEST_F(ReportFilesTest, NoPaperColumnsWithoutThePapersMethods) {
   EXPECT_NE(first.find(",ga_given_order,paper_p,paper_ga\n"), std::string::npos);
   EXPECT_NE(first.find("\ntextured-single-all,runA: A,3,2,"), std::string::npos);
   const std::string quality = readText(dir.path() / "quality.csv");
-  EXPECT_EQ(
-      quality.rfind("group,method,successes,mean_q_lift,mean_q_gws,paper_q_lift,paper_q_gws\n", 0),
-      0u);
+  EXPECT_EQ(quality.rfind("group,method,successes,mean_q_lift,mean_q_gws,paper_q_lift,paper_q_gws,"
+                          "mean_q_gws_unit\n",
+                          0),
+            0u);
 }
 
 /// One textured single standing scene where "s3EGA1" (named like the paper's grasp type) and
-/// "mine" (not) each have one stable grasp: s3EGA1 (0.9, 0.4), mine (0.5, 0.2).
+/// "mine" (not) each have one stable grasp: s3EGA1 (0.9, 0.4, unit 0.04), mine (0.5, 0.2, 0.02).
 results::RunResults paperNamedRun() {
   results::RunResults run;
   run.label = "run";
@@ -176,8 +191,8 @@ results::RunResults paperNamedRun() {
   run.scenes = {s1};
   run.methods = {"s3EGA1", "mine"};
   run.trials = {
-      test_runs::trial(s1, "s3EGA1", 0, rwsim::simulator::GraspOutcome::kStable, 0.9, 0.4, 5),
-      test_runs::trial(s1, "mine", 0, rwsim::simulator::GraspOutcome::kStable, 0.5, 0.2, 5)};
+      test_runs::trial(s1, "s3EGA1", 0, rwsim::simulator::GraspOutcome::kStable, 0.9, 0.4, 5, 0.04),
+      test_runs::trial(s1, "mine", 0, rwsim::simulator::GraspOutcome::kStable, 0.5, 0.2, 5, 0.02)};
   return run;
 }
 
@@ -201,12 +216,17 @@ TEST(ReportPaperColumnsTest, PaperValuesBesideOursOnlyForThePapersMethods) {
   // Rows the paper does not have: none.
   EXPECT_NE(md.find("| textured, all | s3EGA1 | 1.00 | 1.00 |  |  |"), std::string::npos);
   EXPECT_NE(md.find("| overall | s3EGA1 | 1.00 | 1.00 |  |  |"), std::string::npos);
-  EXPECT_NE(md.find("| group | method | successes | Q_lift | Q_GWS | paper Q_lift | paper Q_GWS |"),
+  // Table 1: the paper's Q_GWS right after ours (q_gws, the paper's definition), then
+  // Q_GWS,unit.
+  EXPECT_NE(md.find("| group | method | successes | Q_lift | Q_GWS | paper Q_lift | paper Q_GWS | "
+                    "Q_GWS,unit |"),
             std::string::npos);
-  EXPECT_NE(md.find("| textured, single, standing | s3EGA1 | 1 | 0.90 | 0.40 | 0.72 | 0.59 |"),
+  EXPECT_NE(
+      md.find("| textured, single, standing | s3EGA1 | 1 | 0.90 | 0.40 | 0.72 | 0.59 | 0.04 |"),
+      std::string::npos);
+  EXPECT_NE(md.find("| textured, single, standing | mine | 1 | 0.50 | 0.20 |  |  | 0.02 |"),
             std::string::npos);
-  EXPECT_NE(md.find("| textured, single, standing | mine | 1 | 0.50 | 0.20 |  |  |"),
-            std::string::npos);
+  EXPECT_NE(md.find("compare with Q_GWS, not Q_GWS,unit"), std::string::npos);
   EXPECT_NE(md.find("\n### Comparing with the paper\n"), std::string::npos);
   EXPECT_NE(md.find("not the paper's real camera images"), std::string::npos);
 
@@ -224,8 +244,10 @@ TEST(ReportPaperColumnsTest, PaperValuesBesideOursOnlyForThePapersMethods) {
                       "<td>1.00</td><td>1.00</td></tr>"),
             std::string::npos);
   EXPECT_NE(html.find("<th>single</th><th>standing</th><td>0.90</td><td>0.40</td>"
-                      "<td class=\"paper\">0.72</td><td class=\"paper\">0.59</td>"
-                      "<td>0.50</td><td>0.20</td></tr>"),
+                      "<td class=\"paper\">0.72</td><td class=\"paper\">0.59</td><td>0.04</td>"
+                      "<td>0.50</td><td>0.20</td><td>0.02</td></tr>"),
+            std::string::npos);
+  EXPECT_NE(html.find("<th colspan=\"5\">s3EGA1</th><th colspan=\"3\">mine</th>"),
             std::string::npos);
   // The table's "all scenes" row has empty paper cells.
   EXPECT_NE(html.find("<th></th><th>all scenes</th><td>1.00</td><td>1.00</td>"
@@ -243,10 +265,10 @@ TEST(ReportPaperColumnsTest, PaperValuesBesideOursOnlyForThePapersMethods) {
   // The paper's plain rows even where this run has no scene (our values undefined).
   EXPECT_NE(first.find("\nplain-single-all,s3EGA1,0,0,,,,,0.88,3.15\n"), std::string::npos);
   const std::string quality = readText(dir.path() / "quality.csv");
-  EXPECT_NE(quality.find("\ntextured-single-standing,s3EGA1,1,0.9,0.4,0.72,0.59\n"),
+  EXPECT_NE(quality.find("\ntextured-single-standing,s3EGA1,1,0.9,0.4,0.72,0.59,0.04\n"),
             std::string::npos)
       << quality;
-  EXPECT_NE(quality.find("\ntextured-single-standing,mine,1,0.5,0.2,,\n"), std::string::npos);
+  EXPECT_NE(quality.find("\ntextured-single-standing,mine,1,0.5,0.2,,,0.02\n"), std::string::npos);
 }
 
 TEST_F(ReportFilesTest, ReportIsDeterministic) {

@@ -16,7 +16,7 @@ using rwsim::simulator::GraspOutcome;
 /// A trial of method `method` in `scene`, rank = position in the scene's list.
 inline results::TrialRecord trial(const results::RunScene& scene, const std::string& method,
                                   int rank, GraspOutcome outcome, double qLift = 0.0,
-                                  double qGws = 0.0, int object = 0) {
+                                  double qGws = 0.0, int object = 0, double qGwsUnit = 0.0) {
   results::TrialRecord t;
   t.sceneId = scene.id;
   t.conditions = scene.conditions;
@@ -26,6 +26,7 @@ inline results::TrialRecord trial(const results::RunScene& scene, const std::str
   t.outcome = outcome;
   t.qLift = qLift;
   t.qGws = qGws;
+  t.qGwsUnit = qGwsUnit;
   t.object = object;
   return t;
 }
@@ -33,14 +34,15 @@ inline results::TrialRecord trial(const results::RunScene& scene, const std::str
 inline results::RunScene scene(const SceneConditions& c) { return {database::sceneIdOf(c), c}; }
 
 /// Run "runA", method "A":
-///  S1 textured single cocacola(5) pose 1 (standing): missed, stable(0.9, 0.4), in collision,
-///     slipped(0.5, 0.2)                                        n = 4, k = 2
-///  S2 textured single cocacola(5) pose 5 (lying): dropped, stable(0.4, 0.6)      n = 2, k = 1
-///  S3 textured single greencup(8) pose 2 (standing): no grasp                     n = 0
-///  S4 textured double pair e (5-14) placement 1 (apart): stable holding 14 (1.0, 0.5),
-///     in collision, missed                                                        n = 3, k = 1
-///  S5 textured double pair e placement 6 (close): invalid contacts                n = 1, k = 0
-///  P1 plain single amicelli(1) pose 3 (standing): stable(0.8, 0.1)                n = 1, k = 1
+/// (successes as (Q_lift, Q_GWS, Q_GWS,unit))
+///  S1 textured single cocacola(5) pose 1 (standing): missed, stable(0.9, 0.4, 0.04), in
+///     collision, slipped(0.5, 0.2, 0.02)                                  n = 4, k = 2
+///  S2 textured single cocacola(5) pose 5 (lying): dropped, stable(0.4, 0.6, 0.06)  n = 2, k = 1
+///  S3 textured single greencup(8) pose 2 (standing): no grasp                       n = 0
+///  S4 textured double pair e (5-14) placement 1 (apart): stable holding 14 (1.0, 0.5, 0.05),
+///     in collision, missed                                                          n = 3, k = 1
+///  S5 textured double pair e placement 6 (close): invalid contacts                  n = 1, k = 0
+///  P1 plain single amicelli(1) pose 3 (standing): stable(0.8, 0.1, 0.01)            n = 1, k = 1
 inline results::RunResults runA() {
   results::RunResults run;
   run.label = "runA";
@@ -54,14 +56,14 @@ inline results::RunResults runA() {
   run.methods = {"A"};
   run.rejected = {{"A", 2}};
   run.trials = {
-      trial(p1, "A", 0, GraspOutcome::kStable, 0.8, 0.1, 1),
+      trial(p1, "A", 0, GraspOutcome::kStable, 0.8, 0.1, 1, 0.01),
       trial(s1, "A", 0, GraspOutcome::kMissed),
-      trial(s1, "A", 1, GraspOutcome::kStable, 0.9, 0.4, 5),
+      trial(s1, "A", 1, GraspOutcome::kStable, 0.9, 0.4, 5, 0.04),
       trial(s1, "A", 2, GraspOutcome::kInCollision),
-      trial(s1, "A", 3, GraspOutcome::kSlipped, 0.5, 0.2, 5),
+      trial(s1, "A", 3, GraspOutcome::kSlipped, 0.5, 0.2, 5, 0.02),
       trial(s2, "A", 0, GraspOutcome::kDropped, 0.0, 0.0, 5),
-      trial(s2, "A", 1, GraspOutcome::kStable, 0.4, 0.6, 5),
-      trial(s4, "A", 0, GraspOutcome::kStable, 1.0, 0.5, 14),
+      trial(s2, "A", 1, GraspOutcome::kStable, 0.4, 0.6, 5, 0.06),
+      trial(s4, "A", 0, GraspOutcome::kStable, 1.0, 0.5, 14, 0.05),
       trial(s4, "A", 1, GraspOutcome::kInCollision),
       trial(s4, "A", 2, GraspOutcome::kMissed),
       trial(s5, "A", 0, GraspOutcome::kInvalidContacts),

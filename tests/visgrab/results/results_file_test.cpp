@@ -35,6 +35,10 @@ TrialRecord makeTrial(const std::string& scene, const std::string& method, const
   return t;
 }
 
+constexpr std::string_view kVersion1Header =
+    "# visgrab trials 1\n"
+    "scene,method,grasp,rank,outcome,robwork_code,q_lift,q_gws,object,simulated_time,detail\n";
+
 RunResults smallRun() {
   RunResults run;
   const SceneConditions a = SceneConditions::single(Texture::kTextured, 5, 3);
@@ -45,6 +49,7 @@ RunResults smallRun() {
   TrialRecord t1 = makeTrial(run.scenes[0].id, "s2EGA1", "g0", 0, GraspOutcome::kStable);
   t1.qLift = 0.1 + 0.2;  // not exactly representable in short decimal: must round-trip exactly
   t1.qGws = 1.0 / 3.0;
+  t1.qGwsUnit = 0.1 / 3.0;
   t1.object = 5;
   t1.simulatedTime = 2.5;
   t1.detail = "line one\nline \"two\", with \\ backslash";
@@ -109,6 +114,7 @@ TEST(ResultsFileTest, RoundTripKeepsEveryField) {
     EXPECT_EQ(b.outcome, a.outcome);
     EXPECT_EQ(b.qLift, a.qLift);
     EXPECT_EQ(b.qGws, a.qGws);
+    EXPECT_EQ(b.qGwsUnit, a.qGwsUnit);
     EXPECT_EQ(b.object, a.object);
     EXPECT_EQ(b.simulatedTime, a.simulatedTime);
     EXPECT_EQ(b.detail, a.detail);
@@ -116,7 +122,10 @@ TEST(ResultsFileTest, RoundTripKeepsEveryField) {
   }
   // The file itself: version line, columns, one line per trial with the RobWork code.
   const std::string text = readText(dir.path() / "trials.csv");
-  EXPECT_EQ(text.rfind("# visgrab trials 1\nscene,method,grasp,rank,outcome,robwork_code,", 0), 0u);
+  EXPECT_EQ(text.rfind("# visgrab trials 2\nscene,method,grasp,rank,outcome,robwork_code,q_lift,"
+                       "q_gws,q_gws_unit,object,",
+                       0),
+            0u);
   EXPECT_NE(text.find(",in_collision,2,"), std::string::npos);
   EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 5);
 }
@@ -139,7 +148,7 @@ TEST(ResultsFileTest, TornLastLineIsDroppedWithAWarning) {
 
 TEST(ResultsFileTest, TornLineThatLooksCompleteIsStillDropped) {
   // A line cut inside its last number parses, but it has no line break: it is dropped.
-  const std::string text = trialsHeader() + "s,m,g,0,stable,1,0.9,0.5,5,1.2,\"\"";
+  const std::string text = trialsHeader() + "s,m,g,0,stable,1,0.9,0.5,0.25,5,1.2,\"\"";
   const TrialsFile file = parseTrials(text, "trials.csv");
   EXPECT_TRUE(file.trials.empty());
   EXPECT_TRUE(file.tornLastLine);
@@ -159,19 +168,58 @@ void expectLoadError(const std::string& text, const std::string& where, const st
 
 TEST(ResultsFileTest, CorruptLinesGiveFileAndLine) {
   const std::string h = trialsHeader();
-  const std::string good = "s,m,g,0,stable,1,0.9,0.5,5,1.2,\"\"\n";
+  const std::string good = "s,m,g,0,stable,1,0.9,0.5,0.25,5,1.2,\"\"\n";
   expectLoadError(h + good + "s,m,g2,0,stable,1,0.9\n" + good, "r/trials.csv:4", "7 fields");
-  expectLoadError(h + good + "s,m,g2,0,wobbly,1,0,0,0,0,\"\"\n", "r/trials.csv:4",
+  expectLoadError(h + good + "s,m,g2,0,wobbly,1,0,0,0,0,0,\"\"\n", "r/trials.csv:4",
                   "unknown outcome 'wobbly'");
-  expectLoadError(h + good + "s,m,g2,0,stable,3,0,0,0,0,\"\"\n", "r/trials.csv:4",
+  expectLoadError(h + good + "s,m,g2,0,stable,3,0,0,0,0,0,\"\"\n", "r/trials.csv:4",
                   "RobWork code 3 does not match");
-  expectLoadError(h + good + "s,m,g2,zero,stable,1,0,0,0,0,\"\"\n", "r/trials.csv:4",
+  expectLoadError(h + good + "s,m,g2,zero,stable,1,0,0,0,0,0,\"\"\n", "r/trials.csv:4",
                   "'zero' is not an integer");
-  expectLoadError(h + good + "s,m,g2,0,stable,1,0,0,0,0,\"open\n", "r/trials.csv:4", "not closed");
+  expectLoadError(h + good + "s,m,g2,0,stable,1,0,0,0,0,0,\"open\n", "r/trials.csv:4",
+                  "not closed");
   expectLoadError(h + good + good, "r/trials.csv:4", "given twice (first at line 3)");
   expectLoadError(h + "\n" + good, "r/trials.csv:3", "empty line");
   expectLoadError("# visgrab trials 7\n" + good, "r/trials.csv:1", "version '7'");
   expectLoadError("scene,method\n" + good, "r/trials.csv:1", "header line");
+  // A version 1 line (11 fields) under a version 2 header, and the other way round.
+  expectLoadError(h + "s,m,g,0,stable,1,0.9,0.5,5,1.2,\"\"\n", "r/trials.csv:3", "11 fields");
+  expectLoadError(std::string(kVersion1Header) + good, "r/trials.csv:3", "12 fields, expected 11");
+}
+
+TEST(ResultsFileTest, EmptyQualityMeansNotComputed) {
+  TrialRecord t = makeTrial("s", "m", "g", 0, GraspOutcome::kStable);
+  t.qGws = std::nan("");
+  t.qGwsUnit = 0.125;
+  const std::string line = formatTrialLine(t);
+  EXPECT_NE(line.find(",stable,1,0,,0.125,0,"), std::string::npos) << line;
+  const TrialsFile back = parseTrials(trialsHeader() + line, "trials.csv");
+  ASSERT_EQ(back.trials.size(), 1u);
+  EXPECT_TRUE(std::isnan(back.trials[0].qGws));
+  EXPECT_EQ(back.trials[0].qGwsUnit, 0.125);
+  EXPECT_EQ(back.version, kTrialsFormatVersion);
+}
+
+TEST(ResultsFileTest, Version1FilesAreReadWithTheirQGwsAsTheUnitColumn) {
+  // Before q_gws_unit, q_gws was computed with unit normal forces: it is that column now, and
+  // the paper's Q_GWS is unknown (NaN), never silently the unit value.
+  const std::string text = std::string(kVersion1Header) +
+                           "s,m,g,0,stable,1,0.9,0.0625,5,1.5,\"held\"\n"
+                           "s,m,h,1,missed,3,0,0,0,2,\"\"\n";
+  const TrialsFile file = parseTrials(text, "trials.csv");
+  EXPECT_EQ(file.version, 1);
+  ASSERT_EQ(file.trials.size(), 2u);
+  const TrialRecord& t = file.trials[0];
+  EXPECT_EQ(t.qLift, 0.9);
+  EXPECT_EQ(t.qGwsUnit, 0.0625);
+  EXPECT_TRUE(std::isnan(t.qGws));
+  EXPECT_EQ(t.object, 5);
+  EXPECT_EQ(t.simulatedTime, 1.5);
+  EXPECT_EQ(t.detail, "held");
+  EXPECT_EQ(file.trials[1].qGwsUnit, 0.0);
+  EXPECT_EQ(file.completeBytes, text.size());
+  // A torn version 1 header starts the file afresh like a torn current one.
+  EXPECT_TRUE(parseTrials(std::string(kVersion1Header).substr(0, 30), "t").trials.empty());
 }
 
 TEST(ResultsFileTest, CorruptRunFileGivesFileAndLine) {

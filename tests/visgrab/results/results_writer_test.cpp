@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -78,6 +79,36 @@ TEST(ResultsWriterTest, AppendsOneLinePerTrialAndResumes) {
   EXPECT_TRUE(resumed.contains(trials[0].sceneId, trials[0].method, trials[0].graspId));
   for (std::size_t i = 5; i < trials.size(); ++i) resumed.append(trials[i]);
   EXPECT_EQ(readResults(dir.path()).trials.size(), trials.size());
+}
+
+TEST(ResultsWriterTest, ResumingAVersion1FileRewritesItInTheCurrentFormat) {
+  // A run started before q_gws_unit existed: its trials keep their unit-force value (now
+  // q_gws_unit) and an unknown q_gws; new trials are appended in the current format.
+  test::TempDir dir;
+  const std::vector<TrialRecord> trials = allTrials();
+  test::writeFile(dir.path() / "trials.csv",
+                  "# visgrab trials 1\n"
+                  "scene,method,grasp,rank,outcome,robwork_code,q_lift,q_gws,object,"
+                  "simulated_time,detail\n" +
+                      trials[0].sceneId + ",zeta,g1,1,stable,1,0.875,0.03125,3,1.5,\"old\"\n");
+  {
+    ResultsWriter writer(dir.path());
+    EXPECT_EQ(writer.resumedCount(), 1u);
+    EXPECT_TRUE(writer.contains(trials[0].sceneId, "zeta", "g1"));
+    TrialRecord fresh = trials[0];
+    fresh.qGws = 0.5;
+    fresh.qGwsUnit = 0.25;
+    writer.append(fresh);
+  }
+  const std::string text = readText(dir.path() / "trials.csv");
+  EXPECT_EQ(text.rfind(trialsHeader(), 0), 0u) << text;
+  const TrialsFile back = parseTrials(text, "trials.csv");
+  ASSERT_EQ(back.trials.size(), 2u);
+  EXPECT_TRUE(std::isnan(back.trials[0].qGws));
+  EXPECT_EQ(back.trials[0].qGwsUnit, 0.03125);
+  EXPECT_EQ(back.trials[0].detail, "old");
+  EXPECT_EQ(back.trials[1].qGws, 0.5);
+  EXPECT_EQ(back.trials[1].qGwsUnit, 0.25);
 }
 
 TEST(ResultsWriterTest, TornLastLineIsCutOffOnResume) {

@@ -347,7 +347,7 @@ TEST(RwTaskIoTest, RequestsToTaskAndResultsBack) {
   GraspTask task = fromGraspRequests({r, r}, "SchunkHand", "SchunkHand.SDHTCP");
   EXPECT_EQ(stringProperty(task.otherProperties, "SceneID"), r.sceneId);
   ASSERT_EQ(task.targetCount(), 2u);
-  setResult(targetAt(task, 1), rwsim::simulator::GraspOutcome::kSlipped, 0.75, 0.02,
+  setResult(targetAt(task, 1), rwsim::simulator::GraspOutcome::kSlipped, 0.75, 0.02, 0.005,
             Q::Constant(7, 0.3));
   EXPECT_THROW(targetAt(task, 2), std::out_of_range);
   const GraspTask back = parseRwTask(formatRwTask(task), "x.rwtask.xml");
@@ -361,7 +361,10 @@ TEST(RwTaskIoTest, RequestsToTaskAndResultsBack) {
   EXPECT_EQ(res.testStatus, 5);  // RobWork's ObjectSlipped
   EXPECT_EQ(res.liftResult, 0.75);
   EXPECT_EQ(res.qualityAfterLifting, Q::Constant(1, 0.75));
-  EXPECT_EQ(res.qualityBeforeLifting, Q::Constant(1, 0.02));
+  // The VisGraB-era plugin's order: q0 with the measured forces, q1 with unit forces.
+  ASSERT_EQ(res.qualityBeforeLifting.size(), 2);
+  EXPECT_EQ(res.qualityBeforeLifting[0], 0.02);
+  EXPECT_EQ(res.qualityBeforeLifting[1], 0.005);
   EXPECT_EQ(res.gripperConfigurationGrasp, Q::Constant(7, 0.3));
   EXPECT_FALSE(back.subTasks[0].targets[0].result);
   grasp::GraspRequest notRaw = r;

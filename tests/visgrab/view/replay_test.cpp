@@ -68,6 +68,7 @@ TEST(TrialReplay, RecordsTheBenchmarksTrialAndItsThreeMoments) {
   EXPECT_EQ(replay.result.outcome, plain.outcome);
   EXPECT_EQ(replay.result.qLift, plain.qLift);
   EXPECT_EQ(replay.result.qGws, plain.qGws);
+  EXPECT_EQ(replay.result.qGwsUnit, plain.qGwsUnit);
   EXPECT_EQ(replay.result.simulatedTime, plain.simulatedTime);
 
   ASSERT_GE(replay.frames.size(), 10u);
@@ -188,6 +189,16 @@ TEST(GraspPictures, StripAndMontageLayout) {
                                                    "test", options, 2);
   EXPECT_EQ(montage.width, 2 * (200 + 2));
   EXPECT_EQ(montage.height, 36 + 2 * (150 + 30 + 2) + 30);
+}
+
+TEST(OutcomeCaption, HeldGraspsShowBothGwsColumns) {
+  using rwsim::simulator::GraspOutcome;
+  EXPECT_EQ(visgrab::view::outcomeCaption(GraspOutcome::kStable, 0.93, 0.421, 0.012),
+            "stable   Q_lift 0.930   Q_GWS 0.4210   Q_GWS,unit 0.0120");
+  // Results written before Q_GWS,unit existed have no Q_GWS.
+  EXPECT_EQ(visgrab::view::outcomeCaption(GraspOutcome::kSlipped, 0.5, std::nan(""), 0.01),
+            "slipped   Q_lift 0.500   Q_GWS -   Q_GWS,unit 0.0100");
+  EXPECT_EQ(visgrab::view::outcomeCaption(GraspOutcome::kMissed, 0.0, 0.0, 0.0), "missed");
 }
 
 }  // namespace

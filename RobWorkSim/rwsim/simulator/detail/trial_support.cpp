@@ -14,11 +14,18 @@ bool isHand(const std::vector<bool>& isHandBody, int body) {
          isHandBody[static_cast<std::size_t>(body)];
 }
 
-// Normal force of a solved point on `object` (the normal pointing into it) and that normal.
-std::pair<double, rw::math::Vector3D> loadOn(const SolvedContact& c, bool objectIsB) {
+// The load of a solved point on `object`: its normal force, the normal pointing into the object
+// and the whole force on it (world frame).
+struct Load {
+  double normalForce = 0.0;
+  rw::math::Vector3D normal;
+  rw::math::Vector3D force;
+};
+
+Load loadOn(const SolvedContact& c, bool objectIsB) {
   const rw::math::Vector3D n = objectIsB ? c.point.normal : rw::math::Vector3D(-c.point.normal);
   const rw::math::Vector3D forceOnObject = objectIsB ? c.force : rw::math::Vector3D(-c.force);
-  return {forceOnObject.dot(n), n};
+  return {forceOnObject.dot(n), n, forceOnObject};
 }
 
 }  // namespace
@@ -32,7 +39,7 @@ std::vector<int> handContactCounts(const std::vector<SolvedBodyContact>& contact
     if (handA == handB) continue;
     const int other = handA ? bc.bodyB : bc.bodyA;
     for (const auto& p : bc.points) {
-      if (loadOn(p, handA).first > threshold) {
+      if (loadOn(p, handA).normalForce > threshold) {
         ++counts[static_cast<std::size_t>(other)];
       }
     }
@@ -55,13 +62,15 @@ std::vector<TrialContact> objectContacts(const dynamics::DynamicWorkCell& dwc,
     const double mu = dwc.materials().mu(dwc.bodies()[static_cast<std::size_t>(object)].material,
                                          dwc.bodies()[static_cast<std::size_t>(other)].material);
     for (const auto& p : bc.points) {
-      const auto [force, n] = loadOn(p, objectIsB);
-      if (force <= threshold) continue;
+      const Load load = loadOn(p, objectIsB);
+      if (load.normalForce <= threshold) continue;
       TrialContact c;
       c.position = X_object_W * p.point.position;
-      c.normal = X_object_W.linear() * n;
-      c.normalForce = force;
+      c.normal = X_object_W.linear() * load.normal;
+      c.normalForce = load.normalForce;
       c.mu = mu;
+      c.force = X_object_W.linear() * load.force;
+      c.handBody = other;
       out.push_back(c);
     }
   }
@@ -86,25 +95,6 @@ double maxRadiusFromCog(const dynamics::DynamicWorkCell& dwc, int body) {
     }
   }
   return r;
-}
-
-double graspWrenchQuality(const std::vector<TrialContact>& contacts, const rw::math::Vector3D& cog,
-                          double r, int coneEdges) {
-  if (contacts.empty() || !(r > 0.0)) return 0.0;
-  std::vector<rw::graspplanning::Contact3D> c3;
-  c3.reserve(contacts.size());
-  for (const auto& c : contacts) {
-    rw::graspplanning::Contact3D x;
-    x.position = c.position;
-    x.normal = c.normal.normalized();
-    x.mu = c.mu;
-    x.normalForce = c.normalForce;
-    c3.push_back(x);
-  }
-  rw::graspplanning::GwsOptions options;
-  options.coneEdges = coneEdges;
-  options.useMeasuredNormalForce = false;
-  return rw::graspplanning::gwsEpsilon(c3, cog, r, options).epsilon;
 }
 
 }  // namespace rwsim::simulator::detail

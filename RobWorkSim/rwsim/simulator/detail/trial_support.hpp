@@ -26,9 +26,4 @@ std::vector<TrialContact> objectContacts(const dynamics::DynamicWorkCell& dwc,
 /// (0 without geometry).
 double maxRadiusFromCog(const dynamics::DynamicWorkCell& dwc, int body);
 
-/// Ferrari-Canny epsilon of the contacts (unit normal forces, `coneEdges` edges, torque origin
-/// the object's centre of mass, torques scaled by 1/r); 0 without contacts or with r <= 0.
-double graspWrenchQuality(const std::vector<TrialContact>& contacts, const rw::math::Vector3D& cog,
-                          double r, int coneEdges);
-
 }  // namespace rwsim::simulator::detail
