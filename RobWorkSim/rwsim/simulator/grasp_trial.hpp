@@ -141,8 +141,8 @@ struct GraspTrialResult {
   /// Paper eq. 5 (0 when not held).
   double qLift = 0.0;
   /// Q_GWS as the paper's tables computed it (§2.4.1, eq. 6-7): Ferrari-Canny L1 epsilon after
-  /// lifting with cones centred on the measured contact forces (see graspQualities()); 0 when
-  /// not held.
+  /// lifting with cones centred on the measured contact forces (see gwsQualities() in
+  /// grasp_quality.hpp); 0 when not held.
   double qGws = 0.0;
   /// The same with unit normal forces and cones on the contact normals (RobWork's
   /// GraspTaskSimulator; this project's Q_GWS before the paper's definition); 0 when not held.
@@ -198,7 +198,7 @@ struct PlacementCheck {
 ///  5. No hand contact on the object: kDropped. Else, with h and o the hand's and the object's
 ///     displacement during lifting, drift = |o - h|, Q_lift = max(0, 1 - drift / |h|) (paper
 ///     eq. 5), kStable if drift < slipThreshold, else kSlipped; Q_GWS and Q_GWS,unit from the
-///     contacts after lifting (graspQualities(): gwsConeEdges edges, torques about the object's
+///     contacts after lifting (gwsQualities(): gwsConeEdges edges, torques about the object's
 ///     COG over r, the largest distance of its collision geometry from the COG).
 /// A failing step gives kSimulationFailure, passing timeLimit kTimeout (detail says why).
 class GraspTrial {
