@@ -28,8 +28,9 @@ struct PlacementOptions {
   /// the first must be 0.
   std::vector<double> approachBackoffs{0.0, 0.01, 0.02};
   /// Extra opening: fingertips this much farther short of their contacts at q_open than the
-  /// description's backoff, m; the first must be 0.
-  std::vector<double> extraOpenings{0.0, 0.01, 0.02};
+  /// description's backoff, m; the first must be 0. Up to 6 cm: a pinch whose far contact was
+  /// guessed inside the object (its back unseen) opens round the object's real thickness.
+  std::vector<double> extraOpenings{0.0, 0.01, 0.02, 0.04, 0.06};
   /// Two-contact grasps: turns of the hand about the line through the two contacts (which
   /// keeps the fingertips on them and tilts the approach), rad; the first must be 0.
   std::vector<double> rolls{0.0, 20.0 * rw::math::kDeg2Rad, -20.0 * rw::math::kDeg2Rad,
@@ -80,8 +81,8 @@ struct Placement {
 ///  4. When none is, the result is not found: the candidate with the smallest penetration
 ///     (ties: the earlier in that order) with its test, so the trial reports that penetration.
 /// Worst case per grasp: maxSolutions x rolls x approachBackoffs finger solves (45 with the
-/// defaults for two contacts, 9 for three) and that many x extraOpenings scene tests (135 and
-/// 27). Deterministic: no randomness, fixed order; thread-safe when `test` is.
+/// defaults for two contacts, 9 for three) and that many x extraOpenings scene tests (225 and
+/// 45). Deterministic: no randomness, fixed order; thread-safe when `test` is.
 /// @throws std::invalid_argument for empty or invalid `solutions`, or option lists that do not
 /// start with 0.
 Placement placeContactGrasp(const HandGraspSetup& setup,
