@@ -60,15 +60,28 @@ std::vector<const objects::RestingPose*> lyingPoses(const objects::ObjectModel& 
 
 }  // namespace
 
+rw::proximity::ConvexShape convexShapeOf(const objects::CollisionPiece& piece) {
+  const auto& g = *piece.geometry;
+  const auto& p = g.parameters();
+  switch (g.type()) {
+    case rw::geometry::GeometryType::kCylinder:
+      return rw::proximity::ConvexShape::cylinder(p[0], p[1] / 2.0);
+    case rw::geometry::GeometryType::kFrustum:
+      return rw::proximity::ConvexShape::frustum(p[0], p[1], p[2] / 2.0);
+    default:
+      return rw::proximity::ConvexShape::hull(g.triangles().vertices);
+  }
+}
+
 double distanceBetween(const objects::ObjectModel& a, const Transform3D& X_TA,
                        const objects::ObjectModel& b, const Transform3D& X_TB) {
   const Transform3D X_AB = X_TA.inverse() * X_TB;
   double best = std::numeric_limits<double>::infinity();
   for (const auto& pa : a.collision) {
-    const auto hullA = rw::proximity::ConvexShape::hull(pa->vertices);
+    const auto shapeA = convexShapeOf(pa);
     for (const auto& pb : b.collision) {
-      const auto hullB = rw::proximity::ConvexShape::hull(pb->vertices);
-      best = std::min(best, rw::proximity::gjkDistance(hullA, hullB, X_AB).distance);
+      const Transform3D X_GaGb = pa.X_OG.inverse() * X_AB * pb.X_OG;
+      best = std::min(best, rw::proximity::gjkDistance(shapeA, convexShapeOf(pb), X_GaGb).distance);
     }
   }
   return best;
@@ -107,7 +120,7 @@ std::pair<double, double> extentAlong(const objects::ObjectModel& model, const T
   const Vector3D dO = X_TO.linear().transpose() * d;
   const double offset = X_TO.translation().dot(d);
   for (const auto& piece : model.collision) {
-    for (const Vector3D& v : piece->vertices) {
+    for (const Vector3D& v : piece.triangles->vertices) {
       const double s = v.dot(dO) + offset;
       lo = std::min(lo, s);
       hi = std::max(hi, s);

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "rw/math/types.hpp"
+#include "rw/proximity/convex_shape.hpp"
 #include "visgrab/database/scene_set.hpp"
 #include "visgrab/objects/object_model.hpp"
 
@@ -68,7 +69,12 @@ std::pair<double, double> extentAlong(const objects::ObjectModel& model,
                                       const rw::math::Transform3D& X_TO,
                                       const rw::math::Vector3D& d);
 
-/// Distance between two models' collision geometry (0 when they overlap), m.
+/// The exact convex shape of a collision piece in the piece's geometry frame (a cylinder or
+/// frustum for a round piece, else the hull of the mesh; the shape borrows the piece's vertices).
+rw::proximity::ConvexShape convexShapeOf(const objects::CollisionPiece& piece);
+
+/// Distance between two models' collision geometry, exact for round pieces (0 when they
+/// overlap), m.
 double distanceBetween(const objects::ObjectModel& a, const rw::math::Transform3D& X_TA,
                        const objects::ObjectModel& b, const rw::math::Transform3D& X_TB);
 

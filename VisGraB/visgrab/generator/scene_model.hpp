@@ -13,7 +13,7 @@ namespace visgrab::generator {
 /// Where the shared assets of a generated database live, relative to its folder: one copy of
 /// every object, table surface and hand, which the scene files include.
 struct AssetLayout {
-  /// Objects: `objects/<name>/<name>.obj`, `<name>_hull<k>.stl`.
+  /// Objects: `objects/<name>/<name>.obj`, `<name>_hull<k>.stl` (box and handle pieces only).
   std::string objects = "objects";
   /// Table surfaces: `tables/<plain|textured>/<name>.obj`.
   std::string tables = "tables";

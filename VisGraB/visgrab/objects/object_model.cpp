@@ -78,6 +78,26 @@ void validate(const ObjectSpec& spec) {
   }
 }
 
+// A mesh piece; its name is the STL file object_writer writes for it.
+void addMeshPiece(ObjectModel& model, rw::geometry::TriMesh mesh) {
+  const std::string file = model.name + "_hull" + std::to_string(model.collision.size()) + ".stl";
+  auto triangles = std::make_shared<const rw::geometry::TriMesh>(std::move(mesh));
+  model.collision.push_back({rw::geometry::Geometry::mesh(triangles, file),
+                             rw::math::Transform3D::Identity(), triangles});
+}
+
+// The solid of revolution between two profile points: a cylinder when the radii are equal.
+void addRoundPiece(ObjectModel& model, const ProfilePoint& p, const ProfilePoint& q) {
+  const double h = q.z - p.z;
+  CollisionPiece piece;
+  piece.geometry = p.r == q.r ? rw::geometry::Geometry::cylinder(p.r, h)
+                              : rw::geometry::Geometry::frustum(p.r, q.r, h);
+  piece.X_OG.translation() = Vector3D(0.0, 0.0, (p.z + q.z) / 2.0);
+  piece.triangles = std::make_shared<const rw::geometry::TriMesh>(
+      detail::frustumPiece(p.z, p.r, q.z, q.r, detail::kCollisionSides));
+  model.collision.push_back(std::move(piece));
+}
+
 void addBox(const ObjectSpec& spec, Random& random, ObjectModel& model) {
   const AppearanceSpec& a = spec.appearance;
   const auto atlas = detail::boxAtlas(spec.boxSize, kObjectTexelsPerMetre);
@@ -99,8 +119,7 @@ void addBox(const ObjectSpec& spec, Random& random, ObjectModel& model) {
       a.pattern == PatternKind::kPrintedBox ? a.specular : materialSpecular(a.bodyMaterial);
   part.mesh.texture = share(canvas.toImage());
   model.visual.push_back(std::move(part));
-  model.collision.push_back(
-      std::make_shared<const rw::geometry::TriMesh>(detail::boxPiece(spec.boxSize)));
+  addMeshPiece(model, detail::boxPiece(spec.boxSize));
 }
 
 enum class Region { kBody, kLabel, kLid };
@@ -190,8 +209,7 @@ void addLathe(const ObjectSpec& spec, Random& random, ObjectModel& model) {
   for (std::size_t i = 0; i + 1 < spec.profile.size(); ++i) {
     const ProfilePoint& p = spec.profile[i];
     const ProfilePoint& q = spec.profile[i + 1];
-    model.collision.push_back(std::make_shared<const rw::geometry::TriMesh>(
-        detail::frustumPiece(p.z, p.r, q.z, q.r, detail::kCollisionSides)));
+    addRoundPiece(model, p, q);
   }
   if (spec.handle) {
     const double length = detail::handleLength(spec);
@@ -205,7 +223,7 @@ void addLathe(const ObjectSpec& spec, Random& random, ObjectModel& model) {
     handle.mesh.texture = share(canvas.toImage());
     model.visual.push_back(std::move(handle));
     for (auto& piece : detail::handlePieces(spec)) {
-      model.collision.push_back(std::make_shared<const rw::geometry::TriMesh>(std::move(piece)));
+      addMeshPiece(model, std::move(piece));
     }
   }
 }
@@ -213,7 +231,7 @@ void addLathe(const ObjectSpec& spec, Random& random, ObjectModel& model) {
 RestingPose restOn(const ObjectModel& model, std::string name, const Rotation3D& R) {
   rw::geometry::Aabb box;
   for (const auto& piece : model.collision) {
-    for (const Vector3D& v : piece->vertices) box.extend(R * v);
+    for (const Vector3D& v : piece.triangles->vertices) box.extend(R * v);
   }
   RestingPose pose;
   pose.name = std::move(name);
@@ -248,7 +266,7 @@ void addRestingPoses(const ObjectSpec& spec, ObjectModel& model) {
 rw::geometry::Aabb ObjectModel::collisionBounds() const {
   rw::geometry::Aabb box;
   for (const auto& piece : collision) {
-    for (const Vector3D& v : piece->vertices) box.extend(v);
+    for (const Vector3D& v : piece.triangles->vertices) box.extend(v);
   }
   return box;
 }
@@ -265,11 +283,7 @@ ObjectModel generateObject(const ObjectSpec& spec) {
     addLathe(spec, random, model);
   }
   std::vector<rw::geometry::PlacedGeometry> placed;
-  for (std::size_t k = 0; k < model.collision.size(); ++k) {
-    placed.push_back(
-        {rw::geometry::Geometry::mesh(model.collision[k], spec.name + "_hull" + std::to_string(k)),
-         rw::math::Transform3D::Identity()});
-  }
+  for (const auto& piece : model.collision) placed.push_back({piece.geometry, piece.X_OG});
   model.mass = rw::geometry::estimateMassProperties(spec.mass, placed);
   addRestingPoses(spec, model);
   return model;

@@ -35,6 +35,21 @@ struct RestingPose {
   rw::math::Vector3D up = rw::math::Vector3D::UnitZ();
 };
 
+/// One convex collision piece: the shape the workcell holds and its triangles.
+struct CollisionPiece {
+  /// The shape as written to the workcell: a Cylinder or Frustum primitive (centred on its own
+  /// origin, axis z) for a round lathe segment, else a mesh in the object frame (box, handle).
+  std::shared_ptr<const rw::geometry::Geometry> geometry;
+  /// Pose of `geometry` in the object frame (identity for meshes).
+  rw::math::Transform3D X_OG = rw::math::Transform3D::Identity();
+  /// The piece as a closed mesh in the object frame, wound outwards (for a round piece a
+  /// 32-sided polygon inscribed in its circles, with vertices on the +-x and +-y axes).
+  std::shared_ptr<const rw::geometry::TriMesh> triangles;
+
+  /// True when the piece is a primitive (written as Cylinder or Frustum, not as STL).
+  bool isRound() const { return geometry->type() != rw::geometry::GeometryType::kMesh; }
+};
+
 /// A generated object: what the cameras see, what the simulator touches, and how heavy it is.
 /// Frame: origin at the centre of the bottom face when standing, z up.
 struct ObjectModel {
@@ -44,14 +59,17 @@ struct ObjectModel {
   std::string name;
   /// Visual parts; together they form a closed surface (when vertices are joined by position).
   std::vector<VisualPart> visual;
-  /// Convex collision pieces, closed and wound outwards (a box; frusta; handle segments).
-  std::vector<std::shared_ptr<const rw::geometry::TriMesh>> collision;
-  /// Mass, COG and inertia about the COG, uniform density over the collision pieces.
+  /// Convex collision pieces (a box mesh; a cylinder or frustum per lathe profile segment;
+  /// handle segment meshes).
+  std::vector<CollisionPiece> collision;
+  /// Mass, COG and inertia about the COG, uniform density over the collision pieces' exact
+  /// shapes (true cylinders and frusta, not their tessellation).
   rw::geometry::BodyMassProperties mass;
   /// Standing first, then the lying poses.
   std::vector<RestingPose> restingPoses;
 
-  /// Bounding box of the collision pieces in the object frame.
+  /// Bounding box of the collision pieces' triangles in the object frame (exact for the round
+  /// pieces in x, y and z: their polygons have vertices on the axes).
   rw::geometry::Aabb collisionBounds() const;
 };
 

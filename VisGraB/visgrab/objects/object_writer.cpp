@@ -120,6 +120,24 @@ std::string exampleDynamics(const ObjectModel& model) {
          objectBodyXml(model) + "</DynamicWorkcell>\n";
 }
 
+// The element of one collision piece: a Cylinder, a Frustum or the Polytope `file`.
+std::string shapeXml(const CollisionPiece& piece, const std::string& file) {
+  const auto& g = *piece.geometry;
+  const auto& p = g.parameters();
+  switch (g.type()) {
+    case rw::geometry::GeometryType::kCylinder:
+      return "<Cylinder radius=\"" + number(p[0]) + "\" z=\"" + number(p[1]) + "\"/>";
+    case rw::geometry::GeometryType::kFrustum:
+      return "<Custom type=\"Frustum\" param=\"" + number(p[0]) + " " + number(p[1]) + " " +
+             number(p[2]) + "\"/>";
+    case rw::geometry::GeometryType::kMesh:
+      return "<Polytope file=\"" + file + "\"/>";
+    default:
+      throw std::logic_error(std::string("objectFrameXml: no writer for a ") +
+                             rw::geometry::geometryTypeName(g.type()) + " collision piece");
+  }
+}
+
 }  // namespace
 
 std::string objectFrameXml(const ObjectModel& model, const std::string& meshPrefix,
@@ -132,9 +150,11 @@ std::string objectFrameXml(const ObjectModel& model, const std::string& meshPref
           "    <RPY>0 0 0</RPY><Pos>0 0 0</Pos>\n    <Polytope file=\"" + meshPrefix + model.name +
           ".obj\"/>\n  </Drawable>\n";
   for (std::size_t k = 0; k < model.collision.size(); ++k) {
+    const CollisionPiece& piece = model.collision[k];
     const std::string hull = model.name + "_hull" + std::to_string(k);
-    text += "  <CollisionModel name=\"" + hull + "\">\n    <RPY>0 0 0</RPY><Pos>0 0 0</Pos>\n" +
-            "    <Polytope file=\"" + meshPrefix + hull + ".stl\"/>\n  </CollisionModel>\n";
+    text += "  <CollisionModel name=\"" + hull + "\">\n    <RPY>0 0 0</RPY><Pos>" +
+            numbers(rw::math::Vector3D(piece.X_OG.translation())) + "</Pos>\n    " +
+            shapeXml(piece, meshPrefix + hull + ".stl") + "\n  </CollisionModel>\n";
   }
   return text + "</Frame>\n";
 }
@@ -211,8 +231,9 @@ ObjectFiles writeObjectFiles(const ObjectModel& model, const fs::path& dir) {
   writeText(files.obj, objText(parts, model.name + ".mtl"));
   writeText(files.mtl, mtlText(parts));
   for (std::size_t k = 0; k < model.collision.size(); ++k) {
+    if (model.collision[k].isRound()) continue;
     files.hulls.push_back(files.folder / (model.name + "_hull" + std::to_string(k) + ".stl"));
-    writeBinaryStl(*model.collision[k], files.hulls.back());
+    writeBinaryStl(*model.collision[k].triangles, files.hulls.back());
   }
   files.workcell = files.folder / (model.name + ".wc.xml");
   writeText(files.workcell,

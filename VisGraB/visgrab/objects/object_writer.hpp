@@ -21,7 +21,8 @@ struct ObjectFiles {
   std::filesystem::path mtl;
   /// One PNG per visual part, `<name>_<part>.png`.
   std::vector<std::filesystem::path> textures;
-  /// One binary STL per collision piece, `<name>_hull<k>.stl`.
+  /// One binary STL per mesh collision piece (box, handle), `<name>_hull<k>.stl` with k the
+  /// piece's index in ObjectModel::collision; round pieces have no file.
   std::vector<std::filesystem::path> hulls;
   /// Example workcell holding just the object on WORLD, `<name>.wc.xml`.
   std::filesystem::path workcell;
@@ -30,9 +31,11 @@ struct ObjectFiles {
 };
 
 /// Workcell XML of a Movable frame named after the object, on `refframe` at `X_parent`, with
-/// a Drawable (colmodel="Disabled") reading `<meshPrefix><name>.obj` and one CollisionModel per
-/// collision piece reading `<meshPrefix><name>_hull<k>.stl`. `meshPrefix` is the folder of the
-/// files relative to the workcell file that will hold the text, ending in '/' (or empty).
+/// a Drawable (colmodel="Disabled") reading `<meshPrefix><name>.obj` and one CollisionModel
+/// `<name>_hull<k>` per collision piece: a `<Cylinder radius z/>` or `<Custom type="Frustum"
+/// param="rb rt h"/>` at the piece's centre for a round piece, else a Polytope reading
+/// `<meshPrefix><name>_hull<k>.stl`. `meshPrefix` is the folder of the files relative to the
+/// workcell file that will hold the text, ending in '/' (or empty).
 std::string objectFrameXml(
     const ObjectModel& model, const std::string& meshPrefix, const std::string& refframe = "WORLD",
     const rw::math::Transform3D& X_parent = rw::math::Transform3D::Identity());
@@ -41,7 +44,8 @@ std::string objectFrameXml(
 /// `material`, COG and the full inertia about the COG (9 numbers, row-major).
 std::string objectBodyXml(const ObjectModel& model, const std::string& material = "Object");
 
-/// Writes `dir/<name>/`: the OBJ, MTL and PNG textures, the hull STLs, and the example
+/// Writes `dir/<name>/`: the OBJ, MTL and PNG textures, the STLs of the mesh pieces, and the
+/// example
 /// `<name>.wc.xml` (a WorkCell with the object's frame) and `<name>.dwc.xml` (a DynamicWorkcell
 /// for it, materials "Object" and "Table" declared inline). Creates the folders. The same model
 /// gives the same bytes on every run.

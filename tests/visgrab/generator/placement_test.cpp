@@ -65,7 +65,7 @@ TEST(Placement, SingleObjectsRestOnTheTableNearItsCentre) {
       // Lowest collision vertex on z = 0, found here by brute force over the vertices.
       double lowest = 1e9, xlo = 1e9, xhi = -1e9;
       for (const auto& piece : model(id).collision) {
-        for (const Vector3D& v : piece->vertices) {
+        for (const Vector3D& v : piece.triangles->vertices) {
           const Vector3D p = X * v;
           lowest = std::min(lowest, p.z());
           xlo = std::min(xlo, p.x());
@@ -91,10 +91,10 @@ double gapAlong(const objects::ObjectModel& a, const Transform3D& Xa, const obje
                 const Transform3D& Xb, const Vector3D& d) {
   double aHigh = -1e9, bLow = 1e9;
   for (const auto& piece : a.collision) {
-    for (const Vector3D& v : piece->vertices) aHigh = std::max(aHigh, (Xa * v).dot(d));
+    for (const Vector3D& v : piece.triangles->vertices) aHigh = std::max(aHigh, (Xa * v).dot(d));
   }
   for (const auto& piece : b.collision) {
-    for (const Vector3D& v : piece->vertices) bLow = std::min(bLow, (Xb * v).dot(d));
+    for (const Vector3D& v : piece.triangles->vertices) bLow = std::min(bLow, (Xb * v).dot(d));
   }
   return bLow - aHigh;
 }
@@ -125,11 +125,10 @@ TEST(Placement, PairsStandApartOrAlmostTouching) {
       double distance = 1e9;
       for (const auto& pa : a.collision) {
         for (const auto& pb : b.collision) {
-          distance = std::min(
-              distance, rw::proximity::gjkDistance(rw::proximity::ConvexShape::hull(pa->vertices),
-                                                   rw::proximity::ConvexShape::hull(pb->vertices),
-                                                   p.X_TO[0].inverse() * p.X_TO[1])
-                            .distance);
+          const Transform3D X_ab = pa.X_OG.inverse() * p.X_TO[0].inverse() * p.X_TO[1] * pb.X_OG;
+          distance = std::min(distance, rw::proximity::gjkDistance(gen::convexShapeOf(pa),
+                                                                   gen::convexShapeOf(pb), X_ab)
+                                            .distance);
         }
       }
       EXPECT_NEAR(distance, 0.001, 2e-5) << pose;

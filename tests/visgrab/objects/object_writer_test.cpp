@@ -76,6 +76,15 @@ int unmatchedTriangles(const std::vector<Triangle>& a, const std::vector<Triangl
   return unmatched;
 }
 
+// Indices of the collision pieces written as STL files (the box and handle pieces).
+std::vector<std::size_t> meshPieces(const ObjectModel& model) {
+  std::vector<std::size_t> out;
+  for (std::size_t k = 0; k < model.collision.size(); ++k) {
+    if (!model.collision[k].isRound()) out.push_back(k);
+  }
+  return out;
+}
+
 // All 18 objects written once into a temporary folder.
 class WrittenObjects : public ::testing::Test {
  protected:
@@ -102,11 +111,14 @@ TEST_F(WrittenObjects, WritesTheFilesOfEveryObject) {
     for (const auto& p : {f.obj, f.mtl, f.workcell, f.dynamics})
       EXPECT_TRUE(fs::is_regular_file(p)) << p;
     EXPECT_EQ(f.textures.size(), model.visual.size());
-    ASSERT_EQ(f.hulls.size(), model.collision.size());
-    for (std::size_t k = 0; k < f.hulls.size(); ++k) {
-      EXPECT_EQ(f.hulls[k].filename(), model.name + "_hull" + std::to_string(k) + ".stl");
+    const auto pieces = meshPieces(model);
+    ASSERT_EQ(f.hulls.size(), pieces.size());
+    for (std::size_t j = 0; j < f.hulls.size(); ++j) {
+      const std::size_t k = pieces[j];
+      EXPECT_EQ(f.hulls[j].filename(), model.name + "_hull" + std::to_string(k) + ".stl");
       // Binary STL: 80-byte header, count, 50 bytes per triangle.
-      EXPECT_EQ(fs::file_size(f.hulls[k]), 84 + 50 * model.collision[k]->triangles.size());
+      EXPECT_EQ(fs::file_size(f.hulls[j]),
+                84 + 50 * model.collision[k].triangles->triangles.size());
     }
     EXPECT_NE(readBytes(f.mtl).find("map_Kd " + model.name + "_"), std::string::npos);
   }
@@ -117,10 +129,12 @@ TEST_F(WrittenObjects, AssimpReadsTheSameTriangles) {
     const auto& model = projectModels()[i];
     const auto obj = rw::geometry::loadMesh(files_[i].obj);
     EXPECT_EQ(unmatchedTriangles(meshTriangles(*obj), visualTriangles(model)), 0) << model.name;
-    for (std::size_t k = 0; k < model.collision.size(); ++k) {
-      const auto stl = rw::geometry::loadMesh(files_[i].hulls[k]);
-      EXPECT_EQ(unmatchedTriangles(meshTriangles(*stl), meshTriangles(*model.collision[k])), 0)
-          << model.name << " hull " << k;
+    const auto pieces = meshPieces(model);
+    for (std::size_t j = 0; j < pieces.size(); ++j) {
+      const auto stl = rw::geometry::loadMesh(files_[i].hulls[j]);
+      const auto& piece = *model.collision[pieces[j]].triangles;
+      EXPECT_EQ(unmatchedTriangles(meshTriangles(*stl), meshTriangles(piece)), 0)
+          << model.name << " hull " << pieces[j];
     }
   }
 }
@@ -177,10 +191,17 @@ TEST_F(WrittenObjects, SceneWithEachObjectLoadsInBothLoaders) {
       ASSERT_EQ(object->collision.size(), model.collision.size());
       for (std::size_t k = 0; k < model.collision.size(); ++k) {
         const auto& g = *object->collision[k].geometry;
+        const auto& piece = model.collision[k];
         EXPECT_TRUE(g.isConvex()) << model.name << " " << k;
-        EXPECT_EQ(
-            unmatchedTriangles(meshTriangles(g.triangles()), meshTriangles(*model.collision[k])),
-            0);
+        EXPECT_EQ(g.type(), piece.geometry->type()) << model.name << " " << k;
+        if (piece.isRound()) {
+          EXPECT_EQ(g.parameters(), piece.geometry->parameters()) << model.name << " " << k;
+          EXPECT_TRUE(piece.X_OG.isApprox(object->collision[k].X_frame_geometry, 1e-12))
+              << model.name << " " << k;
+        } else {
+          EXPECT_EQ(
+              unmatchedTriangles(meshTriangles(g.triangles()), meshTriangles(*piece.triangles)), 0);
+        }
       }
       const auto dwc = rwsim::loaders::loadDynamicWorkCell(dwcFile, &warnings);
       const int index = dwc->findBody(model.name);
@@ -205,6 +226,56 @@ TEST_F(WrittenObjects, SceneWithEachObjectLoadsInBothLoaders) {
     }
     for (const auto& w : warnings) ADD_FAILURE() << w.format();
   }
+}
+
+TEST_F(WrittenObjects, CanWorkcellHoldsTrueCylinderAndFrusta) {
+  using rw::geometry::GeometryType;
+  const auto& objects = projectSpec().objects;
+  const auto it = std::find_if(objects.begin(), objects.end(),
+                               [](const auto& o) { return o.name == "cocacola"; });
+  ASSERT_NE(it, objects.end());
+  const auto& spec = *it;
+  const auto& files = files_[static_cast<std::size_t>(it - objects.begin())];
+  const std::string text = readBytes(files.workcell);
+  EXPECT_NE(text.find("<Cylinder radius="), std::string::npos) << text;
+  EXPECT_NE(text.find("<Custom type=\"Frustum\" param="), std::string::npos) << text;
+  EXPECT_EQ(text.find(".stl"), std::string::npos) << text;
+  EXPECT_TRUE(files.hulls.empty());
+  std::vector<rw::loaders::Diagnostic> warnings;
+  const auto wc = rw::loaders::loadWorkCell(files.workcell, &warnings);
+  EXPECT_TRUE(warnings.empty());
+  const auto* object = wc->findObject(wc->findFrame(spec.name));
+  ASSERT_NE(object, nullptr);
+  ASSERT_EQ(object->collision.size(), spec.profile.size() - 1);
+  int cylinders = 0;
+  int frusta = 0;
+  for (std::size_t k = 0; k + 1 < spec.profile.size(); ++k) {
+    const auto& p = spec.profile[k];
+    const auto& q = spec.profile[k + 1];
+    const auto& instance = object->collision[k];
+    const auto& g = *instance.geometry;
+    const double h = q.z - p.z;
+    if (p.r == q.r) {
+      ++cylinders;
+      ASSERT_EQ(g.type(), GeometryType::kCylinder) << k;
+      EXPECT_NEAR(g.parameters()[0], p.r, 1e-15) << k;
+      EXPECT_NEAR(g.parameters()[1], h, 1e-15) << k;
+    } else {
+      ++frusta;
+      ASSERT_EQ(g.type(), GeometryType::kFrustum) << k;
+      EXPECT_NEAR(g.parameters()[0], p.r, 1e-15) << k;
+      EXPECT_NEAR(g.parameters()[1], q.r, 1e-15) << k;
+      EXPECT_NEAR(g.parameters()[2], h, 1e-15) << k;
+    }
+    // Centred on the segment: from the bottom (z = p.z) to the top (z = q.z) in the object.
+    EXPECT_TRUE(instance.X_frame_geometry.linear().isIdentity(1e-12)) << k;
+    EXPECT_NEAR(instance.X_frame_geometry.translation().z(), (p.z + q.z) / 2.0, 1e-15) << k;
+    EXPECT_NEAR(instance.X_frame_geometry.translation().head<2>().norm(), 0.0, 1e-15) << k;
+    EXPECT_NEAR(g.bounds().min.z() + instance.X_frame_geometry.translation().z(), p.z, 1e-12);
+    EXPECT_NEAR(g.bounds().max.z() + instance.X_frame_geometry.translation().z(), q.z, 1e-12);
+  }
+  EXPECT_GE(cylinders, 1);
+  EXPECT_GE(frusta, 1);
 }
 
 TEST(ObjectWriter, WritesIdenticalBytesEveryRun) {
