@@ -273,6 +273,39 @@ TEST(GeneratedDatabase, SameSeedSameBytesWhateverTheThreadsAndAResumeRedoesOnlyW
   EXPECT_THROW(gen::generateDatabase(scenes, other), std::runtime_error);
 }
 
+// The canister (object 12) lies on its lid, 4 mm wider than its body: on true cylinders it rolls
+// in a circle (a neutral equilibrium) and never comes to rest in an undamped settle. The second,
+// damped settle (rolling resistance) brings it to rest on the table; without it the scene fails.
+TEST(GeneratedDatabase, ALyingCanisterThatRollsSettlesWithRollingDamping) {
+  visgrab::test::TempDir tmp;
+  const std::vector<db::SceneConditions> scenes{
+      db::SceneConditions::single(db::Texture::kPlain, 12, 7)};
+  auto undamped = optionsFor(tmp.path() / "undamped", 1);
+  undamped.seed = 1;
+  undamped.maxAttempts = 1;
+  undamped.rollingDamping = 0.0;
+  const auto failed = gen::generateDatabase(scenes, undamped);
+  ASSERT_EQ(failed.generated, 0);
+  ASSERT_EQ(failed.failures.size(), 1u);
+  EXPECT_NE(failed.failures[0].find("not at rest"), std::string::npos) << failed.failures[0];
+
+  auto damped = undamped;
+  damped.out = tmp.path() / "damped";
+  damped.rollingDamping = gen::GeneratorOptions{}.rollingDamping;
+  const auto made = gen::generateDatabase(scenes, damped);
+  ASSERT_EQ(made.generated, 1) << (made.failures.empty() ? "" : made.failures[0]);
+  // Lying: the canister's axis is horizontal, its lowest point on the table.
+  const db::Database database = db::Database::open(damped.out);
+  const auto& entry = database.list().front();
+  ASSERT_EQ(entry.groundTruth.size(), 1u);
+  const Transform3D& X = entry.groundTruth[0].X_WO;
+  EXPECT_LT(std::abs(X.linear().col(2).z()), 0.1);
+  // The scene file keeps no damping: trials run without it.
+  std::ifstream dwc(entry.dynamicWorkcell);
+  const std::string text((std::istreambuf_iterator<char>(dwc)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(text.find("Damping"), std::string::npos);
+}
+
 TEST(GeneratedDatabase, UnusableInputsAreClearErrors) {
   visgrab::test::TempDir tmp;
   const std::vector<db::SceneConditions> scenes{
