@@ -21,6 +21,9 @@ using rw::math::Vector3D;
 
 constexpr double kRegularisation = 1e-5;  // m per rad (or m per m) towards the seed
 constexpr int kMaxIterations = 200;
+// Refits (placement candidates) start from a solution a few millimetres away: a smaller bound
+// keeps unreachable candidates (fingers too short after a back-off) from iterating long.
+constexpr int kMaxRefitIterations = 40;
 constexpr double kErrorPenalty = 10.0;        // m of clearance per m of position error
 constexpr double kBasinDirectionGain = 10.0;  // direction weight of the first phase / described
 constexpr double kMaxRotationStep = 0.5;      // rad
@@ -174,14 +177,14 @@ class Solver {
         approach_(approach) {}
 
   double solve(Transform3D& X_W_base, Q& q, const std::vector<Target>& targets,
-               const std::vector<int>& free, bool moveBase) {
+               const std::vector<int>& free, bool moveBase, int maxIterations = kMaxIterations) {
     const Q qRef = q;
     Eigen::VectorXd r;
     Eigen::VectorXd rTry;
     Eigen::MatrixXd J;
     double cost = model_.evaluate(X_W_base, q, targets, free, qRef, moveBase, approach_, r, &J);
     double lambda = 1e-3;
-    for (int it = 0; it < kMaxIterations && cost > 1e-16; ++it) {
+    for (int it = 0; it < maxIterations && cost > 1e-16; ++it) {
       const Eigen::MatrixXd A = J.transpose() * J;
       const Eigen::VectorXd g = J.transpose() * r;
       Eigen::MatrixXd damped = A;
@@ -404,7 +407,7 @@ std::vector<Target> targetsOf(const std::vector<DesiredContact>& contacts,
 ContactIkResult finishResult(HandModel& model, Solver& solver, const HandGraspSetup& setup,
                              const std::vector<Target>& targets, const Vector3D& approach,
                              int grasp, const Transform3D& X_W_base, const Q& qContact,
-                             double backoff) {
+                             double backoff, int maxIterations = kMaxIterations) {
   const ContactIkSettings& ik = *setup.contactIk();
   const IkGrasp& g = ik.grasps[static_cast<std::size_t>(grasp)];
   const Errors e = measure(model, ik, X_W_base, qContact, targets, approach);
@@ -423,7 +426,7 @@ ContactIkResult finishResult(HandModel& model, Solver& solver, const HandGraspSe
   for (Target& t : backed) t.position -= backoff * t.direction;
   Transform3D X = X_W_base;
   result.qOpen = qContact;
-  if (backoff > 0.0) solver.solve(X, result.qOpen, backed, g.joints, false);
+  if (backoff > 0.0) solver.solve(X, result.qOpen, backed, g.joints, false, maxIterations);
   result.qClosed = result.qOpen + g.closeOffset;
   result.tauMax = setup.tauRule().evaluate(result.qOpen);
   return result;
@@ -514,9 +517,9 @@ ContactIkResult refitContactIk(const HandGraspSetup& setup,
   const IkGrasp& g = ik.grasps[static_cast<std::size_t>(solution.grasp)];
   Transform3D X = X_W_base;
   Q q = solution.qContact;
-  solver.solve(X, q, targets, g.joints, false);
-  ContactIkResult r =
-      finishResult(model, solver, setup, targets, a, solution.grasp, X_W_base, q, backoff);
+  solver.solve(X, q, targets, g.joints, false, kMaxRefitIterations);
+  ContactIkResult r = finishResult(model, solver, setup, targets, a, solution.grasp, X_W_base, q,
+                                   backoff, kMaxRefitIterations);
   r.fingerOfContact = solution.fingerOfContact;
   r.attempts = 1;
   if (!r.valid) {

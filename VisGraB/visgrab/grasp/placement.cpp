@@ -92,7 +92,9 @@ Placement placeContactGrasp(const HandGraspSetup& setup,
     return out;
   }
 
-  // Every candidate within the limits and the slack, then in the documented order.
+  // Every candidate within the limits and the slack, then in the documented order. A base
+  // placement (solution, roll, back-off) is refitted at once; its openings share its fingertip
+  // deviation, so their q_open is solved only when they are tested.
   const Vector3D a = approach.normalized();
   const bool twoContacts = contacts.size() == 2;
   const int nSolutions =
@@ -109,6 +111,10 @@ Placement placeContactGrasp(const HandGraspSetup& setup,
       for (int b = 0; b < static_cast<int>(options.approachBackoffs.size()); ++b) {
         Transform3D X = rolled;
         X.translation() -= options.approachBackoffs[static_cast<std::size_t>(b)] * a;
+        const ContactIkResult fitted =
+            (r == 0 && b == 0) ? base
+                               : refitContactIk(setup, contacts, approach, base, X, ik.backoff);
+        if (!fitted.valid || fitted.positionError > limit + 1e-12) continue;
         for (int o = 0; o < static_cast<int>(options.extraOpenings.size()); ++o) {
           Candidate c;
           c.solution = s;
@@ -117,12 +123,8 @@ Placement placeContactGrasp(const HandGraspSetup& setup,
           c.opening = o;
           c.moves = rollMoves(r) + b + o;
           if (c.moves == 0 && s == 0) continue;  // the IK's own choice, tested above
-          const double backoff = ik.backoff + options.extraOpenings[static_cast<std::size_t>(o)];
-          c.ik = (r == 0 && b == 0 && o == 0)
-                     ? base
-                     : refitContactIk(setup, contacts, approach, base, X, backoff);
-          if (!c.ik.valid || c.ik.positionError > limit + 1e-12) continue;
-          c.errorMm = static_cast<long>(std::ceil(c.ik.positionError * 1e3 - 1e-9));
+          c.errorMm = static_cast<long>(std::ceil(fitted.positionError * 1e3 - 1e-9));
+          c.ik = fitted;
           candidates.push_back(std::move(c));
         }
       }
@@ -142,7 +144,13 @@ Placement placeContactGrasp(const HandGraspSetup& setup,
     out.approachBackoff = options.approachBackoffs[static_cast<std::size_t>(c.backoff)];
     out.extraOpening = options.extraOpenings[static_cast<std::size_t>(c.opening)];
   };
-  for (const Candidate& c : candidates) {
+  for (Candidate& c : candidates) {
+    if (c.opening > 0) {
+      // Same base and fingers at the contacts; only q_open is solved again.
+      c.ik =
+          refitContactIk(setup, contacts, approach, c.ik, c.ik.X_W_base,
+                         ik.backoff + options.extraOpenings[static_cast<std::size_t>(c.opening)]);
+    }
     const rwsim::simulator::PlacementCheck check = test(parametersOf(c.ik));
     ++out.tests;
     if (!check.collides) {

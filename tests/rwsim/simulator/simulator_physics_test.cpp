@@ -87,6 +87,16 @@ double slid(const Simulator& sim, const Slope& s, int block) {
   return p.x();  // Ry(+angle) tilts +x downwards
 }
 
+// The acceleration down the slope from the distances slid at 0.2 s and 0.8 s (s = a t^2 / 2
+// from rest), running `sim` to 0.8 s.
+double slideAcceleration(Simulator& sim, const Slope& s, int body) {
+  runUntil(sim, 0.2);
+  const double s1 = slid(sim, s, body);
+  runUntil(sim, 0.8);
+  const double s2 = slid(sim, s, body);
+  return 2.0 * (s2 - s1) / (0.8 * 0.8 - 0.2 * 0.2);
+}
+
 TEST(SimulatorPhysics, BlockStaysOnA20DegreeSlope) {
   const Slope s = slope(20 * kDeg);
   Simulator sim(*s.dwc);
@@ -102,13 +112,8 @@ TEST(SimulatorPhysics, BlockSlidesOnA25DegreeSlope) {
   Simulator sim(*s.dwc);
   const int block = s.dwc->findBody("Block");
   const double expected = kG * (std::sin(angle) - 0.4 * std::cos(angle));
-  runUntil(sim, 0.2);
-  const double s1 = slid(sim, s, block);
-  runUntil(sim, 0.8);
-  const double s2 = slid(sim, s, block);
-  // s = a t^2 / 2 from rest: a from the distance between two times.
-  const double a = 2.0 * (s2 - s1) / (0.8 * 0.8 - 0.2 * 0.2);
-  EXPECT_NEAR(a, expected, 0.1 * expected) << "s(0.2) " << s1 << ", s(0.8) " << s2;
+  const double a = slideAcceleration(sim, s, block);
+  EXPECT_NEAR(a, expected, 0.1 * expected);
 }
 
 // Round bodies on a 2 m slope (mu 0.6, enough for rolling without slip): a body whose inertia
@@ -224,12 +229,8 @@ TEST(SimulatorPhysics, StandingCylinderSlidesAboveTheFrictionAngle) {
   Simulator sim(*s.dwc);
   const int body = s.dwc->findBody("Roller");
   const double expected = kG * (std::sin(angle) - 0.4 * std::cos(angle));
-  runUntil(sim, 0.2);
-  const double s1 = slid(sim, s, body);
-  runUntil(sim, 0.8);
-  const double s2 = slid(sim, s, body);
-  const double a = 2.0 * (s2 - s1) / (0.8 * 0.8 - 0.2 * 0.2);
-  EXPECT_NEAR(a, expected, 0.1 * expected) << "s(0.2) " << s1 << ", s(0.8) " << s2;
+  const double a = slideAcceleration(sim, s, body);
+  EXPECT_NEAR(a, expected, 0.1 * expected);
   RecordProperty("acceleration", std::to_string(a));
   // It slides upright: no tumbling.
   EXPECT_NEAR((s.X_W_slope.linear().transpose() * sim.bodyPose(body).linear()).col(2).z(), 1.0,
