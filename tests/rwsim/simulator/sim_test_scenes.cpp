@@ -92,13 +92,14 @@ void SceneBuilder::addBox(const std::string& name, const Transform3D& X_W, const
 
 void SceneBuilder::addBody(const std::string& name, const Transform3D& X_W,
                            std::shared_ptr<const rw::geometry::Geometry> geometry, double mass,
-                           const Eigen::Matrix3d& inertia) {
+                           const Eigen::Matrix3d& inertia, const Vector3D& cog) {
   const FrameId f = addFrame(*wc_, name, FrameTree::kWorld, FrameType::kMovable, X_W);
   addGeometry(*wc_, f, name + "Geo", Transform3D::Identity(), std::move(geometry));
   pending_->steps.push_back([=](DynamicWorkCell& dwc) {
     Body b = makeBody(name, f, BodyKind::kRigid, "Object");
     b.mass.mass = mass;
     b.mass.inertia = inertia;
+    b.mass.cog = cog;
     dwc.addBody(b);
   });
 }

@@ -27,11 +27,12 @@ class SceneBuilder {
   /// box inertia) with material "Object".
   void addBox(const std::string& name, const rw::math::Transform3D& X_W,
               const rw::math::Vector3D& size, double mass);
-  /// A Movable frame at X_W with `geometry` centred on it; becomes a RigidBody of `mass` and
-  /// `inertia` (about the frame's origin) with material "Object".
+  /// A Movable frame at X_W with `geometry` centred on it; becomes a RigidBody of `mass`, its
+  /// centre of mass at `cog` (in the frame) and `inertia` (about it), with material "Object".
   void addBody(const std::string& name, const rw::math::Transform3D& X_W,
                std::shared_ptr<const rw::geometry::Geometry> geometry, double mass,
-               const Eigen::Matrix3d& inertia);
+               const Eigen::Matrix3d& inertia,
+               const rw::math::Vector3D& cog = rw::math::Vector3D::Zero());
   /// A two-jaw gripper "Gripper": kinematic base at `X_W`, prismatic jaws "Gripper.Left" at
   /// y = -gap and "Gripper.Right" at y = +gap moving towards y = 0 (q > 0 closes), jaw plates of
   /// thickness 0.02 (faces at |y| = gap - 0.01), 0.1 x 0.1, each 0.1 kg; two independent DOF,
