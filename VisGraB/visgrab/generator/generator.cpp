@@ -167,22 +167,6 @@ bool onTable(const Transform3D& X_WO, const TableGeometry& table) {
   return p.z() > -0.01 && std::abs(p.x()) < 0.5 * table.x && std::abs(p.y()) < 0.5 * table.y;
 }
 
-/// `dwcXml` with LinearDamping and AngularDamping `damping` on every RigidBody it declares (the
-/// scene's objects; the hand's bodies come from its included file).
-std::string withObjectDamping(const std::string& dwcXml, double damping) {
-  const std::string value = std::to_string(damping);
-  const std::string properties =
-      "  <Property name=\"LinearDamping\" type=\"float\">" + value +
-      "</Property>\n  <Property name=\"AngularDamping\" type=\"float\">" + value + "</Property>\n";
-  std::string out = dwcXml;
-  constexpr std::string_view kEnd = "</RigidBody>";
-  for (std::size_t at = out.find(kEnd); at != std::string::npos;
-       at = out.find(kEnd, at + properties.size() + kEnd.size())) {
-    out.insert(at, properties);
-  }
-  return out;
-}
-
 /// Makes one scene's files and returns its index record. @throws std::runtime_error when no
 /// placement settles.
 database::SceneRecord makeScene(const database::SceneConditions& scene, const Assets& assets,
@@ -207,9 +191,8 @@ database::SceneRecord makeScene(const database::SceneConditions& scene, const As
   table.x = assets.tables.at(std::string(database::toString(scene.texture))).x;
   table.y = assets.tables.at(std::string(database::toString(scene.texture))).y;
 
-  const std::string dwcXml =
-      sceneDynamicsXml(scene, models, wcFile.filename().string(), toDatabase, layout);
-  database::writeFileAtomically(dwcFile, dwcXml);
+  database::writeFileAtomically(
+      dwcFile, sceneDynamicsXml(scene, models, wcFile.filename().string(), toDatabase, layout));
   std::string reasons;
   std::vector<Transform3D> settled;
   for (int attempt = 0; attempt < options.maxAttempts && settled.empty(); ++attempt) {
@@ -222,7 +205,9 @@ database::SceneRecord makeScene(const database::SceneConditions& scene, const As
     SettleResult result = settle(*dwc, names, options.settle);
     if (result.failure.empty() && !result.atRest && options.rollingDamping > 0.0) {
       const auto damped = rwsim::loaders::loadDynamicWorkCellFromStrings(
-          withObjectDamping(dwcXml, options.rollingDamping), wcXml, dwcFile);
+          sceneDynamicsXml(scene, models, wcFile.filename().string(), toDatabase, layout,
+                           options.rollingDamping),
+          wcXml, dwcFile);
       result = settle(*damped, names, options.settle);
     }
     std::string why;

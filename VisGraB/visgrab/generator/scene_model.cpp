@@ -66,14 +66,16 @@ std::string sceneWorkcellXml(const database::SceneConditions& scene,
 std::string sceneDynamicsXml(const database::SceneConditions& scene,
                              const std::vector<const objects::ObjectModel*>& models,
                              const std::string& workcellFile, const std::string& toDatabase,
-                             const AssetLayout& layout) {
+                             const AssetLayout& layout, double objectDamping) {
   const std::string base = toDatabase + "/";
   std::string text = header(scene, "dynamic workcell");
   text += "<DynamicWorkcell workcell=\"" + workcellFile + "\">\n";
   text += "<Gravity>0 0 -9.81</Gravity>\n";
   text += "<Include file=\"" + base + layout.materials + "\"/>\n";
   text += "<FixedBody frame=\"Table\">\n  <MaterialID>Table</MaterialID>\n</FixedBody>\n";
-  for (const auto* model : models) text += objects::objectBodyXml(*model);
+  for (const auto* model : models) {
+    text += objects::objectBodyXml(*model, "Object", objectDamping);
+  }
   text += "<Include file=\"" + base + layout.hand + "/sdh_dynamics.dwc.xml\"/>\n";
   return text + "</DynamicWorkcell>\n";
 }

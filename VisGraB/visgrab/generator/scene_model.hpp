@@ -54,11 +54,12 @@ std::string sceneWorkcellXml(const database::SceneConditions& scene,
                              const rw::math::Transform3D& X_W_handMount = defaultHandParking());
 
 /// The text of a scene's dynamic workcell (.dwc.xml) for `workcellFile` (its name, in the same
-/// folder): gravity, the materials, the table fixed, each object a rigid body, the hand.
+/// folder): gravity, the materials, the table fixed, each object a rigid body (with ODE
+/// damping `objectDamping` when > 0: the generator's second settle), the hand.
 std::string sceneDynamicsXml(const database::SceneConditions& scene,
                              const std::vector<const objects::ObjectModel*>& models,
                              const std::string& workcellFile, const std::string& toDatabase,
-                             const AssetLayout& layout = {});
+                             const AssetLayout& layout = {}, double objectDamping = 0.0);
 
 /// The relative path from folder `from` to folder `to` with '/' separators ("." if equal).
 std::string relativeFolder(const std::filesystem::path& from, const std::filesystem::path& to);

@@ -421,7 +421,7 @@ ContactIkResult finishResult(HandModel& model, Solver& solver, const HandGraspSe
   result.directionError = e.direction;
   result.approachError = e.approach;
   result.grasp = grasp;
-  result.fingerOfContact.assign(targets.size(), -1);
+  for (const Target& t : targets) result.fingerOfContact.push_back(t.fingertip);
   std::vector<Target> backed = targets;
   for (Target& t : backed) t.position -= backoff * t.direction;
   Transform3D X = X_W_base;
@@ -469,9 +469,8 @@ std::vector<ContactIkResult> contactIkSolutions(const HandGraspSetup& setup,
   }
   // Best first (stable: ties keep the order of attempts), then distinct valid solutions only,
   // or the single best attempt when none is valid.
-  std::stable_sort(attempts.begin(), attempts.end(), [](const Attempt& x, const Attempt& y) {
-    return better(x, y) && !better(y, x);
-  });
+  std::stable_sort(attempts.begin(), attempts.end(),
+                   [](const Attempt& x, const Attempt& y) { return better(x, y); });
   std::vector<const Attempt*> chosen;
   for (const Attempt& at : attempts) {
     if (!chosen.empty() && !at.valid) break;
@@ -486,7 +485,6 @@ std::vector<ContactIkResult> contactIkSolutions(const HandGraspSetup& setup,
   for (const Attempt* at : chosen) {
     ContactIkResult r = finishResult(model, solver, setup, at->targets, a, at->grasp, at->X_W_base,
                                      at->q, ik.backoff);
-    r.fingerOfContact = at->fingerOfContact;
     r.attempts = tried;
     if (!r.valid) r.reason = describeFailure(*at, ik);
     results.push_back(std::move(r));
@@ -520,7 +518,6 @@ ContactIkResult refitContactIk(const HandGraspSetup& setup,
   solver.solve(X, q, targets, g.joints, false, kMaxRefitIterations);
   ContactIkResult r = finishResult(model, solver, setup, targets, a, solution.grasp, X_W_base, q,
                                    backoff, kMaxRefitIterations);
-  r.fingerOfContact = solution.fingerOfContact;
   r.attempts = 1;
   if (!r.valid) {
     char buffer[160];

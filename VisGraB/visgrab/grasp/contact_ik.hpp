@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "rw/math/types.hpp"
+#include "rwsim/simulator/grasp_trial.hpp"
 #include "visgrab/grasp/grasp_request.hpp"
 #include "visgrab/grasp/hand_grasp_setup.hpp"
 
@@ -39,6 +40,9 @@ struct ContactIkResult {
   std::vector<int> fingerOfContact;
   /// Number of solver runs made.
   int attempts = 0;
+
+  /// The grasp to simulate: X_W_tcp, qOpen, qClosed and tauMax.
+  rwsim::simulator::GraspParameters parameters() const { return {X_W_tcp, qOpen, qClosed, tauMax}; }
 };
 
 /// Contact inverse kinematics (paper §2.3.1), this project's own design:

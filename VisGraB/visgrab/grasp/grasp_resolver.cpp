@@ -35,14 +35,15 @@ std::string checkQ(const Q& q, std::string_view name, const HandGraspSetup& setu
   return {};
 }
 
-ResolvedGrasp ok(const rw::math::Transform3D& X_W_tcp, Q qOpen, Q qClosed, Q tauMax) {
+ResolvedGrasp ok(rwsim::simulator::GraspParameters parameters) {
   ResolvedGrasp out;
   out.status = ResolveStatus::kOk;
-  out.parameters.X_W_tcp = X_W_tcp;
-  out.parameters.qOpen = std::move(qOpen);
-  out.parameters.qClosed = std::move(qClosed);
-  out.parameters.tauMax = std::move(tauMax);
+  out.parameters = std::move(parameters);
   return out;
+}
+
+ResolvedGrasp ok(const rw::math::Transform3D& X_W_tcp, Q qOpen, Q qClosed, Q tauMax) {
+  return ok({X_W_tcp, std::move(qOpen), std::move(qClosed), std::move(tauMax)});
 }
 
 ResolvedGrasp resolveContacts(const GraspRequest& r, const HandGraspSetup& setup,
@@ -56,7 +57,7 @@ ResolvedGrasp resolveContacts(const GraspRequest& r, const HandGraspSetup& setup
   }
   ContactIkResult& ik = solutions.front();
   if (!ik.valid || scene == nullptr) {
-    ResolvedGrasp out = ok(ik.X_W_tcp, ik.qOpen, ik.qClosed, ik.tauMax);
+    ResolvedGrasp out = ok(ik.parameters());
     if (!ik.valid) {
       out.status = ResolveStatus::kInvalidContacts;
       out.message = where(r) + ik.reason;
@@ -66,8 +67,7 @@ ResolvedGrasp resolveContacts(const GraspRequest& r, const HandGraspSetup& setup
   }
   Placement placement =
       placeContactGrasp(setup, r.contacts, r.approach, solutions, *scene, options);
-  ResolvedGrasp out =
-      ok(placement.ik.X_W_tcp, placement.ik.qOpen, placement.ik.qClosed, placement.ik.tauMax);
+  ResolvedGrasp out = ok(placement.ik.parameters());
   if (!placement.found) {
     char buffer[128];
     std::snprintf(buffer, sizeof(buffer),

@@ -13,15 +13,6 @@ namespace {
 using rw::math::Transform3D;
 using rw::math::Vector3D;
 
-rwsim::simulator::GraspParameters parametersOf(const ContactIkResult& ik) {
-  rwsim::simulator::GraspParameters g;
-  g.X_W_tcp = ik.X_W_tcp;
-  g.qOpen = ik.qOpen;
-  g.qClosed = ik.qClosed;
-  g.tauMax = ik.tauMax;
-  return g;
-}
-
 // A candidate: indices into the solutions and the three option lists, and its fingers.
 struct Candidate {
   int solution = 0;
@@ -84,7 +75,7 @@ Placement placeContactGrasp(const HandGraspSetup& setup,
   const ContactIkSettings& ik = *setup.contactIk();
   Placement out;
   out.ik = solutions.front();
-  out.check = test(parametersOf(out.ik));
+  out.check = test(out.ik.parameters());
   out.tests = 1;
   out.candidates = 1;
   if (!out.check.collides) {
@@ -151,7 +142,7 @@ Placement placeContactGrasp(const HandGraspSetup& setup,
           refitContactIk(setup, contacts, approach, c.ik, c.ik.X_W_base,
                          ik.backoff + options.extraOpenings[static_cast<std::size_t>(c.opening)]);
     }
-    const rwsim::simulator::PlacementCheck check = test(parametersOf(c.ik));
+    const rwsim::simulator::PlacementCheck check = test(c.ik.parameters());
     ++out.tests;
     if (!check.collides) {
       take(c, check);

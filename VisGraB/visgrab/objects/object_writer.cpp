@@ -159,7 +159,7 @@ std::string objectFrameXml(const ObjectModel& model, const std::string& meshPref
   return text + "</Frame>\n";
 }
 
-std::string objectBodyXml(const ObjectModel& model, const std::string& material) {
+std::string objectBodyXml(const ObjectModel& model, const std::string& material, double damping) {
   const auto& m = model.mass;
   const Eigen::Matrix3d I = m.inertia;
   std::string inertia;
@@ -169,7 +169,12 @@ std::string objectBodyXml(const ObjectModel& model, const std::string& material)
   return "<RigidBody frame=\"" + model.name + "\">\n  <Mass>" + number(m.mass) +
          "</Mass>\n  <Integrator>Euler</Integrator>\n  <MaterialID>" + material +
          "</MaterialID>\n  <COG>" + numbers(m.cog) + "</COG>\n  <Inertia>" + inertia +
-         "</Inertia>\n</RigidBody>\n";
+         "</Inertia>\n" +
+         (damping > 0.0 ? "  <Property name=\"LinearDamping\" type=\"float\">" + number(damping) +
+                              "</Property>\n  <Property name=\"AngularDamping\" type=\"float\">" +
+                              number(damping) + "</Property>\n"
+                        : std::string()) +
+         "</RigidBody>\n";
 }
 
 void writeBinaryStl(const rw::geometry::TriMesh& mesh, const fs::path& file) {

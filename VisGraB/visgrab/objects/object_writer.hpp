@@ -41,8 +41,10 @@ std::string objectFrameXml(
     const rw::math::Transform3D& X_parent = rw::math::Transform3D::Identity());
 
 /// Dynamic workcell XML of the object's RigidBody: Mass, Integrator Euler, MaterialID
-/// `material`, COG and the full inertia about the COG (9 numbers, row-major).
-std::string objectBodyXml(const ObjectModel& model, const std::string& material = "Object");
+/// `material`, COG and the full inertia about the COG (9 numbers, row-major); with `damping`
+/// > 0 also the LinearDamping and AngularDamping properties (ODE's per-step scale).
+std::string objectBodyXml(const ObjectModel& model, const std::string& material = "Object",
+                          double damping = 0.0);
 
 /// Writes `dir/<name>/`: the OBJ, MTL and PNG textures, the STLs of the mesh pieces, and the
 /// example
