@@ -205,27 +205,28 @@ bool featureContacts(const Feature& fa, const std::vector<Vector3D>& pa, const F
   return added;
 }
 
-/// A piece's GJK core: the shape, where its centre is in the piece's frame, and how far it is
-/// grown to give the piece.
+/// A piece's GJK core: the shape, where its centre is in the piece's frame, how far it is
+/// grown to give the (rounded) piece, and how far the piece reaches beyond it at most.
 struct Core {
   ConvexShape shape;
   Vector3D offset;
   double rounding;
+  double reach;
 };
 
 Core coreOf(const ConvexPiece& piece) {
   if (piece.round != nullptr) {
     return {piece.round->core(), Vector3D(0.0, 0.0, piece.round->coreOffset()),
-            piece.round->rounding()};
+            piece.round->rounding(), piece.round->reach()};
   }
   if (piece.polytope != nullptr) {
     const PolytopeView v = piece.polytope->view();
     return {v.adjacencyOffsets.empty()
                 ? ConvexShape::hull(v.vertices)
                 : ConvexShape::hull(v.vertices, {v.adjacencyOffsets, v.adjacency, v.anchors}),
-            Vector3D::Zero(), 0.0};
+            Vector3D::Zero(), 0.0, 0.0};
   }
-  return {ConvexShape::sphere(0.0), Vector3D::Zero(), piece.sphereRadius};
+  return {ConvexShape::sphere(0.0), Vector3D::Zero(), piece.sphereRadius, piece.sphereRadius};
 }
 
 const Polytope* polytopeOf(const ConvexPiece& piece) {
@@ -277,9 +278,9 @@ void roundPairContacts(const ConvexPiece& a, const ConvexPiece& b, const Transfo
   const Rotation3D R = X_ab.linear();
   Transform3D X_core = X_ab;
   X_core.translation() = R * cb.offset + X_ab.translation() - ca.offset;
-  const double rounding = ca.rounding + cb.rounding;
+  // Cores farther apart than the margin plus both reaches leave the shapes apart.
   const rw::proximity::GjkResult g =
-      rw::proximity::gjkDistance(ca.shape, cb.shape, X_core, 0.0, margin + 2.0 * rounding);
+      rw::proximity::gjkDistance(ca.shape, cb.shape, X_core, 0.0, margin + ca.reach + cb.reach);
   if (g.exceeded) return;
   if (g.distance <= kCoreTouch) {
     deepContacts(a, b, X_ab, margin, ws, out);

@@ -63,9 +63,20 @@ std::vector<Index> planarHull(const std::vector<Eigen::Vector2d>& q) {
 /// the shape's half height or radius) fall back to the tessellation.
 constexpr double kMaxRounding = 0.002;
 
+/// Distance of point p from the segment [a, b] (in a meridian plane: radius, height).
+double distanceToSegment(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
+                         const Eigen::Vector2d& b) {
+  const Eigen::Vector2d ab = b - a;
+  const double t =
+      ab.squaredNorm() > 0.0 ? std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
+  return (p - (a + t * ab)).norm();
+}
+
 /// The core of a frustum (radii bottom, top over z in [-h, h]) shrunk by `rounding` (every
 /// face moved inwards by it, the part near a cone's apex cut off where the shrunk side passes
-/// the axis): its ConvexShape and centre height.
+/// the axis): its ConvexShape, centre height and how far the frustum reaches beyond it. Both
+/// are solids of revolution, so that reach is the larger distance of the frustum's two rim
+/// corners (or apex) from the core's profile in a meridian plane.
 RoundCore frustumCore(double bottom, double top, double h, double rounding) {
   const double height = 2.0 * h;
   const double slope = (top - bottom) / height;
@@ -75,9 +86,21 @@ RoundCore frustumCore(double bottom, double top, double h, double rounding) {
   double zhi = h - rounding;
   if (shrunk(zlo) < 0.0) zlo = -h + (inset - bottom) / slope;
   if (shrunk(zhi) < 0.0) zhi = -h + (inset - bottom) / slope;
-  return {rw::proximity::ConvexShape::frustum(std::max(0.0, shrunk(zlo)),
-                                              std::max(0.0, shrunk(zhi)), 0.5 * (zhi - zlo)),
-          0.5 * (zlo + zhi)};
+  const double rlo = std::max(0.0, shrunk(zlo));
+  const double rhi = std::max(0.0, shrunk(zhi));
+  const std::array<Eigen::Vector2d, 4> profile{Eigen::Vector2d(0.0, zlo), Eigen::Vector2d(rlo, zlo),
+                                               Eigen::Vector2d(rhi, zhi),
+                                               Eigen::Vector2d(0.0, zhi)};
+  double reach = rounding;
+  for (const Eigen::Vector2d& corner : {Eigen::Vector2d(bottom, -h), Eigen::Vector2d(top, h)}) {
+    double d = std::numeric_limits<double>::infinity();
+    for (std::size_t k = 0; k < profile.size(); ++k) {
+      d = std::min(d, distanceToSegment(corner, profile[k], profile[(k + 1) % profile.size()]));
+    }
+    reach = std::max(reach, d);
+  }
+  return {rw::proximity::ConvexShape::frustum(rlo, rhi, 0.5 * (zhi - zlo)), 0.5 * (zlo + zhi),
+          reach};
 }
 
 double roundingOf(double bottom, double top, double h) {
@@ -114,10 +137,6 @@ RoundShape::RoundShape(double bottom, double top, double halfHeight, Polytope te
       rounding_(roundingOf(bottom, top, halfHeight)),
       core_(frustumCore(bottom, top, halfHeight, rounding_)),
       polytope_(std::move(tessellation)) {}
-
-double RoundShape::radiusAt(double z) const {
-  return bottom_ + (top_ - bottom_) * (z + halfHeight_) / (2.0 * halfHeight_);
-}
 
 Vector3D RoundShape::support(const Vector3D& d) const {
   const double planar = std::hypot(d.x(), d.y());

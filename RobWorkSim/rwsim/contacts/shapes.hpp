@@ -40,6 +40,9 @@ struct RoundCore {
   rw::proximity::ConvexShape shape;
   /// Height of its centre.
   double offset = 0.0;
+  /// Largest distance of a point of the frustum from the core (m): the rounding at a cap, more
+  /// at a rim or apex sharper than a right angle (rounding / sin(half its angle)).
+  double reach = 0.0;
 };
 
 /// A solid frustum about the z axis from z = -h to z = +h (a cylinder when the radii are equal,
@@ -58,8 +61,6 @@ class RoundShape final : public ContactShape {
   double topRadius() const { return top_; }
   /// Half the height.
   double halfHeight() const { return halfHeight_; }
-  /// Radius at height z (linear between the caps).
-  double radiusAt(double z) const;
   /// The point of the frustum farthest along `d` (the top or bottom rim, or a cap's centre).
   rw::math::Vector3D support(const rw::math::Vector3D& d) const;
   /// The core (see the class comment), centred at (0, 0, coreOffset()).
@@ -68,6 +69,8 @@ class RoundShape final : public ContactShape {
   double coreOffset() const { return core_.offset; }
   /// How far the core is grown to give the rounded frustum (m).
   double rounding() const { return rounding_; }
+  /// Largest distance of a point of the frustum from its core (m; see RoundCore::reach).
+  double reach() const { return core_.reach; }
   /// The tessellation.
   const Polytope& polytope() const { return polytope_; }
   /// Bounding box.

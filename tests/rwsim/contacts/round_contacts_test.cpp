@@ -141,6 +141,22 @@ TEST(RoundContacts, ConeStandsOnItsApexOrOnItsBaseRim) {
   }
 }
 
+TEST(RoundContacts, SlenderConeOnItsApexTouchesABoxAtOnce) {
+  // A slender cone (base r 2 cm, 10 cm tall: apex angle 2 atan(0.2) = 22.6 deg) reaches past its
+  // shrunk core by rounding / sin(11.3 deg) = 5.1 roundings at the apex. Standing on its apex on
+  // a box, it touches there as soon as it overlaps, as on a half-space.
+  const double h = 0.1;
+  const auto cone = Geometry::cone(0.02, h);
+  for (const double pen : {kPen, 0.003}) {
+    const auto c = contacts(*Geometry::box(1, 1, 0.1), pose({0, 0, -0.05}), *cone,
+                            pose({0.1, 0, h / 2 - pen}));
+    ASSERT_EQ(c.size(), 1u) << "penetration " << pen;
+    expectAllNormals(c, Vector3D::UnitZ());
+    EXPECT_NEAR(c[0].depth, pen, 1e-9);
+    EXPECT_VECTOR_NEAR(c[0].position, Vector3D(0.1, 0, -pen / 2), 1e-9);
+  }
+}
+
 TEST(RoundContacts, FrustumStandsOnItsBottomRimAndLiesOnItsSideLine) {
   // Radii 0.04 (bottom, -h/2) and 0.02 (top), h 0.1: the side line rises at atan(0.02 / 0.1).
   const double h = 0.1;
