@@ -121,32 +121,6 @@ std::shared_ptr<const TriMesh> tessellateSphere(double r) {
   return b.finish();
 }
 
-std::shared_ptr<const TriMesh> tessellateCylinder(double r, double h) {
-  MeshBuilder b;
-  const Index bottom = b.ring(r, -h / 2);
-  const Index top = b.ring(r, h / 2);
-  const Index bottomCentre = b.vertex(0, 0, -h / 2);
-  const Index topCentre = b.vertex(0, 0, h / 2);
-  for (Index i = 0; i < kRoundSegments; ++i) {
-    b.quad(around(bottom, i), around(bottom, i + 1), around(top, i + 1), around(top, i));
-    b.triangle(topCentre, around(top, i), around(top, i + 1));
-    b.triangle(bottomCentre, around(bottom, i + 1), around(bottom, i));
-  }
-  return b.finish();
-}
-
-std::shared_ptr<const TriMesh> tessellateCone(double r, double h) {
-  MeshBuilder b;
-  const Index apex = b.vertex(0, 0, -h / 2);
-  const Index base = b.ring(r, h / 2);
-  const Index baseCentre = b.vertex(0, 0, h / 2);
-  for (Index i = 0; i < kRoundSegments; ++i) {
-    b.triangle(apex, around(base, i + 1), around(base, i));
-    b.triangle(baseCentre, around(base, i), around(base, i + 1));
-  }
-  return b.finish();
-}
-
 std::shared_ptr<const TriMesh> tessellateFrustum(double bottom, double top, double h) {
   MeshBuilder b;
   // A zero radius is a single apex vertex; its ring indices all map to it.
@@ -323,15 +297,15 @@ std::shared_ptr<const Geometry> Geometry::sphere(double radius) {
 std::shared_ptr<const Geometry> Geometry::cylinder(double radius, double height) {
   requirePositive("Cylinder", "radius", radius);
   requirePositive("Cylinder", "height", height);
-  return std::shared_ptr<const Geometry>(new Geometry(GeometryType::kCylinder, {radius, height},
-                                                      tessellateCylinder(radius, height), {}));
+  return std::shared_ptr<const Geometry>(new Geometry(
+      GeometryType::kCylinder, {radius, height}, tessellateFrustum(radius, radius, height), {}));
 }
 
 std::shared_ptr<const Geometry> Geometry::cone(double radius, double height) {
   requirePositive("Cone", "radius", radius);
   requirePositive("Cone", "height", height);
-  return std::shared_ptr<const Geometry>(
-      new Geometry(GeometryType::kCone, {radius, height}, tessellateCone(radius, height), {}));
+  return std::shared_ptr<const Geometry>(new Geometry(GeometryType::kCone, {radius, height},
+                                                      tessellateFrustum(0.0, radius, height), {}));
 }
 
 std::shared_ptr<const Geometry> Geometry::frustum(double bottomRadius, double topRadius,

@@ -38,9 +38,9 @@ ConvexShape ConvexShape::hull(std::span<const Vector3D> points, const HullGraph&
 
 namespace {
 
-// Point of a disk of `radius` (at height z, normal z) farthest along d.
-Vector3D diskSupport(const Vector3D& d, double radius, double z) {
-  const double planar = std::hypot(d.x(), d.y());
+// Point of a disk of `radius` (at height z, normal z) farthest along d, whose length in the
+// disk's plane is `planar`.
+Vector3D diskSupport(const Vector3D& d, double planar, double radius, double z) {
   if (planar <= 0.0) return Vector3D(0.0, 0.0, z);
   const double s = radius / planar;
   return Vector3D(d.x() * s, d.y() * s, z);
@@ -100,15 +100,17 @@ Vector3D ConvexShape::support(const Vector3D& d, std::int32_t& hint) const {
       return Vector3D(d.x() < 0.0 ? -dims_.x() : dims_.x(), d.y() < 0.0 ? -dims_.y() : dims_.y(),
                       d.z() < 0.0 ? -dims_.z() : dims_.z());
     case Kind::kCylinder:
-      return diskSupport(d, dims_.x(), d.z() < 0.0 ? -dims_.z() : dims_.z());
+      return diskSupport(d, std::hypot(d.x(), d.y()), dims_.x(),
+                         d.z() < 0.0 ? -dims_.z() : dims_.z());
     case Kind::kCone: {
-      const Vector3D rim = diskSupport(d, dims_.x(), dims_.z());
+      const Vector3D rim = diskSupport(d, std::hypot(d.x(), d.y()), dims_.x(), dims_.z());
       const Vector3D apex(0.0, 0.0, -dims_.z());
       return rim.dot(d) >= apex.dot(d) ? rim : apex;
     }
     case Kind::kFrustum: {
-      const Vector3D top = diskSupport(d, dims_.y(), dims_.z());
-      const Vector3D bottom = diskSupport(d, dims_.x(), -dims_.z());
+      const double planar = std::hypot(d.x(), d.y());
+      const Vector3D top = diskSupport(d, planar, dims_.y(), dims_.z());
+      const Vector3D bottom = diskSupport(d, planar, dims_.x(), -dims_.z());
       return top.dot(d) >= bottom.dot(d) ? top : bottom;
     }
     case Kind::kHull:

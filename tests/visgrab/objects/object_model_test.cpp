@@ -2,8 +2,8 @@
 
 #include <cmath>
 #include <cstdlib>
-#include <iostream>
 #include <numbers>
+#include <sstream>
 
 #include <Eigen/Eigenvalues>
 
@@ -293,12 +293,10 @@ TEST(ObjectModel, LatheSegmentsAreCylindersAndFrusta) {
     EXPECT_EQ(model.mass.mass, o.mass);
     EXPECT_LT((model.mass.cog - old.cog).norm(), 1e-4) << o.name;
     EXPECT_LT((model.mass.inertia - old.inertia).norm() / old.inertia.norm(), 0.01) << o.name;
-    if (o.name == "cocacola" || o.name == "waterjug" ||
-        std::getenv("VISGRAB_PRINT_INERTIA") != nullptr) {
-      std::cout << o.name << ": Ixx Iyy Izz " << model.mass.inertia.diagonal().transpose()
-                << " (32-gon " << old.inertia.diagonal().transpose() << "), cog z "
-                << model.mass.cog.z() << " (" << old.cog.z() << ")\n";
-    }
+    std::ostringstream inertia;
+    inertia << model.mass.inertia.diagonal().transpose() << " (32-gon "
+            << old.inertia.diagonal().transpose() << ")";
+    RecordProperty(o.name + "_inertia", inertia.str());
   }
   EXPECT_GE(lathes, 10);
 }
