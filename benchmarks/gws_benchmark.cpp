@@ -200,14 +200,7 @@ BENCHMARK(BM_Gws_TrialQualitiesWholeHull)->Unit(benchmark::kMillisecond);
 // What a trial computed before the paper's column: unit forces only, whole hull.
 void BM_Gws_TrialUnitOnlyWholeHull(benchmark::State& state) {
   runHeld(state, [](const HeldGrasp& g) {
-    std::vector<Contact3D> c3;
-    for (const auto& c : g.contacts) {
-      Contact3D x;
-      x.position = c.position;
-      x.normal = c.normal;
-      x.mu = c.mu;
-      c3.push_back(x);
-    }
+    const std::vector<Contact3D> c3 = rwsim::simulator::toContacts3D(g.contacts);
     rw::graspplanning::GwsOptions options;
     options.hull = rw::graspplanning::GwsHull::kWhole;
     return rw::graspplanning::gwsEpsilon(c3, g.cog, g.r, options).epsilon;

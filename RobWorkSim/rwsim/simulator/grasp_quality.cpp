@@ -2,15 +2,11 @@
 
 namespace rwsim::simulator {
 
-GwsQualities gwsQualities(const std::vector<TrialContact>& contacts, const rw::math::Vector3D& cog,
-                          double r, const GwsQualityOptions& options) {
-  namespace gp = rw::graspplanning;
-  GwsQualities q;
-  if (contacts.empty() || !(r > 0.0)) return q;
-  std::vector<gp::Contact3D> c3;
+std::vector<rw::graspplanning::Contact3D> toContacts3D(const std::vector<TrialContact>& contacts) {
+  std::vector<rw::graspplanning::Contact3D> c3;
   c3.reserve(contacts.size());
   for (const TrialContact& c : contacts) {
-    gp::Contact3D x;
+    rw::graspplanning::Contact3D x;
     x.position = c.position;
     x.normal = c.normal;
     x.mu = c.mu;
@@ -18,16 +14,23 @@ GwsQualities gwsQualities(const std::vector<TrialContact>& contacts, const rw::m
     x.force = c.force;
     c3.push_back(x);
   }
-  gp::GwsOptions paper;
-  paper.coneEdges = options.coneEdges;
-  paper.force = gp::GwsForce::kMeasuredForce;
-  paper.duplicateBelow = options.duplicateBelow;
-  paper.hull = options.hull;
-  q.qGws = gp::gwsEpsilon(c3, cog, r, paper).epsilon;
+  return c3;
+}
+
+GwsQualities gwsQualities(const std::vector<TrialContact>& contacts, const rw::math::Vector3D& cog,
+                          double r, const GwsQualityOptions& options) {
+  namespace gp = rw::graspplanning;
+  GwsQualities q;
+  if (contacts.empty() || !(r > 0.0)) return q;
+  const std::vector<gp::Contact3D> c3 = toContacts3D(contacts);
   gp::GwsOptions unit;
   unit.coneEdges = options.coneEdges;
   unit.force = gp::GwsForce::kUnitNormal;
   unit.hull = options.hull;
+  gp::GwsOptions paper = unit;
+  paper.force = gp::GwsForce::kMeasuredForce;
+  paper.duplicateBelow = options.duplicateBelow;
+  q.qGws = gp::gwsEpsilon(c3, cog, r, paper).epsilon;
   q.qGwsUnit = gp::gwsEpsilon(c3, cog, r, unit).epsilon;
   return q;
 }

@@ -26,6 +26,10 @@ struct GwsQualities {
   double qGwsUnit = 0.0;
 };
 
+/// The trial's contacts as the grasp-quality library's (position, normal, mu, normal force and
+/// the whole measured force).
+std::vector<rw::graspplanning::Contact3D> toContacts3D(const std::vector<TrialContact>& contacts);
+
 /// Q_GWS and Q_GWS,unit of `contacts` on an object with centre of mass `cog` and largest radius
 /// `r` (torques are scaled by 1/r, paper eq. 6); both 0 without contacts or with r <= 0.
 ///  - qGws (the paper's §2.4.1 as the VisGraB-era simulator computed its tables): each cone is

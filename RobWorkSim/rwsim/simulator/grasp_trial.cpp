@@ -144,12 +144,14 @@ void prepareFrameShapes(const dynamics::DynamicWorkCell& dwc, detail::TrialData&
   }
 }
 
-// Deepest overlap of the geometries of frames a and b (the contact generation's depth, margin 0).
+// Deepest overlap of the geometries of frames a and b (the contact generation's depth, margin 0);
+// `points` is a buffer.
 double penetrationDepth(const detail::TrialData& data, FrameId a, FrameId b,
-                        const rw::kinematics::FKTable& fk) {
+                        const rw::kinematics::FKTable& fk,
+                        std::vector<contacts::ContactPoint>& points) {
   contacts::ContactOptions options;
   options.margin = 0.0;
-  std::vector<contacts::ContactPoint> points;
+  points.clear();
   const Transform3D& X_W_a = fk.worldTransform(a);
   const Transform3D& X_W_b = fk.worldTransform(b);
   for (const FrameShape& sa : data.frameShapes[static_cast<std::size_t>(a.index)]) {
@@ -172,28 +174,35 @@ PlacementCheck checkPlacement(const dynamics::DynamicWorkCell& dwc, const detail
   const auto& tree = dwc.workcell().frames();
   const rw::kinematics::FKTable fk(tree, state);
   PlacementCheck out;
+  FrameId hand;
+  FrameId other;
   double deepestOfKind = -1.0;
+  std::vector<contacts::ContactPoint> points;
   for (const auto& pair : data.collision->collidingPairs(fk)) {
     const bool handA = data.isHandFrame[static_cast<std::size_t>(pair.first.index)];
     const bool handB = data.isHandFrame[static_cast<std::size_t>(pair.second.index)];
     if (handA == handB) continue;
-    const FrameId hand = handA ? pair.first : pair.second;
-    const FrameId other = handA ? pair.second : pair.first;
-    const bool object = data.isObjectFrame[static_cast<std::size_t>(other.index)];
-    const double depth = penetrationDepth(data, hand, other, fk);
+    const FrameId h = handA ? pair.first : pair.second;
+    const FrameId o = handA ? pair.second : pair.first;
+    const bool object = data.isObjectFrame[static_cast<std::size_t>(o.index)];
+    const double depth = penetrationDepth(data, h, o, fk, points);
     out.penetration = std::max(out.penetration, depth);
     if (out.collides && out.withObject && !object) continue;
     if (out.collides && object == out.withObject && depth <= deepestOfKind) continue;
     out.collides = true;
     out.withObject = object;
     deepestOfKind = depth;
-    char mm[64];
-    std::snprintf(mm, sizeof(mm), " by %.1f mm", depth * 1e3);
-    out.detail = "hand frame " + tree.frame(hand).name() + " penetrates " +
-                 (object ? "object frame " : "environment frame ") + tree.frame(other).name() + mm +
-                 (object ? " (RobWork 11 CollisionObjectInitially)"
-                         : " (RobWork 12 CollisionEnvironmentInitially)");
+    hand = h;
+    other = o;
   }
+  if (!out.collides) return out;
+  char mm[64];
+  std::snprintf(mm, sizeof(mm), " by %.1f mm", deepestOfKind * 1e3);
+  out.detail = "hand frame " + tree.frame(hand).name() + " penetrates " +
+               (out.withObject ? "object frame " : "environment frame ") +
+               tree.frame(other).name() + mm +
+               (out.withObject ? " (RobWork 11 CollisionObjectInitially)"
+                               : " (RobWork 12 CollisionEnvironmentInitially)");
   return out;
 }
 

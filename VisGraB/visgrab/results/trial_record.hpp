@@ -29,10 +29,10 @@ struct TrialRecord {
   /// Paper eq. 5 (0 unless held).
   double qLift = 0.0;
   /// Paper eq. 6-7 as the paper's tables computed it: cones on the measured contact forces (0
-  /// unless held; GraspTrialResult::qGws).
+  /// unless held; GraspTrialResult::qGws); NaN (not computed) when read from a version 1
+  /// trials.csv, whose q_gws column was the unit-force value (now qGwsUnit).
   double qGws = 0.0;
-  /// Unit normal forces on the contact normals (0 unless held; GraspTrialResult::qGwsUnit); NaN
-  /// when read from a trials.csv written before this column existed.
+  /// Unit normal forces on the contact normals (0 unless held; GraspTrialResult::qGwsUnit).
   double qGwsUnit = 0.0;
   /// Id (1..18) of the object the hand held or touched most (in a pair: the one grasped, as the
   /// paper reports "the object closest to the hand"); 0 when no object was touched.
