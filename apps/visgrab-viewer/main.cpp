@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "rw/loaders/diagnostic.hpp"
+#include "rw/common/diagnostic.hpp"
 #include "scene_view.hpp"
 #include "viewer_options.hpp"
 #include "viewer_window.hpp"
@@ -111,7 +111,7 @@ int run(int argc, char** argv) {
   } catch (const visgrab::viewer::UsageError& e) {
     std::cerr << "visgrab-viewer: " << e.what() << "\n" << visgrab::viewer::usageLine();
     return 2;
-  } catch (const rw::loaders::LoadError& e) {
+  } catch (const rw::common::LoadError& e) {
     std::cerr << e.what() << "\n";
     return 1;
   }
@@ -152,7 +152,7 @@ int run(int argc, char** argv) {
 int main(int argc, char** argv) {
   try {
     return run(argc, argv);
-  } catch (const rw::loaders::LoadError& e) {
+  } catch (const rw::common::LoadError& e) {
     std::cerr << e.what() << "\n";
     return 1;
   } catch (const std::exception& e) {

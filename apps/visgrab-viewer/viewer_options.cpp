@@ -5,7 +5,7 @@
 #include <string_view>
 #include <system_error>
 
-#include "rw/loaders/diagnostic.hpp"
+#include "rw/common/diagnostic.hpp"
 #include "visgrab/results/results_file.hpp"
 
 namespace visgrab::viewer {
@@ -155,7 +155,7 @@ ViewerData loadViewerData(const ViewerOptions& options) {
   ViewerData data;
   results::RunSources sources;
   if (options.results) {
-    std::vector<rw::loaders::Diagnostic> warnings;
+    std::vector<rw::common::Diagnostic> warnings;
     data.results = results::readResults(*options.results, &warnings);
     for (const auto& w : warnings) data.warnings.push_back(w.format());
     sources = data.results->sources;

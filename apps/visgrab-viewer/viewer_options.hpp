@@ -77,7 +77,7 @@ struct ViewerData {
 
 /// Opens the database, the hand, the grasp files and the results `options` name (the results'
 /// recorded sources fill in what the options leave out).
-/// @throws UsageError when --grasp is given but no grasp files are known; rw::loaders::LoadError
+/// @throws UsageError when --grasp is given but no grasp files are known; rw::common::LoadError
 ///   or std::runtime_error for inputs that cannot be read.
 ViewerData loadViewerData(const ViewerOptions& options);
 

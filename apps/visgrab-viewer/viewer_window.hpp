@@ -44,7 +44,7 @@ class ViewerWindow : public QMainWindow {
   ViewerWindow& operator=(const ViewerWindow&) = delete;
 
   /// Opens the scene with `id` (empty: the database's first scene) and lists its grasps.
-  /// @throws database::UnknownSceneError naming the closest ids; rw::loaders::LoadError or
+  /// @throws database::UnknownSceneError naming the closest ids; rw::common::LoadError or
   ///   std::runtime_error when the scene's files cannot be read.
   void openScene(const std::string& id);
   /// Resolves and replays the open scene's grasp `spec` (an id, or N for the N-th grasp of

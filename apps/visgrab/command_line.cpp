@@ -1,6 +1,6 @@
 #include "command_line.hpp"
 
-#include "rw/loaders/diagnostic.hpp"
+#include "rw/common/diagnostic.hpp"
 
 #include <algorithm>
 #include <cstdlib>
@@ -93,7 +93,7 @@ std::function<int(const std::vector<std::string>&)> guarded(
       return run(args);
     } catch (const UsageError&) {
       throw;
-    } catch (const rw::loaders::LoadError& e) {
+    } catch (const rw::common::LoadError& e) {
       std::cerr << e.what() << "\n";
       return 1;
     } catch (const std::exception& e) {

@@ -75,7 +75,7 @@ int runRender(const std::vector<std::string>& args) {
   // The run's inputs: explicit options first, else what the results folder recorded.
   std::optional<results::RunResults> run;
   if (const auto r = a.option("results")) {
-    std::vector<rw::loaders::Diagnostic> warnings;
+    std::vector<rw::common::Diagnostic> warnings;
     run = results::readResults(*r, &warnings);
     for (const auto& w : warnings) std::cerr << w.format() << "\n";
   }

@@ -9,7 +9,7 @@
 #include <thread>
 
 #include "baseline_commands.hpp"
-#include "rw/loaders/diagnostic.hpp"
+#include "rw/common/diagnostic.hpp"
 #include "visgrab/analysis/report.hpp"
 #include "visgrab/database/scene_filter.hpp"
 #include "visgrab/database/scene_set.hpp"
@@ -112,7 +112,7 @@ int runAnalyze(const std::vector<std::string>& args) {
   if (a.positionals().empty()) throw UsageError("at least one RESULTS folder is required");
   std::vector<results::RunResults> runs;
   for (const auto& dir : a.positionals()) {
-    std::vector<rw::loaders::Diagnostic> warnings;
+    std::vector<rw::common::Diagnostic> warnings;
     runs.push_back(results::readResults(dir, &warnings));
     for (const auto& w : warnings) std::cerr << w.format() << "\n";
   }

@@ -13,7 +13,7 @@
 #include <sstream>
 #include <string>
 
-#include "rw/loaders/diagnostic.hpp"
+#include "rw/common/diagnostic.hpp"
 #include "rw/math/rpy.hpp"
 #include "rwsim/loaders/dynamic_workcell_loader.hpp"
 #include "rwsim/simulator/grasp_trial.hpp"
@@ -43,12 +43,12 @@ std::string vectorText(const Eigen::VectorXd& v, int precision = 6) {
 
 // Loads a dynamic workcell, printing warnings; nullptr (after printing the errors) on failure.
 std::unique_ptr<DynamicWorkCell> load(const std::string& file) {
-  std::vector<rw::loaders::Diagnostic> warnings;
+  std::vector<rw::common::Diagnostic> warnings;
   try {
     auto dwc = rwsim::loaders::loadDynamicWorkCell(file, &warnings);
     for (const auto& w : warnings) std::cerr << w.format() << "\n";
     return dwc;
-  } catch (const rw::loaders::LoadError& e) {
+  } catch (const rw::common::LoadError& e) {
     for (const auto& w : warnings) std::cerr << w.format() << "\n";
     std::cerr << e.what() << "\n";
     return nullptr;

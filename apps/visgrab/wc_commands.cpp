@@ -129,7 +129,7 @@ void printGeometry(const WorkCell& wc) {
             << "\n";
 }
 
-void printWarnings(const std::vector<rw::loaders::Diagnostic>& warnings) {
+void printWarnings(const std::vector<rw::common::Diagnostic>& warnings) {
   for (const auto& w : warnings) std::cerr << w.format() << "\n";
 }
 
@@ -137,11 +137,11 @@ int runInfo(const std::vector<std::string>& args) {
   const Arguments a(args, {});
   a.rejectUnknown({});
   a.requirePositionals(1, "FILE (a .wc.xml workcell)");
-  std::vector<rw::loaders::Diagnostic> warnings;
+  std::vector<rw::common::Diagnostic> warnings;
   std::unique_ptr<WorkCell> wc;
   try {
     wc = rw::loaders::loadWorkCell(a.positionals()[0], &warnings);
-  } catch (const rw::loaders::LoadError& e) {
+  } catch (const rw::common::LoadError& e) {
     printWarnings(warnings);
     std::cerr << e.what() << "\n";
     return 1;
@@ -163,7 +163,7 @@ int runCheck(const std::vector<std::string>& args) {
   std::size_t errors = 0;
   for (const auto& d : diagnostics) {
     std::cerr << d.format() << "\n";
-    if (d.severity == rw::loaders::Diagnostic::Severity::kError) ++errors;
+    if (d.severity == rw::common::Diagnostic::Severity::kError) ++errors;
   }
   const std::size_t warnings = diagnostics.size() - errors;
   std::cout << a.positionals()[0] << ": " << errors << " error(s), " << warnings << " warning(s)\n";

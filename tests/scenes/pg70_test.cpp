@@ -34,7 +34,7 @@ class Pg70 : public ::testing::Test {
   }
 
   std::unique_ptr<WorkCell> wc_;
-  std::vector<rw::loaders::Diagnostic> warnings_;
+  std::vector<rw::common::Diagnostic> warnings_;
 };
 
 TEST_F(Pg70, LoadsWithoutWarnings) {

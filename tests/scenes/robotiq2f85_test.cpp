@@ -34,7 +34,7 @@ class Robotiq2F85 : public ::testing::Test {
   }
 
   std::unique_ptr<rw::models::WorkCell> wc_;
-  std::vector<rw::loaders::Diagnostic> warnings_;
+  std::vector<rw::common::Diagnostic> warnings_;
 };
 
 TEST_F(Robotiq2F85, OneDofFiveDependentJoints) {

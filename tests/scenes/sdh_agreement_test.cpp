@@ -101,7 +101,7 @@ class SdhModel : public ::testing::Test {
  protected:
   void SetUp() override { wc_ = rw::loaders::loadWorkCell(projectSdhFile(), &warnings_); }
   std::unique_ptr<WorkCell> wc_;
-  std::vector<rw::loaders::Diagnostic> warnings_;
+  std::vector<rw::common::Diagnostic> warnings_;
 };
 
 TEST_F(SdhModel, LoadsWithoutWarnings) {

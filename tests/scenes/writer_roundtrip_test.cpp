@@ -257,7 +257,7 @@ void expectSameWorkCell(const WorkCell& a, const WorkCell& b) {
 void roundTrip(const WorkCell& wc, const fs::path& dir) {
   const fs::path file = dir / "copy.wc.xml";
   rw::loaders::saveWorkCell(wc, file);
-  std::vector<rw::loaders::Diagnostic> warnings;
+  std::vector<rw::common::Diagnostic> warnings;
   const auto copy = rw::loaders::loadWorkCell(file, &warnings);
   for (const auto& w : warnings) ADD_FAILURE() << "warning on reload: " << w.format();
   expectSameWorkCell(wc, *copy);

@@ -8,13 +8,13 @@
 #include <system_error>
 #include <utility>
 
-#include "rw/loaders/detail/diagnostic_sink.hpp"
+#include "rw/common/diagnostic_sink.hpp"
+#include "rw/common/xml_reader.hpp"
 #include "rw/loaders/detail/preprocess.hpp"
 #include "rw/loaders/detail/wc_builder.hpp"
 #include "rw/loaders/detail/wc_elements.hpp"
 #include "rw/loaders/detail/wc_parser.hpp"
 #include "rw/loaders/detail/workcell_schema.hpp"
-#include "rw/loaders/detail/xml_reader.hpp"
 
 namespace rw::loaders {
 
@@ -32,65 +32,66 @@ std::string absoluteName(const fs::path& file) {
 // The whole pipeline: XML and schema (per file), Include/Define/Use, description, model.
 // `text` is the top-level file's content when it does not come from disk.
 std::unique_ptr<WorkCell> load(const fs::path& file, std::optional<std::string_view> text,
-                               detail::DiagnosticSink& sink) {
+                               common::DiagnosticSink& sink) {
   auto source =
-      std::make_shared<detail::SourceFile>(detail::SourceFile{detail::displayPathOf(file), {}});
+      std::make_shared<common::SourceFile>(common::SourceFile{detail::displayPathOf(file), {}});
   try {
     if (file.empty()) {
-      sink.error(detail::SourceLocation{}, "no workcell file name given");
+      sink.error(common::SourceLocation{}, "no workcell file name given");
       return nullptr;
     }
-    detail::XmlReader reader(detail::XmlReaderOptions{std::string(detail::workcellSchema()),
+    common::XmlReader reader(common::XmlReaderOptions{std::string(detail::workcellSchema()),
                                                       detail::explainWorkCellValueError});
     detail::Preprocessor preprocessor(reader, sink);
     const auto elements =
         text ? preprocessor.expandText(*text, file) : preprocessor.expandFile(file);
     if (!elements || sink.hasErrors()) return nullptr;
     const auto desc =
-        detail::parseWorkCellDescription(*elements, detail::SourceLocation{source, 0, 0}, sink);
+        detail::parseWorkCellDescription(*elements, common::SourceLocation{source, 0, 0}, sink);
     if (!desc || sink.hasErrors()) return nullptr;
-    detail::XmlReader setupReader(detail::XmlReaderOptions{});
+    common::XmlReader setupReader(common::XmlReaderOptions{});
     auto wc = detail::buildWorkCell(*desc, setupReader, absoluteName(file), sink);
     if (sink.hasErrors()) return nullptr;
     return wc;
   } catch (const std::bad_alloc&) {
-    sink.error(detail::SourceLocation{source, 0, 0}, "out of memory while loading the workcell");
+    sink.error(common::SourceLocation{source, 0, 0}, "out of memory while loading the workcell");
   } catch (const std::exception& e) {
-    sink.error(detail::SourceLocation{source, 0, 0},
+    sink.error(common::SourceLocation{source, 0, 0},
                std::string("internal error while loading the workcell: ") + e.what());
   }
   return nullptr;
 }
 
 std::unique_ptr<WorkCell> loadOrThrow(const fs::path& file, std::optional<std::string_view> text,
-                                      std::vector<Diagnostic>* warnings) {
-  detail::DiagnosticSink sink;
+                                      std::vector<common::Diagnostic>* warnings) {
+  common::DiagnosticSink sink;
   auto wc = load(file, text, sink);
   if (!wc && !sink.hasErrors()) {
-    sink.error(detail::SourceLocation{}, "the workcell could not be loaded");
+    sink.error(common::SourceLocation{}, "the workcell could not be loaded");
   }
   if (warnings != nullptr) {
-    for (const Diagnostic& d : sink.diagnostics()) {
-      if (d.severity == Diagnostic::Severity::kWarning) warnings->push_back(d);
+    for (const common::Diagnostic& d : sink.diagnostics()) {
+      if (d.severity == common::Diagnostic::Severity::kWarning) warnings->push_back(d);
     }
   }
-  if (sink.hasErrors()) throw LoadError(sink.take());
+  if (sink.hasErrors()) throw common::LoadError(sink.take());
   return wc;
 }
 
 }  // namespace
 
-std::unique_ptr<WorkCell> loadWorkCell(const fs::path& file, std::vector<Diagnostic>* warnings) {
+std::unique_ptr<WorkCell> loadWorkCell(const fs::path& file,
+                                       std::vector<common::Diagnostic>* warnings) {
   return loadOrThrow(file, std::nullopt, warnings);
 }
 
 std::unique_ptr<WorkCell> loadWorkCellFromString(std::string_view xml, const fs::path& virtualFile,
-                                                 std::vector<Diagnostic>* warnings) {
+                                                 std::vector<common::Diagnostic>* warnings) {
   return loadOrThrow(virtualFile, xml, warnings);
 }
 
-std::vector<Diagnostic> checkWorkCell(const fs::path& file) {
-  detail::DiagnosticSink sink;
+std::vector<common::Diagnostic> checkWorkCell(const fs::path& file) {
+  common::DiagnosticSink sink;
   try {
     (void)load(file, std::nullopt, sink);
   } catch (...) {

@@ -12,7 +12,7 @@
 #include <stdexcept>
 #include <system_error>
 
-#include "rw/loaders/xml/strings.hpp"
+#include "rw/common/strings.hpp"
 #include "rw/math/rpy.hpp"
 
 namespace rw::loaders {
@@ -105,7 +105,7 @@ class XmlWriter {
     indent();
     start(tag, attributes);
     out_ += '>';
-    out_ += xml::escapeXml(body);
+    out_ += rw::common::escapeXml(body);
     out_ += "</";
     out_ += tag;
     out_ += ">\n";
@@ -121,7 +121,7 @@ class XmlWriter {
       out_ += ' ';
       out_ += name;
       out_ += "=\"";
-      out_ += xml::escapeXml(value);
+      out_ += rw::common::escapeXml(value);
       out_ += '"';
     }
   }

@@ -7,9 +7,9 @@
 #include <system_error>
 #include <utility>
 
+#include "rw/common/diagnostic_sink.hpp"
+#include "rw/common/xml_reader.hpp"
 #include "rw/loaders/workcell_loader.hpp"
-#include "rw/loaders/xml/diagnostic_sink.hpp"
-#include "rw/loaders/xml/xml_reader.hpp"
 #include "rwsim/loaders/detail/dwc_builder.hpp"
 #include "rwsim/loaders/detail/dwc_document.hpp"
 #include "rwsim/loaders/detail/dwc_parser.hpp"
@@ -18,10 +18,10 @@
 namespace rwsim::loaders {
 
 namespace fs = std::filesystem;
-using rw::loaders::Diagnostic;
-using rw::loaders::xml::DiagnosticSink;
-using rw::loaders::xml::SourceFile;
-using rw::loaders::xml::SourceLocation;
+using rw::common::Diagnostic;
+using rw::common::DiagnosticSink;
+using rw::common::SourceFile;
+using rw::common::SourceLocation;
 using rwsim::dynamics::DynamicWorkCell;
 
 namespace {
@@ -67,7 +67,7 @@ std::unique_ptr<rw::models::WorkCell> loadReferencedWorkCell(
                         : rw::loaders::loadWorkCell(file, &warnings);
     for (const Diagnostic& d : warnings) forward(d, referencedFrom, sink);
     return workcell;
-  } catch (const rw::loaders::LoadError& e) {
+  } catch (const rw::common::LoadError& e) {
     for (const Diagnostic& d : e.diagnostics()) forward(d, referencedFrom, sink);
   }
   return nullptr;
@@ -94,7 +94,7 @@ std::unique_ptr<DynamicWorkCell> load(const fs::path& file, std::optional<std::s
       }
       text = content;
     }
-    rw::loaders::xml::XmlReader reader(rw::loaders::xml::XmlReaderOptions{
+    rw::common::XmlReader reader(rw::common::XmlReaderOptions{
         std::string(detail::dynamicWorkCellSchema()), detail::explainDynamicWorkCellValueError});
     detail::DocumentReader documents(reader, sink);
     const auto document = documents.read(*text, file);
@@ -131,7 +131,7 @@ std::unique_ptr<DynamicWorkCell> loadOrThrow(const fs::path& file,
       if (d.severity == Diagnostic::Severity::kWarning) warnings->push_back(d);
     }
   }
-  if (sink.hasErrors()) throw rw::loaders::LoadError(sink.take());
+  if (sink.hasErrors()) throw rw::common::LoadError(sink.take());
   return dwc;
 }
 

@@ -5,7 +5,7 @@
 #include <string_view>
 #include <vector>
 
-#include "rw/loaders/diagnostic.hpp"
+#include "rw/common/diagnostic.hpp"
 #include "rwsim/dynamics/dynamic_workcell.hpp"
 
 /// Readers of RobWorkSim's file formats.
@@ -22,28 +22,28 @@ namespace rwsim::loaders {
 /// warning. EstimateInertia gives the inertia about the centre of mass (not RobWork's
 /// about-the-origin tensor, Appendix A.10). Warnings, also those of the workcell, are appended
 /// to `warnings` if given, also when the load fails.
-/// @throws rw::loaders::LoadError with every diagnostic found (what(): the errors, each at
+/// @throws rw::common::LoadError with every diagnostic found (what(): the errors, each at
 /// file:line:column).
 std::unique_ptr<rwsim::dynamics::DynamicWorkCell> loadDynamicWorkCell(
-    const std::filesystem::path& file, std::vector<rw::loaders::Diagnostic>* warnings = nullptr);
+    const std::filesystem::path& file, std::vector<rw::common::Diagnostic>* warnings = nullptr);
 
 /// Same as loadDynamicWorkCell, reading the top-level XML from `xml`. Relative paths (the
 /// workcell, Includes) resolve against the folder of `virtualFile`; diagnostics name it.
-/// @throws rw::loaders::LoadError listing every error found.
+/// @throws rw::common::LoadError listing every error found.
 std::unique_ptr<rwsim::dynamics::DynamicWorkCell> loadDynamicWorkCellFromString(
     std::string_view xml, const std::filesystem::path& virtualFile,
-    std::vector<rw::loaders::Diagnostic>* warnings = nullptr);
+    std::vector<rw::common::Diagnostic>* warnings = nullptr);
 
 /// Same as loadDynamicWorkCellFromString, with the text of the workcell it names given too
 /// (instead of read from that file; relative paths in it resolve against that file's folder and
 /// messages name it): a scene composed in memory, e.g. with another hand.
-/// @throws rw::loaders::LoadError listing every error found.
+/// @throws rw::common::LoadError listing every error found.
 std::unique_ptr<rwsim::dynamics::DynamicWorkCell> loadDynamicWorkCellFromStrings(
     std::string_view xml, std::string_view workcellXml, const std::filesystem::path& virtualFile,
-    std::vector<rw::loaders::Diagnostic>* warnings = nullptr);
+    std::vector<rw::common::Diagnostic>* warnings = nullptr);
 
 /// Checks a dynamic workcell file as loadDynamicWorkCell would and returns every error and
 /// warning in the order found. Never throws for bad input.
-std::vector<rw::loaders::Diagnostic> checkDynamicWorkCell(const std::filesystem::path& file);
+std::vector<rw::common::Diagnostic> checkDynamicWorkCell(const std::filesystem::path& file);
 
 }  // namespace rwsim::loaders

@@ -4,7 +4,7 @@
 #include <array>
 #include <stdexcept>
 
-#include "rw/loaders/xml/strings.hpp"
+#include "rw/common/strings.hpp"
 #include "visgrab/analysis/detail/format.hpp"
 #include "visgrab/analysis/paper_tables.hpp"
 #include "visgrab/database/atomic_file.hpp"
@@ -178,7 +178,7 @@ std::string_view outcomeLegend(GraspOutcome outcome) {
 std::string escapeHtml(std::string_view text) {
   // XML's four entities, and the apostrophe for attributes quoted with it.
   std::string out;
-  for (const char c : rw::loaders::xml::escapeXml(text)) {
+  for (const char c : rw::common::escapeXml(text)) {
     if (c == '\'') {
       out += "&#39;";
     } else {

@@ -8,8 +8,8 @@
 #include <system_error>
 #include <utility>
 
-#include "rw/loaders/xml/strings.hpp"
-#include "rw/loaders/xml/text_file.hpp"
+#include "rw/common/strings.hpp"
+#include "rw/common/text_file.hpp"
 #include "rw/math/rpy.hpp"
 #include "visgrab/database/original_manifest.hpp"
 
@@ -116,15 +116,14 @@ Database Database::openOriginalManifestText(std::string_view text, const fs::pat
 
 Database Database::openOriginalManifest(const fs::path& manifest) {
   std::string text;
-  const std::string why = rw::loaders::xml::readTextFile(manifest, text);
+  const std::string why = rw::common::readTextFile(manifest, text);
   if (!why.empty()) {
-    throw rw::loaders::LoadError(
-        {rw::loaders::Diagnostic{rw::loaders::Diagnostic::Severity::kError,
-                                 manifest.string(),
-                                 0,
-                                 0,
-                                 "cannot read the VisGraB manifest: " + why,
-                                 {}}});
+    throw rw::common::LoadError({rw::common::Diagnostic{rw::common::Diagnostic::Severity::kError,
+                                                        manifest.string(),
+                                                        0,
+                                                        0,
+                                                        "cannot read the VisGraB manifest: " + why,
+                                                        {}}});
   }
   return openOriginalManifestText(text, manifest);
 }
@@ -175,7 +174,7 @@ std::vector<const SceneEntry*> Database::filter(const SceneFilter& f) const {
 std::vector<std::string> Database::closestIds(std::string_view id, std::size_t count) const {
   std::vector<std::pair<std::size_t, std::size_t>> ranked;  // (distance, index)
   for (std::size_t i = 0; i < scenes_.size(); ++i) {
-    ranked.emplace_back(rw::loaders::xml::editDistance(id, scenes_[i].id), i);
+    ranked.emplace_back(rw::common::editDistance(id, scenes_[i].id), i);
   }
   const std::size_t n = std::min(count, ranked.size());
   std::partial_sort(ranked.begin(), ranked.begin() + static_cast<std::ptrdiff_t>(n), ranked.end());

@@ -11,7 +11,7 @@
 #include <string_view>
 #include <vector>
 
-#include "rw/loaders/diagnostic.hpp"
+#include "rw/common/diagnostic.hpp"
 #include "visgrab/database/database_index.hpp"
 #include "visgrab/database/scene_filter.hpp"
 #include "visgrab/database/scene_set.hpp"
@@ -73,17 +73,17 @@ class Database {
   enum class Source { kGenerated, kOriginalManifest };
 
   /// Opens a generated database folder (reads DIR/index.xml; images are read on demand).
-  /// @throws rw::loaders::LoadError if the index is missing or corrupt.
+  /// @throws rw::common::LoadError if the index is missing or corrupt.
   static Database open(const std::filesystem::path& dir);
   /// Opens an original VisGraB manifest (see readOriginalManifest).
-  /// @throws rw::loaders::LoadError.
+  /// @throws rw::common::LoadError.
   static Database openOriginalManifest(const std::filesystem::path& manifest);
   /// Same, from manifest text; `manifest` names it and gives the folder paths are relative to.
-  /// @throws rw::loaders::LoadError.
+  /// @throws rw::common::LoadError.
   static Database openOriginalManifestText(std::string_view text,
                                            const std::filesystem::path& manifest);
   /// Opens what `path` is: a folder or an `index.xml` file → generated; another file → an
-  /// original manifest. @throws rw::loaders::LoadError.
+  /// original manifest. @throws rw::common::LoadError.
   static Database openAny(const std::filesystem::path& path);
 
   /// Generated or original.
@@ -93,7 +93,7 @@ class Database {
   /// Generator seed (0 for an original manifest).
   std::uint64_t seed() const { return seed_; }
   /// Warnings found while opening (original manifests: ignored elements, duplicate ids).
-  const std::vector<rw::loaders::Diagnostic>& warnings() const { return warnings_; }
+  const std::vector<rw::common::Diagnostic>& warnings() const { return warnings_; }
 
   /// All scenes (generated: enumerateScenes() order; original: document order, one per id).
   const std::vector<SceneEntry>& list() const { return scenes_; }
@@ -136,7 +136,7 @@ class Database {
   std::vector<SceneEntry> scenes_;
   std::map<std::string, std::size_t, std::less<>> byId_;
   std::map<std::string, std::size_t, std::less<>> byAlias_;
-  std::vector<rw::loaders::Diagnostic> warnings_;
+  std::vector<rw::common::Diagnostic> warnings_;
 };
 
 }  // namespace visgrab::database

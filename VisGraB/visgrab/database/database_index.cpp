@@ -7,19 +7,18 @@
 #include <stdexcept>
 #include <utility>
 
-#include "rw/loaders/diagnostic.hpp"
-#include "rw/loaders/xml/diagnostic_sink.hpp"
-#include "rw/loaders/xml/numbers.hpp"
-#include "rw/loaders/xml/strings.hpp"
-#include "rw/loaders/xml/text_file.hpp"
-#include "rw/loaders/xml/xml_reader.hpp"
+#include "rw/common/diagnostic.hpp"
+#include "rw/common/diagnostic_sink.hpp"
+#include "rw/common/numbers.hpp"
+#include "rw/common/strings.hpp"
+#include "rw/common/text_file.hpp"
+#include "rw/common/xml_reader.hpp"
 #include "rw/math/rpy.hpp"
 #include "visgrab/database/atomic_file.hpp"
 #include "visgrab/database/detail/index_schema.hpp"
 
 namespace visgrab::database {
 
-namespace xml = rw::loaders::xml;
 using rw::math::kDeg2Rad;
 using rw::math::kRad2Deg;
 
@@ -40,9 +39,10 @@ std::string fixed(double value) {
 
 // Reads the three numbers of <Pos>/<RPY>; reports non-finite values (the schema's xs:double
 // accepts NaN and INF).
-bool vector3(const xml::XmlElement& e, xml::DiagnosticSink& sink, Eigen::Vector3d& out) {
+bool vector3(const rw::common::XmlElement& e, rw::common::DiagnosticSink& sink,
+             Eigen::Vector3d& out) {
   std::vector<double> values;
-  const std::string why = xml::parseNumberList(e.text, values);
+  const std::string why = rw::common::parseNumberList(e.text, values);
   if (!why.empty() || values.size() != 3) {
     sink.error(e.location, "<" + e.name + ">: " + (why.empty() ? "expected 3 numbers" : why));
     return false;
@@ -53,10 +53,10 @@ bool vector3(const xml::XmlElement& e, xml::DiagnosticSink& sink, Eigen::Vector3
 
 class IndexParser {
  public:
-  explicit IndexParser(xml::DiagnosticSink& sink) : sink_(sink) {}
+  explicit IndexParser(rw::common::DiagnosticSink& sink) : sink_(sink) {}
 
-  std::optional<DatabaseIndex> parse(const std::vector<xml::XmlElement>& top,
-                                     const xml::SourceLocation& whole) {
+  std::optional<DatabaseIndex> parse(const std::vector<rw::common::XmlElement>& top,
+                                     const rw::common::SourceLocation& whole) {
     if (top.empty()) {
       sink_.error(whole, "no <VisGraBDatabase> element: not a VisGraB database index");
       return std::nullopt;
@@ -65,7 +65,7 @@ class IndexParser {
       sink_.error(top[1].location, "a second <VisGraBDatabase> element; an index has one");
       return std::nullopt;
     }
-    const xml::XmlElement& root = top[0];
+    const rw::common::XmlElement& root = top[0];
     DatabaseIndex index;
     const std::string version = root.attributeOr("formatVersion", "1");
     if (version != std::to_string(kIndexFormatVersion)) {
@@ -77,7 +77,7 @@ class IndexParser {
     index.seed = std::stoull(root.attributeOr("seed", "0"));
     index.generator = root.attributeOr("generator", "");
     std::map<std::string, int> firstLine;
-    for (const xml::XmlElement& scene : root.children) {
+    for (const rw::common::XmlElement& scene : root.children) {
       auto record = parseScene(scene);
       if (!record) continue;
       const auto [it, inserted] = firstLine.emplace(record->id, scene.location.line);
@@ -93,7 +93,7 @@ class IndexParser {
   }
 
  private:
-  std::optional<SceneRecord> parseScene(const xml::XmlElement& e) {
+  std::optional<SceneRecord> parseScene(const rw::common::XmlElement& e) {
     SceneRecord record;
     record.id = e.attributeOr("id", "");
     const auto parsed = parseSceneId(record.id);
@@ -121,7 +121,7 @@ class IndexParser {
       }
     }
     bool ok = true;
-    for (const xml::XmlElement& child : e.children) {
+    for (const rw::common::XmlElement& child : e.children) {
       if (child.name == "Files") {
         ok = parseFiles(child, record.files) && ok;
       } else if (child.name == "Object") {
@@ -147,7 +147,7 @@ class IndexParser {
     return record;
   }
 
-  bool parseFiles(const xml::XmlElement& e, SceneFiles& files) {
+  bool parseFiles(const rw::common::XmlElement& e, SceneFiles& files) {
     const std::pair<const char*, std::string*> fields[] = {
         {"left", &files.left},
         {"right", &files.right},
@@ -165,7 +165,7 @@ class IndexParser {
     return true;
   }
 
-  std::optional<ObjectPose> parseObject(const xml::XmlElement& e) {
+  std::optional<ObjectPose> parseObject(const rw::common::XmlElement& e) {
     ObjectPose pose;
     pose.object = std::stoi(e.attributeOr("id", "0"));
     const std::string name = e.attributeOr("name", "");
@@ -178,7 +178,7 @@ class IndexParser {
     Eigen::Vector3d position = Eigen::Vector3d::Zero();
     Eigen::Vector3d rpy = Eigen::Vector3d::Zero();
     bool ok = true;
-    for (const xml::XmlElement& child : e.children) {
+    for (const rw::common::XmlElement& child : e.children) {
       if (child.name == "Pos") ok = vector3(child, sink_, position) && ok;
       if (child.name == "RPY") ok = vector3(child, sink_, rpy) && ok;
     }
@@ -187,7 +187,7 @@ class IndexParser {
     return pose;
   }
 
-  xml::DiagnosticSink& sink_;
+  rw::common::DiagnosticSink& sink_;
 };
 
 }  // namespace
@@ -215,32 +215,34 @@ SceneFiles defaultSceneFiles(std::string_view id) {
 }
 
 DatabaseIndex parseIndex(std::string_view text, const std::string& displayPath) {
-  xml::DiagnosticSink sink;
-  auto file = std::make_shared<const xml::SourceFile>(xml::SourceFile{displayPath, {}});
-  const xml::SourceLocation whole{file, 0, 0};
+  rw::common::DiagnosticSink sink;
+  auto file =
+      std::make_shared<const rw::common::SourceFile>(rw::common::SourceFile{displayPath, {}});
+  const rw::common::SourceLocation whole{file, 0, 0};
   std::optional<DatabaseIndex> index;
   try {
-    xml::XmlReader reader(xml::XmlReaderOptions{std::string(detail::indexSchema()), {}});
+    rw::common::XmlReader reader(
+        rw::common::XmlReaderOptions{std::string(detail::indexSchema()), {}});
     const auto top = reader.parse(text, file, sink);
     if (top && !sink.hasErrors()) index = IndexParser(sink).parse(*top, whole);
   } catch (const std::exception& e) {
     sink.error(whole, std::string("internal error while reading the index: ") + e.what());
   }
   if (!index && !sink.hasErrors()) sink.error(whole, "the index could not be read");
-  if (sink.hasErrors()) throw rw::loaders::LoadError(sink.take());
+  if (sink.hasErrors()) throw rw::common::LoadError(sink.take());
   return std::move(*index);
 }
 
 DatabaseIndex readIndex(const std::filesystem::path& file) {
   std::string text;
-  const std::string why = xml::readTextFile(file, text);
+  const std::string why = rw::common::readTextFile(file, text);
   if (!why.empty()) {
-    throw rw::loaders::LoadError({rw::loaders::Diagnostic{rw::loaders::Diagnostic::Severity::kError,
-                                                          file.string(),
-                                                          0,
-                                                          0,
-                                                          "cannot read the database index: " + why,
-                                                          {}}});
+    throw rw::common::LoadError({rw::common::Diagnostic{rw::common::Diagnostic::Severity::kError,
+                                                        file.string(),
+                                                        0,
+                                                        0,
+                                                        "cannot read the database index: " + why,
+                                                        {}}});
   }
   return parseIndex(text, file.string());
 }
@@ -273,19 +275,20 @@ std::string indexToXml(const DatabaseIndex& index) {
   out += "<!-- VisGraB scene database index; format: docs/database-format.md -->\n";
   out += "<VisGraBDatabase formatVersion=\"" + std::to_string(index.formatVersion) + "\" seed=\"" +
          std::to_string(index.seed) + "\"";
-  if (!index.generator.empty()) out += " generator=\"" + xml::escapeXml(index.generator) + "\"";
+  if (!index.generator.empty())
+    out += " generator=\"" + rw::common::escapeXml(index.generator) + "\"";
   out += ">\n";
   for (const SceneRecord* s : ordered) {
     const SceneConditions& c = s->conditions;
-    out += "  <Scene id=\"" + xml::escapeXml(s->id) + "\" texture=\"" +
+    out += "  <Scene id=\"" + rw::common::escapeXml(s->id) + "\" texture=\"" +
            std::string(toString(c.texture)) + "\" kind=\"" + std::string(toString(c.kind)) +
            "\" arrangement=\"" + std::string(toString(c.arrangement())) + "\" pose=\"" +
            std::to_string(c.pose) + "\">\n";
-    out += "    <Files left=\"" + xml::escapeXml(s->files.left) + "\" right=\"" +
-           xml::escapeXml(s->files.right) + "\"\n           calibration=\"" +
-           xml::escapeXml(s->files.calibration) + "\"\n" + "           workcell=\"" +
-           xml::escapeXml(s->files.workcell) + "\" dynamicWorkcell=\"" +
-           xml::escapeXml(s->files.dynamicWorkcell) + "\"/>\n";
+    out += "    <Files left=\"" + rw::common::escapeXml(s->files.left) + "\" right=\"" +
+           rw::common::escapeXml(s->files.right) + "\"\n           calibration=\"" +
+           rw::common::escapeXml(s->files.calibration) + "\"\n" + "           workcell=\"" +
+           rw::common::escapeXml(s->files.workcell) + "\" dynamicWorkcell=\"" +
+           rw::common::escapeXml(s->files.dynamicWorkcell) + "\"/>\n";
     for (std::size_t i = 0; i < s->objects.size(); ++i) {
       const ObjectPose& o = s->objects[i];
       if (o.object != c.objects[i]) {

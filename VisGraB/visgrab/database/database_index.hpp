@@ -70,11 +70,11 @@ SceneFiles defaultSceneFiles(std::string_view id);
 
 /// Reads and checks an index file (schema xml/database-index.xsd, then meaning: ids agree with
 /// the conditions, no duplicates, objects agree with the scene, finite poses, relative paths).
-/// @throws rw::loaders::LoadError with file:line diagnostics.
+/// @throws rw::common::LoadError with file:line diagnostics.
 DatabaseIndex readIndex(const std::filesystem::path& file);
 
 /// Same as readIndex, from text; `displayPath` names it in messages.
-/// @throws rw::loaders::LoadError.
+/// @throws rw::common::LoadError.
 DatabaseIndex parseIndex(std::string_view text, const std::string& displayPath);
 
 /// The index as XML text (numbers in shortest round-trip form, scenes in enumerateScenes()

@@ -20,7 +20,7 @@ class DatabaseWriter {
  public:
   /// Opens `dir` for writing, creating it if needed. If DIR/index.xml exists it is read and
   /// kept (resume); its seed must equal `seed`.
-  /// @throws rw::loaders::LoadError for a corrupt index, std::runtime_error for a seed mismatch
+  /// @throws rw::common::LoadError for a corrupt index, std::runtime_error for a seed mismatch
   /// or a folder that cannot be created.
   DatabaseWriter(std::filesystem::path dir, std::uint64_t seed, std::string generator = {});
 

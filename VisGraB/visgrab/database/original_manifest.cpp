@@ -8,14 +8,13 @@
 #include <set>
 #include <system_error>
 
-#include "rw/loaders/xml/diagnostic_sink.hpp"
-#include "rw/loaders/xml/text_file.hpp"
-#include "rw/loaders/xml/xml_reader.hpp"
+#include "rw/common/diagnostic_sink.hpp"
+#include "rw/common/text_file.hpp"
+#include "rw/common/xml_reader.hpp"
 
 namespace visgrab::database {
 
 namespace fs = std::filesystem;
-namespace xml = rw::loaders::xml;
 
 namespace {
 
@@ -24,17 +23,17 @@ std::string_view localName(std::string_view name) {
   return colon == std::string_view::npos ? name : name.substr(colon + 1);
 }
 
-std::string trimmed(std::string_view text) { return std::string(xml::trimXmlSpace(text)); }
+std::string trimmed(std::string_view text) { return std::string(rw::common::trimXmlSpace(text)); }
 
-const xml::XmlElement* firstChild(const xml::XmlElement& e, std::string_view name) {
-  for (const xml::XmlElement& c : e.children) {
+const rw::common::XmlElement* firstChild(const rw::common::XmlElement& e, std::string_view name) {
+  for (const rw::common::XmlElement& c : e.children) {
     if (localName(c.name) == name) return &c;
   }
   return nullptr;
 }
 
-const std::string* attribute(const xml::XmlElement& e, std::string_view name) {
-  for (const xml::XmlAttribute& a : e.attributes) {
+const std::string* attribute(const rw::common::XmlElement& e, std::string_view name) {
+  for (const rw::common::XmlAttribute& a : e.attributes) {
     if (localName(a.name) == name) return &a.value;
   }
   return nullptr;
@@ -82,9 +81,11 @@ std::string declarePrefixes(std::string_view text) {
 
 class ManifestParser {
  public:
-  ManifestParser(xml::DiagnosticSink& sink, OriginalManifest& out) : sink_(sink), out_(out) {}
+  ManifestParser(rw::common::DiagnosticSink& sink, OriginalManifest& out)
+      : sink_(sink), out_(out) {}
 
-  void parse(const std::vector<xml::XmlElement>& top, const xml::SourceLocation& whole) {
+  void parse(const std::vector<rw::common::XmlElement>& top,
+             const rw::common::SourceLocation& whole) {
     if (top.empty() || localName(top[0].name) != "visgrab") {
       sink_.error(top.empty() ? whole : top[0].location,
                   top.empty() ? std::string("no <visgrab> element: not a VisGraB manifest")
@@ -92,8 +93,8 @@ class ManifestParser {
                                     ">; a VisGraB manifest starts with <visgrab>");
       return;
     }
-    const xml::XmlElement* benchmark = nullptr;
-    for (const xml::XmlElement& c : top[0].children) {
+    const rw::common::XmlElement* benchmark = nullptr;
+    for (const rw::common::XmlElement& c : top[0].children) {
       if (localName(c.name) != "benchmark") {
         sink_.warning(c.location, "<" + c.name + "> ignored (not part of a VisGraB manifest)");
       } else if (benchmark == nullptr) {
@@ -117,7 +118,7 @@ class ManifestParser {
       return;
     }
     std::map<std::string, int> lineOf;
-    for (const xml::XmlElement& c : benchmark->children) {
+    for (const rw::common::XmlElement& c : benchmark->children) {
       if (localName(c.name) != "scene") {
         sink_.warning(c.location, "<" + c.name + "> in <benchmark> ignored");
         continue;
@@ -136,10 +137,10 @@ class ManifestParser {
 
  private:
   // The trimmed text of the first child `group`/`name` of `scene`; reports a missing element.
-  std::optional<std::string> text(const xml::XmlElement& scene, std::string_view group,
+  std::optional<std::string> text(const rw::common::XmlElement& scene, std::string_view group,
                                   std::string_view name, bool required = true) {
-    const xml::XmlElement* g = firstChild(scene, group);
-    const xml::XmlElement* e = g != nullptr ? firstChild(*g, name) : nullptr;
+    const rw::common::XmlElement* g = firstChild(scene, group);
+    const rw::common::XmlElement* e = g != nullptr ? firstChild(*g, name) : nullptr;
     if (e == nullptr) {
       if (required) {
         sink_.error(g != nullptr ? g->location : scene.location, scene.describe() + ": missing <" +
@@ -157,15 +158,15 @@ class ManifestParser {
     return p.is_absolute() ? p : out_.directory / p;
   }
 
-  void warnUnknown(const xml::XmlElement& e, std::initializer_list<std::string_view> known) {
-    for (const xml::XmlElement& c : e.children) {
+  void warnUnknown(const rw::common::XmlElement& e, std::initializer_list<std::string_view> known) {
+    for (const rw::common::XmlElement& c : e.children) {
       if (std::find(known.begin(), known.end(), localName(c.name)) == known.end()) {
         sink_.warning(c.location, "<" + c.name + "> in <" + e.name + "> ignored");
       }
     }
   }
 
-  bool parseScene(const xml::XmlElement& e, OriginalScene& scene) {
+  bool parseScene(const rw::common::XmlElement& e, OriginalScene& scene) {
     scene.line = e.location.line;
     const std::string* id = attribute(e, "id");
     if (id == nullptr) {
@@ -175,7 +176,7 @@ class ManifestParser {
     scene.id = trimmed(*id);
     warnUnknown(e, {"info", "input", "simulator"});
     for (const auto* group : {"info", "input", "simulator"}) {
-      if (const xml::XmlElement* g = firstChild(e, group)) {
+      if (const rw::common::XmlElement* g = firstChild(e, group)) {
         if (std::string_view(group) == "info") {
           warnUnknown(*g,
                       {"sceneLocator", "sceneSet", "sceneSetID", "textureCondition", "sceneID"});
@@ -204,7 +205,7 @@ class ManifestParser {
     return sink_.errorCount() == errorsBefore;
   }
 
-  xml::DiagnosticSink& sink_;
+  rw::common::DiagnosticSink& sink_;
   OriginalManifest& out_;
 };
 
@@ -247,7 +248,7 @@ std::optional<SceneConditions> fromPath(std::string_view text) {
 }
 
 std::optional<Texture> textureOf(std::string_view condition) {
-  const std::string t = lower(xml::trimXmlSpace(condition));
+  const std::string t = lower(rw::common::trimXmlSpace(condition));
   if (t == "textured" || t == "cluttered") return Texture::kTextured;
   if (t == "non-textured" || t == "nontextured" || t == "non_textured" || t == "plain" ||
       t == "untextured") {
@@ -266,43 +267,43 @@ const OriginalScene* OriginalManifest::find(std::string_view id) const {
 }
 
 OriginalManifest parseOriginalManifest(std::string_view text, const fs::path& file) {
-  xml::DiagnosticSink sink;
-  auto source = std::make_shared<const xml::SourceFile>(xml::SourceFile{file.string(), {}});
-  const xml::SourceLocation whole{source, 0, 0};
+  rw::common::DiagnosticSink sink;
+  auto source =
+      std::make_shared<const rw::common::SourceFile>(rw::common::SourceFile{file.string(), {}});
+  const rw::common::SourceLocation whole{source, 0, 0};
   OriginalManifest manifest;
   std::error_code ec;
   const fs::path absolute = fs::absolute(file, ec);
   manifest.directory = (ec ? file : absolute).parent_path();
   try {
-    xml::XmlReader reader(xml::XmlReaderOptions{});
+    rw::common::XmlReader reader(rw::common::XmlReaderOptions{});
     const auto top = reader.parse(declarePrefixes(text), source, sink);
     if (top && !sink.hasErrors()) ManifestParser(sink, manifest).parse(*top, whole);
   } catch (const std::exception& e) {
     sink.error(whole, std::string("internal error while reading the manifest: ") + e.what());
   }
-  if (sink.hasErrors()) throw rw::loaders::LoadError(sink.take());
+  if (sink.hasErrors()) throw rw::common::LoadError(sink.take());
   manifest.warnings = sink.take();
   return manifest;
 }
 
 OriginalManifest readOriginalManifest(const fs::path& file) {
   std::string text;
-  const std::string why = xml::readTextFile(file, text);
+  const std::string why = rw::common::readTextFile(file, text);
   if (!why.empty()) {
-    throw rw::loaders::LoadError(
-        {rw::loaders::Diagnostic{rw::loaders::Diagnostic::Severity::kError,
-                                 file.string(),
-                                 0,
-                                 0,
-                                 "cannot read the VisGraB manifest: " + why,
-                                 {}}});
+    throw rw::common::LoadError({rw::common::Diagnostic{rw::common::Diagnostic::Severity::kError,
+                                                        file.string(),
+                                                        0,
+                                                        0,
+                                                        "cannot read the VisGraB manifest: " + why,
+                                                        {}}});
   }
   return parseOriginalManifest(text, file);
 }
 
 std::optional<SceneConditions> deriveConditions(const OriginalScene& scene) {
   const auto texture = textureOf(scene.textureCondition);
-  const std::string set = lower(xml::trimXmlSpace(scene.sceneSet));
+  const std::string set = lower(rw::common::trimXmlSpace(scene.sceneSet));
   const auto agrees = [&](const SceneConditions& c) {
     if (texture && *texture != c.texture) return false;
     if (set == "single" && c.kind != SceneKind::kSingle) return false;

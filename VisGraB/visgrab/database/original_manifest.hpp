@@ -6,7 +6,7 @@
 #include <string_view>
 #include <vector>
 
-#include "rw/loaders/diagnostic.hpp"
+#include "rw/common/diagnostic.hpp"
 #include "visgrab/database/scene_set.hpp"
 
 namespace visgrab::database {
@@ -48,7 +48,7 @@ struct OriginalManifest {
   /// Every <scene> in document order, duplicates included.
   std::vector<OriginalScene> scenes;
   /// Warnings: ignored elements, later <benchmark> elements, duplicate ids.
-  std::vector<rw::loaders::Diagnostic> warnings;
+  std::vector<rw::common::Diagnostic> warnings;
 
   /// The scene with `id` (the last one with that id, as in the original); null if none.
   const OriginalScene* find(std::string_view id) const;
@@ -61,11 +61,11 @@ struct OriginalManifest {
 /// (with a warning), duplicate ids are kept and lookups find the last, paths are relative to
 /// the manifest's folder. A missing required element fails the whole file. Deliberate
 /// differences: ids and paths are trimmed, absolute paths are used as they are, <collision> is
-/// optional. @throws rw::loaders::LoadError with file:line diagnostics.
+/// optional. @throws rw::common::LoadError with file:line diagnostics.
 OriginalManifest readOriginalManifest(const std::filesystem::path& file);
 
 /// Same as readOriginalManifest, from text; `file` names it in messages and gives the folder
-/// that paths are relative to. @throws rw::loaders::LoadError.
+/// that paths are relative to. @throws rw::common::LoadError.
 OriginalManifest parseOriginalManifest(std::string_view text, const std::filesystem::path& file);
 
 /// The conditions of an original scene, derived from its locator, id, sceneSet and

@@ -4,8 +4,8 @@
 #include <charconv>
 #include <optional>
 
-#include "rw/loaders/xml/strings.hpp"
-#include "rw/loaders/xml/xml_tree.hpp"
+#include "rw/common/strings.hpp"
+#include "rw/common/xml_tree.hpp"
 
 namespace visgrab::database {
 
@@ -43,7 +43,7 @@ std::string suggestion(std::string_view word) {
   std::string_view best;
   std::size_t bestDistance = 3;
   for (std::string_view k : known) {
-    const std::size_t d = rw::loaders::xml::editDistance(word, k);
+    const std::size_t d = rw::common::editDistance(word, k);
     if (d < bestDistance) {
       bestDistance = d;
       best = k;
@@ -83,11 +83,11 @@ bool globMatch(std::string_view pattern, std::string_view text) {
 
 SceneFilter::Term SceneFilter::parseTerm(std::string_view text, std::string_view whole) {
   Term term;
-  std::string_view word = rw::loaders::xml::trimXmlSpace(text);
+  std::string_view word = rw::common::trimXmlSpace(text);
   if (word.empty()) fail(whole, "empty term (two separators in a row, or one at an end)");
   if (word.front() == '!') {
     term.negated = true;
-    word = rw::loaders::xml::trimXmlSpace(word.substr(1));
+    word = rw::common::trimXmlSpace(word.substr(1));
     if (word.empty()) fail(whole, "'!' must be followed by a term");
   }
   const auto equals = word.find('=');
@@ -115,8 +115,8 @@ SceneFilter::Term SceneFilter::parseTerm(std::string_view text, std::string_view
     }
     return term;
   }
-  const std::string_view key = rw::loaders::xml::trimXmlSpace(word.substr(0, equals));
-  const std::string_view value = rw::loaders::xml::trimXmlSpace(word.substr(equals + 1));
+  const std::string_view key = rw::common::trimXmlSpace(word.substr(0, equals));
+  const std::string_view value = rw::common::trimXmlSpace(word.substr(equals + 1));
   const auto badValue = [&](std::string_view expected) {
     fail(whole, "bad value \"" + std::string(value) + "\" for " + std::string(key) +
                     "=; expected " + std::string(expected));
@@ -164,11 +164,11 @@ SceneFilter::Term SceneFilter::parseTerm(std::string_view text, std::string_view
 
 SceneFilter SceneFilter::parse(std::string_view text) {
   SceneFilter filter;
-  if (rw::loaders::xml::trimXmlSpace(text).empty()) return filter;
+  if (rw::common::trimXmlSpace(text).empty()) return filter;
   bool all = false;
-  for (std::string_view alternative : rw::loaders::xml::split(text, ';')) {
+  for (std::string_view alternative : rw::common::split(text, ';')) {
     Conjunction conjunction;
-    for (std::string_view term : rw::loaders::xml::split(alternative, ',')) {
+    for (std::string_view term : rw::common::split(alternative, ',')) {
       conjunction.push_back(parseTerm(term, text));
     }
     const bool everything = std::all_of(conjunction.begin(), conjunction.end(), [](const Term& t) {

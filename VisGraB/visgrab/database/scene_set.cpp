@@ -4,7 +4,7 @@
 #include <stdexcept>
 #include <utility>
 
-#include "rw/loaders/xml/strings.hpp"
+#include "rw/common/strings.hpp"
 
 namespace visgrab::database {
 
@@ -210,7 +210,7 @@ std::string sceneIdOf(const SceneConditions& c) {
 }
 
 std::optional<SceneConditions> parseSceneId(std::string_view id) {
-  const auto parts = rw::loaders::xml::split(id, '/');
+  const auto parts = rw::common::split(id, '/');
   if (parts.size() != 4) return std::nullopt;
   const auto texture = textureFromString(parts[0]);
   const auto kind = sceneKindFromString(parts[1]);
@@ -228,7 +228,7 @@ std::string originalIdOf(const SceneConditions& c) {
 }
 
 std::optional<SceneConditions> parseOriginalId(std::string_view id) {
-  const auto parts = rw::loaders::xml::split(id, '/');
+  const auto parts = rw::common::split(id, '/');
   if (parts.size() != 3 || parts[2].substr(0, 4) != "img_") return std::nullopt;
   const auto texture = fromTable<Texture>(kOriginalTextureNames, parts[0]);
   const auto pose = parsePose(parts[2].substr(4));

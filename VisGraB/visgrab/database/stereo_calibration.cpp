@@ -6,7 +6,7 @@
 #include <sstream>
 #include <vector>
 
-#include "rw/loaders/xml/text_file.hpp"
+#include "rw/common/text_file.hpp"
 #include "visgrab/database/atomic_file.hpp"
 
 namespace visgrab::database {
@@ -306,7 +306,7 @@ StereoCalibration parseCalibration(std::string_view yaml, const std::string& dis
 
 StereoCalibration readCalibration(const std::filesystem::path& file) {
   std::string text;
-  const std::string why = rw::loaders::xml::readTextFile(file, text);
+  const std::string why = rw::common::readTextFile(file, text);
   if (!why.empty()) throw CalibrationError("cannot read " + file.string() + ": " + why);
   return parseCalibration(text, file.string());
 }

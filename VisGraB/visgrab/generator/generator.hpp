@@ -78,7 +78,7 @@ struct GenerationReport {
 /// rectified stereo pair with sensor effects and the calibration; each finished scene is added
 /// to the index at once, so an interrupted run loses nothing and resumes. The same seed gives
 /// byte-identical files whatever the thread count. A scene that fails is reported, not fatal.
-/// @throws std::runtime_error (or rw::loaders::LoadError) for unusable inputs: the object spec,
+/// @throws std::runtime_error (or rw::common::LoadError) for unusable inputs: the object spec,
 /// the hand folder, an index with another seed, no OpenGL.
 GenerationReport generateDatabase(
     const std::vector<database::SceneConditions>& scenes, const GeneratorOptions& options,

@@ -6,19 +6,18 @@
 #include <sstream>
 #include <utility>
 
-#include "rw/loaders/xml/numbers.hpp"
-#include "rw/loaders/xml/xml_reader.hpp"
-#include "rw/loaders/xml/xml_tree.hpp"
+#include "rw/common/numbers.hpp"
+#include "rw/common/xml_reader.hpp"
+#include "rw/common/xml_tree.hpp"
 #include "visgrab/grasp/detail/grasp_description_schema.hpp"
 
 namespace visgrab::grasp {
 
 namespace {
 
-namespace xml = rw::loaders::xml;
-using xml::DiagnosticSink;
-using xml::XmlAttribute;
-using xml::XmlElement;
+using rw::common::DiagnosticSink;
+using rw::common::XmlAttribute;
+using rw::common::XmlElement;
 
 constexpr std::array<std::string_view, 11> kNumberAttributes{"value",
                                                              "atLeast",
@@ -44,12 +43,12 @@ bool contains(const std::array<std::string_view, N>& names, std::string_view nam
 std::string explainValueError(const XmlElement& element) {
   for (const XmlAttribute& a : element.attributes) {
     if (contains(kNumberAttributes, a.name)) {
-      const xml::ParsedNumber n = xml::parseFiniteNumber(a.value);
+      const rw::common::ParsedNumber n = rw::common::parseFiniteNumber(a.value);
       if (!n.error.empty()) return "attribute " + a.name + ": " + n.error;
     }
     if (contains(kListAttributes, a.name)) {
       std::vector<double> values;
-      const std::string error = xml::parseNumberList(a.value, values);
+      const std::string error = rw::common::parseNumberList(a.value, values);
       if (!error.empty()) return "attribute " + a.name + ": " + error;
       if (contains(kVector3Attributes, a.name) && values.size() != 3) {
         return "attribute " + a.name + ": expected 3 numbers (x y z), got " +
@@ -62,19 +61,19 @@ std::string explainValueError(const XmlElement& element) {
 
 std::vector<double> numbers(const XmlElement& e, std::string_view name) {
   std::vector<double> values;
-  if (const std::string* v = e.attribute(name)) xml::parseNumberList(*v, values);
+  if (const std::string* v = e.attribute(name)) rw::common::parseNumberList(*v, values);
   return values;
 }
 
 double number(const XmlElement& e, std::string_view name) {
   const std::string* v = e.attribute(name);
-  return v == nullptr ? 0.0 : xml::parseFiniteNumber(*v).value;
+  return v == nullptr ? 0.0 : rw::common::parseFiniteNumber(*v).value;
 }
 
 std::optional<double> optionalNumber(const XmlElement& e, std::string_view name) {
   const std::string* v = e.attribute(name);
   if (v == nullptr) return std::nullopt;
-  return xml::parseFiniteNumber(*v).value;
+  return rw::common::parseFiniteNumber(*v).value;
 }
 
 rw::math::Vector3D vector3(const XmlElement& e, std::string_view name) {
@@ -190,14 +189,14 @@ GraspDescription readRoot(const XmlElement& root, const std::string& file) {
 std::optional<GraspDescription> parseGraspDescription(std::string_view text,
                                                       const std::filesystem::path& file,
                                                       DiagnosticSink& sink) {
-  auto source =
-      std::make_shared<xml::SourceFile>(xml::SourceFile{file.lexically_normal().string(), {}});
-  xml::XmlReader reader(
-      xml::XmlReaderOptions{std::string(detail::graspDescriptionSchema()), explainValueError});
+  auto source = std::make_shared<rw::common::SourceFile>(
+      rw::common::SourceFile{file.lexically_normal().string(), {}});
+  rw::common::XmlReader reader(rw::common::XmlReaderOptions{
+      std::string(detail::graspDescriptionSchema()), explainValueError});
   const auto elements = reader.parse(text, source, sink);
   if (!elements || sink.hasErrors()) return std::nullopt;
   if (elements->size() != 1 || elements->front().name != "GraspDescription") {
-    sink.error(xml::SourceLocation{source, 1, 1}, "expected one <GraspDescription> element");
+    sink.error(rw::common::SourceLocation{source, 1, 1}, "expected one <GraspDescription> element");
     return std::nullopt;
   }
   return readRoot(elements->front(), source->displayPath);

@@ -6,13 +6,13 @@
 #include <string_view>
 #include <vector>
 
-#include "rw/loaders/xml/diagnostic_sink.hpp"
+#include "rw/common/diagnostic_sink.hpp"
 #include "rw/math/types.hpp"
 
 namespace visgrab::grasp {
 
 /// Where an element of a grasp description was written.
-using SourceLocation = rw::loaders::xml::SourceLocation;
+using SourceLocation = rw::common::SourceLocation;
 
 /// A named pre-shape as written (paper §2.3.2).
 struct PreShapeSpec {
@@ -168,6 +168,6 @@ struct GraspDescription {
 /// Errors go to `sink`, each at file:line:column; returns nullopt if there was one.
 std::optional<GraspDescription> parseGraspDescription(std::string_view xml,
                                                       const std::filesystem::path& file,
-                                                      rw::loaders::xml::DiagnosticSink& sink);
+                                                      rw::common::DiagnosticSink& sink);
 
 }  // namespace visgrab::grasp

@@ -5,16 +5,16 @@
 #include <map>
 #include <utility>
 
+#include "rw/common/text_file.hpp"
 #include "rw/kinematics/frame_tree.hpp"
 #include "rw/loaders/workcell_loader.hpp"
-#include "rw/loaders/xml/text_file.hpp"
 
 namespace visgrab::grasp {
 
 namespace {
 
+using rw::common::DiagnosticSink;
 using rw::kinematics::FrameId;
-using rw::loaders::xml::DiagnosticSink;
 using rw::math::Q;
 
 std::string inQuotes(std::string_view s) { return "\"" + std::string(s) + "\""; }
@@ -304,20 +304,20 @@ std::unique_ptr<HandGraspSetup> loadHandGraspSetupFromString(
     std::string_view xml, const std::filesystem::path& virtualFile) {
   DiagnosticSink sink;
   auto description = parseGraspDescription(xml, virtualFile, sink);
-  if (!description) throw rw::loaders::LoadError(sink.take());
+  if (!description) throw rw::common::LoadError(sink.take());
   const std::filesystem::path wcFile = virtualFile.parent_path() / description->workcell;
   std::shared_ptr<const rw::models::WorkCell> workcell;
   try {
     workcell = rw::loaders::loadWorkCell(wcFile);
-  } catch (const rw::loaders::LoadError& e) {
-    std::vector<rw::loaders::Diagnostic> all = e.diagnostics();
-    rw::loaders::Diagnostic note;
+  } catch (const rw::common::LoadError& e) {
+    std::vector<rw::common::Diagnostic> all = e.diagnostics();
+    rw::common::Diagnostic note;
     note.file = description->file;
     note.line = description->where.line;
     note.column = description->where.column;
     note.message = "the hand's workcell " + inQuotes(wcFile.string()) + " failed to load";
     all.insert(all.begin(), note);
-    throw rw::loaders::LoadError(std::move(all));
+    throw rw::common::LoadError(std::move(all));
   }
   std::filesystem::path dynamics =
       description->dynamics.empty()
@@ -326,7 +326,7 @@ std::unique_ptr<HandGraspSetup> loadHandGraspSetupFromString(
                  "_dynamics.dwc.xml")
           : virtualFile.parent_path() / description->dynamics;
   auto setup = HandGraspSetup::build(std::move(*description), std::move(workcell), sink);
-  if (!setup) throw rw::loaders::LoadError(sink.take());
+  if (!setup) throw rw::common::LoadError(sink.take());
   setup->workcellFile_ = std::filesystem::absolute(wcFile).lexically_normal();
   setup->dynamicsFile_ = std::filesystem::absolute(dynamics).lexically_normal();
   return setup;
@@ -344,7 +344,7 @@ std::filesystem::path graspDescriptionFile(const std::filesystem::path& fileOrFo
   }
   std::sort(found.begin(), found.end());
   if (found.size() == 1) return found.front();
-  rw::loaders::Diagnostic d;
+  rw::common::Diagnostic d;
   d.file = fileOrFolder.string();
   if (found.empty()) {
     d.message = "the hand folder " + fileOrFolder.string() +
@@ -357,12 +357,12 @@ std::filesystem::path graspDescriptionFile(const std::filesystem::path& fileOrFo
     }
     d.message += "); give the one to use";
   }
-  throw rw::loaders::LoadError({d});
+  throw rw::common::LoadError({d});
 }
 
 std::unique_ptr<HandGraspSetup> loadHandGraspSetup(const std::filesystem::path& fileOrFolder) {
   const std::filesystem::path file = graspDescriptionFile(fileOrFolder);
-  return loadHandGraspSetupFromString(rw::loaders::xml::readTextFileOrThrow(file), file);
+  return loadHandGraspSetupFromString(rw::common::readTextFileOrThrow(file), file);
 }
 
 }  // namespace visgrab::grasp

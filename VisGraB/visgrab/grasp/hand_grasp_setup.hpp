@@ -7,8 +7,8 @@
 #include <string_view>
 #include <vector>
 
+#include "rw/common/diagnostic.hpp"
 #include "rw/kinematics/state.hpp"
-#include "rw/loaders/diagnostic.hpp"
 #include "rw/models/workcell.hpp"
 #include "visgrab/grasp/grasp_description.hpp"
 
@@ -117,7 +117,7 @@ class HandGraspSetup {
   /// at the lines of the description; returns nullptr if there was one.
   static std::unique_ptr<HandGraspSetup> build(GraspDescription description,
                                                std::shared_ptr<const rw::models::WorkCell> workcell,
-                                               rw::loaders::xml::DiagnosticSink& sink);
+                                               rw::common::DiagnosticSink& sink);
 
   /// The description as read.
   const GraspDescription& description() const { return description_; }
@@ -178,18 +178,18 @@ class HandGraspSetup {
 
 /// Loads a grasp description file and the hand's workcell it names (rw::loaders::loadWorkCell),
 /// and prepares them. `file` may also be a hand's folder (e.g. scenes/hands/pg70): the one
-/// `*.grasp.xml` in it. @throws rw::loaders::LoadError listing every error, each at the
+/// `*.grasp.xml` in it. @throws rw::common::LoadError listing every error, each at the
 /// file:line:column of the description (or of the workcell, if that fails to load); for a
 /// folder without exactly one grasp description, naming the folder and what it holds.
 std::unique_ptr<HandGraspSetup> loadHandGraspSetup(const std::filesystem::path& file);
 
 /// The grasp description of a hand given as a file or as its folder (see loadHandGraspSetup).
-/// @throws rw::loaders::LoadError as loadHandGraspSetup for a folder.
+/// @throws rw::common::LoadError as loadHandGraspSetup for a folder.
 std::filesystem::path graspDescriptionFile(const std::filesystem::path& fileOrFolder);
 
 /// Same as loadHandGraspSetup, reading the description from `xml`; its workcell attribute
 /// resolves against the folder of `virtualFile`, and messages name `virtualFile`.
-/// @throws rw::loaders::LoadError listing every error.
+/// @throws rw::common::LoadError listing every error.
 std::unique_ptr<HandGraspSetup> loadHandGraspSetupFromString(
     std::string_view xml, const std::filesystem::path& virtualFile);
 

@@ -9,22 +9,21 @@
 #include <memory>
 #include <utility>
 
-#include "rw/loaders/diagnostic.hpp"
-#include "rw/loaders/xml/diagnostic_sink.hpp"
-#include "rw/loaders/xml/numbers.hpp"
-#include "rw/loaders/xml/text_file.hpp"
-#include "rw/loaders/xml/xml_reader.hpp"
-#include "rw/loaders/xml/xml_tree.hpp"
+#include "rw/common/diagnostic.hpp"
+#include "rw/common/diagnostic_sink.hpp"
+#include "rw/common/numbers.hpp"
+#include "rw/common/text_file.hpp"
+#include "rw/common/xml_reader.hpp"
+#include "rw/common/xml_tree.hpp"
 #include "visgrab/objects/detail/objects_schema.hpp"
 
 namespace visgrab::objects {
 
 namespace {
 
-namespace xml = rw::loaders::xml;
-using xml::DiagnosticSink;
-using xml::XmlAttribute;
-using xml::XmlElement;
+using rw::common::DiagnosticSink;
+using rw::common::XmlAttribute;
+using rw::common::XmlElement;
 
 struct PatternName {
   PatternKind kind;
@@ -65,7 +64,7 @@ std::string explainValueError(const XmlElement& element) {
   for (const XmlAttribute& a : element.attributes) {
     if (std::find(kNumberAttributes.begin(), kNumberAttributes.end(), a.name) !=
         kNumberAttributes.end()) {
-      const xml::ParsedNumber n = xml::parseFiniteNumber(a.value);
+      const rw::common::ParsedNumber n = rw::common::parseFiniteNumber(a.value);
       if (!n.error.empty()) return "attribute " + a.name + ": " + n.error;
       if ((a.name == "id" || a.name == "seed") &&
           (n.value != std::floor(n.value) || n.value < (a.name == "id" ? 1 : 0))) {
@@ -76,7 +75,7 @@ std::string explainValueError(const XmlElement& element) {
     }
     if (std::find(kRgbAttributes.begin(), kRgbAttributes.end(), a.name) != kRgbAttributes.end()) {
       std::vector<double> values;
-      const std::string error = xml::parseNumberList(a.value, values);
+      const std::string error = rw::common::parseNumberList(a.value, values);
       if (!error.empty()) return "attribute " + a.name + ": " + error;
       if (values.size() != 3) {
         return "attribute " + a.name + ": expected 3 numbers (red green blue), got " +
@@ -134,13 +133,13 @@ class SpecReader {
   // A required number attribute (the schema guarantees presence and format).
   double number(const XmlElement& e, std::string_view name) {
     const std::string* v = e.attribute(name);
-    return v == nullptr ? 0.0 : xml::parseFiniteNumber(*v).value;
+    return v == nullptr ? 0.0 : rw::common::parseFiniteNumber(*v).value;
   }
 
   std::optional<double> optionalNumber(const XmlElement& e, std::string_view name) {
     const std::string* v = e.attribute(name);
     if (v == nullptr) return std::nullopt;
-    return xml::parseFiniteNumber(*v).value;
+    return rw::common::parseFiniteNumber(*v).value;
   }
 
   bool positive(const XmlElement& e, std::string_view name, double value) {
@@ -159,7 +158,7 @@ class SpecReader {
     const std::string* v = e.attribute(name);
     if (v == nullptr) return true;
     std::vector<double> values;
-    xml::parseNumberList(*v, values);
+    rw::common::parseNumberList(*v, values);
     if (values.size() != 3) return false;  // reported by the schema pass
     for (int i = 0; i < 3; ++i) {
       if (!(values[i] >= 0.0 && values[i] <= 1.0)) {
@@ -396,14 +395,14 @@ class SpecReader {
 
 ObjectDatabaseSpec load(std::string_view text, const std::filesystem::path& file,
                         DiagnosticSink& sink) {
-  auto source =
-      std::make_shared<xml::SourceFile>(xml::SourceFile{file.lexically_normal().string(), {}});
-  xml::XmlReader reader(
-      xml::XmlReaderOptions{std::string(detail::objectsSchema()), explainValueError});
+  auto source = std::make_shared<rw::common::SourceFile>(
+      rw::common::SourceFile{file.lexically_normal().string(), {}});
+  rw::common::XmlReader reader(
+      rw::common::XmlReaderOptions{std::string(detail::objectsSchema()), explainValueError});
   const auto elements = reader.parse(text, source, sink);
   if (!elements || sink.hasErrors()) return {};
   if (elements->size() != 1 || elements->front().name != "ObjectDatabase") {
-    sink.error(xml::SourceLocation{source, 1, 1}, "expected one <ObjectDatabase> element");
+    sink.error(rw::common::SourceLocation{source, 1, 1}, "expected one <ObjectDatabase> element");
     return {};
   }
   return SpecReader(sink).read(elements->front());
@@ -412,7 +411,7 @@ ObjectDatabaseSpec load(std::string_view text, const std::filesystem::path& file
 ObjectDatabaseSpec loadOrThrow(std::string_view text, const std::filesystem::path& file,
                                DiagnosticSink& sink) {
   ObjectDatabaseSpec spec = load(text, file, sink);
-  if (sink.hasErrors()) throw rw::loaders::LoadError(sink.take());
+  if (sink.hasErrors()) throw rw::common::LoadError(sink.take());
   return spec;
 }
 
@@ -502,12 +501,12 @@ const TableSpec* ObjectDatabaseSpec::findTable(std::string_view name) const {
 ObjectDatabaseSpec loadObjectSpecs(const std::filesystem::path& file) {
   DiagnosticSink sink;
   std::string text;
-  const std::string problem = xml::readTextFile(file, text);
+  const std::string problem = rw::common::readTextFile(file, text);
   if (!problem.empty()) {
-    auto source =
-        std::make_shared<xml::SourceFile>(xml::SourceFile{file.lexically_normal().string(), {}});
-    sink.error(xml::SourceLocation{source, 0, 0}, "cannot read the file: " + problem);
-    throw rw::loaders::LoadError(sink.take());
+    auto source = std::make_shared<rw::common::SourceFile>(
+        rw::common::SourceFile{file.lexically_normal().string(), {}});
+    sink.error(rw::common::SourceLocation{source, 0, 0}, "cannot read the file: " + problem);
+    throw rw::common::LoadError(sink.take());
   }
   return loadOrThrow(text, file, sink);
 }

@@ -173,11 +173,11 @@ inline constexpr double kMaxCornerRadius = 0.004;
 /// Reads an object spec file: checks it against xml/objects.xsd (compiled in), then the meaning
 /// (positive sizes, monotonic profiles, handles on the body, unique ids and names, colours in
 /// [0, 1], known patterns and materials).
-/// @throws rw::loaders::LoadError with every error found, each at file:line:column.
+/// @throws rw::common::LoadError with every error found, each at file:line:column.
 ObjectDatabaseSpec loadObjectSpecs(const std::filesystem::path& file);
 
 /// Same as loadObjectSpecs, reading the XML from `xml`; messages name `virtualFile`.
-/// @throws rw::loaders::LoadError with every error found, each at file:line:column.
+/// @throws rw::common::LoadError with every error found, each at file:line:column.
 ObjectDatabaseSpec loadObjectSpecsFromString(std::string_view xml,
                                              const std::filesystem::path& virtualFile);
 

@@ -17,8 +17,8 @@
 namespace visgrab::results {
 
 namespace fs = std::filesystem;
-using rw::loaders::Diagnostic;
-using rw::loaders::LoadError;
+using rw::common::Diagnostic;
+using rw::common::LoadError;
 
 namespace {
 

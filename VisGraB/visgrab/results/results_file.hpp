@@ -6,7 +6,7 @@
 #include <string_view>
 #include <vector>
 
-#include "rw/loaders/diagnostic.hpp"
+#include "rw/common/diagnostic.hpp"
 #include "visgrab/results/trial_record.hpp"
 
 /// The files of a run's result folder (docs/report.md describes them):
@@ -56,12 +56,12 @@ struct TrialsFile {
 
 /// Reads trials.csv text of version 2 or 1; `file` names it in errors. A last line without a
 /// line break is torn (see TrialsFile) and dropped, whatever it holds. @throws
-/// rw::loaders::LoadError with `file:line` for a wrong header or version, a malformed line, an
+/// rw::common::LoadError with `file:line` for a wrong header or version, a malformed line, an
 /// unknown outcome, a RobWork code that does not match the outcome, or a trial (scene, method,
 /// grasp) given twice.
 TrialsFile parseTrials(std::string_view text, const std::string& file);
 
-/// Reads run.csv text (scenes, methods, rejected; no trials). @throws rw::loaders::LoadError with
+/// Reads run.csv text (scenes, methods, rejected; no trials). @throws rw::common::LoadError with
 /// `file:line` for a malformed file, unknown conditions or a scene given twice.
 RunResults parseRunFile(std::string_view text, const std::string& file);
 
@@ -74,9 +74,9 @@ void sortTrials(std::vector<TrialRecord>& trials, const std::vector<RunScene>& s
 /// conditions; scenes only in trials.csv are added (conditions from the id, warning when run.csv
 /// exists), so are methods; trials are sorted with sortTrials; label is the folder's name.
 /// A torn last line of trials.csv is dropped with a warning in `warnings` (if given).
-/// @throws rw::loaders::LoadError (file:line) for corrupt files or a missing trials.csv.
+/// @throws rw::common::LoadError (file:line) for corrupt files or a missing trials.csv.
 RunResults readResults(const std::filesystem::path& dir,
-                       std::vector<rw::loaders::Diagnostic>* warnings = nullptr);
+                       std::vector<rw::common::Diagnostic>* warnings = nullptr);
 
 /// Writes `run` as a result folder (run.csv and trials.csv in canonical order), each file
 /// atomically. @throws std::runtime_error if a file cannot be written.

@@ -29,7 +29,7 @@ class ResultsWriter {
   };
 
   /// Opens (creating) `dir` and its trials.csv; reads back existing trials and run.csv.
-  /// @throws rw::loaders::LoadError (file:line) if an existing file is corrupt,
+  /// @throws rw::common::LoadError (file:line) if an existing file is corrupt,
   /// std::runtime_error if the folder or file cannot be created or written.
   explicit ResultsWriter(std::filesystem::path dir);
   /// See ResultsWriter(dir).

@@ -11,8 +11,8 @@
 #include <string_view>
 #include <thread>
 
-#include "rw/loaders/xml/strings.hpp"
-#include "rw/loaders/xml/text_file.hpp"
+#include "rw/common/strings.hpp"
+#include "rw/common/text_file.hpp"
 #include "rwsim/loaders/dynamic_workcell_loader.hpp"
 #include "rwsim/simulator/grasp_trial.hpp"
 #include "visgrab/database/database.hpp"
@@ -28,7 +28,7 @@ namespace visgrab::runner {
 namespace {
 
 namespace fs = std::filesystem;
-using rw::loaders::Diagnostic;
+using rw::common::Diagnostic;
 using rwsim::simulator::GraspOutcome;
 
 /// One grasp to run: its request and its rank among its scene's grasps of its method.
@@ -156,8 +156,8 @@ std::vector<IncludeRef> handIncludes(const std::string& text, const fs::path& fo
 
 bool sameContent(const fs::path& a, const fs::path& b) {
   std::string ta, tb;
-  return rw::loaders::xml::readTextFile(a, ta).empty() &&
-         rw::loaders::xml::readTextFile(b, tb).empty() && ta == tb;
+  return rw::common::readTextFile(a, ta).empty() && rw::common::readTextFile(b, tb).empty() &&
+         ta == tb;
 }
 
 }  // namespace
@@ -167,8 +167,8 @@ std::unique_ptr<rwsim::dynamics::DynamicWorkCell> loadSceneWithHand(
   if (hand.workcellFile().empty() || hand.dynamicsFile().empty()) {
     return rwsim::loaders::loadDynamicWorkCell(entry.dynamicWorkcell);
   }
-  const std::string wcText = rw::loaders::xml::readTextFileOrThrow(entry.workcell);
-  const std::string dwcText = rw::loaders::xml::readTextFileOrThrow(entry.dynamicWorkcell);
+  const std::string wcText = rw::common::readTextFileOrThrow(entry.workcell);
+  const std::string dwcText = rw::common::readTextFileOrThrow(entry.dynamicWorkcell);
   const auto wcRefs = handIncludes(wcText, entry.workcell.parent_path());
   const auto dwcRefs = handIncludes(dwcText, entry.dynamicWorkcell.parent_path());
   if (wcRefs.size() != 1 || dwcRefs.size() != 1) {
@@ -196,10 +196,10 @@ std::unique_ptr<rwsim::dynamics::DynamicWorkCell> loadSceneWithHand(
   }
   std::string wc = wcText;
   wc.replace(wcRef.valueBegin, wcRef.valueEnd - wcRef.valueBegin,
-             rw::loaders::xml::escapeXml(hand.workcellFile().generic_string()));
+             rw::common::escapeXml(hand.workcellFile().generic_string()));
   std::string dwc = dwcText;
   dwc.replace(dwcRef.valueBegin, dwcRef.valueEnd - dwcRef.valueBegin,
-              rw::loaders::xml::escapeXml(hand.dynamicsFile().generic_string()));
+              rw::common::escapeXml(hand.dynamicsFile().generic_string()));
   return rwsim::loaders::loadDynamicWorkCellFromStrings(dwc, wc, entry.dynamicWorkcell);
 }
 
@@ -293,7 +293,7 @@ RunSummary runBenchmark(const RunOptions& options,
   if (!pending.empty()) {
     try {
       SceneRunner probe(*pending.front(), *hand);
-    } catch (const rw::loaders::LoadError&) {
+    } catch (const rw::common::LoadError&) {
       throw;
     } catch (const std::exception& e) {
       throw std::runtime_error("the hand " + options.hand.string() + " cannot run in scene " +

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "rw/loaders/diagnostic.hpp"
+#include "rw/common/diagnostic.hpp"
 #include "rwsim/dynamics/dynamic_workcell.hpp"
 #include "rwsim/simulator/grasp_trial.hpp"
 #include "visgrab/database/database.hpp"
@@ -29,7 +29,7 @@ rwsim::simulator::GraspTrialSetup trialSetup(const grasp::HandGraspSetup& hand,
 /// runs in any scene without generating the database again. The hand hangs from the scene's
 /// HandMount frame, as the generated one. A scene without exactly one such Include in each file
 /// (an original or hand-written one) is loaded as it is if it holds the hand's device.
-/// @throws rw::loaders::LoadError for unreadable or invalid files; std::runtime_error naming the
+/// @throws rw::common::LoadError for unreadable or invalid files; std::runtime_error naming the
 /// scene when the hand cannot be put in (no such Includes and not the hand's device; the hand's
 /// dynamics file missing).
 std::unique_ptr<rwsim::dynamics::DynamicWorkCell> loadSceneWithHand(
@@ -75,7 +75,7 @@ struct RunSummary {
   /// Trials found already done in `out` (resume).
   int resumed = 0;
   /// Grasps rejected before simulation: malformed input, unknown scenes or pre-shapes.
-  std::vector<rw::loaders::Diagnostic> rejected;
+  std::vector<rw::common::Diagnostic> rejected;
   /// Trials per outcome name, this run and resumed together.
   std::map<std::string, int> outcomes;
   /// Scenes of the run and methods seen.
@@ -90,7 +90,7 @@ struct RunSummary {
 /// Per-grasp problems (bad input, unknown scene, unknown pre-shape) are rejected with a
 /// diagnostic and counted in run.csv (per method; grasps the reader could not parse under their
 /// file's name); the other grasps run. Deterministic whatever the thread count.
-/// @throws rw::loaders::LoadError for an unreadable database, grasp file or hand description,
+/// @throws rw::common::LoadError for an unreadable database, grasp file or hand description,
 /// std::runtime_error for an existing result folder without `resume` or a failed write.
 RunSummary runBenchmark(const RunOptions& options,
                         const std::function<void(const RunProgress&)>& progress = {});

@@ -5,18 +5,17 @@
 #include <set>
 #include <stdexcept>
 
-#include "rw/loaders/xml/numbers.hpp"
+#include "rw/common/numbers.hpp"
 #include "visgrab/taskio/detail/common.hpp"
 
 namespace visgrab::taskio {
 
-namespace xml = rw::loaders::xml;
 using grasp::GraspKind;
 using grasp::GraspRequest;
+using rw::common::XmlElement;
 using rw::math::Q;
 using rw::math::Rotation3D;
 using rw::math::Vector3D;
-using xml::XmlElement;
 
 namespace {
 
@@ -29,7 +28,7 @@ struct GraspError {
   std::string message;
 };
 
-std::string trimmed(std::string_view text) { return std::string(xml::trimXmlSpace(text)); }
+std::string trimmed(std::string_view text) { return std::string(rw::common::trimXmlSpace(text)); }
 
 const XmlElement& required(const XmlElement& parent, std::string_view name) {
   if (const XmlElement* c = detail::child(parent, name)) return *c;
@@ -38,7 +37,7 @@ const XmlElement& required(const XmlElement& parent, std::string_view name) {
 
 std::vector<double> numbers(const XmlElement& e, std::size_t count, std::string_view what) {
   std::vector<double> v;
-  const std::string why = xml::parseNumberList(e.text, v);
+  const std::string why = rw::common::parseNumberList(e.text, v);
   if (!why.empty()) throw GraspError{&e, e.describe() + ": " + why};
   if (count != 0 && v.size() != count) {
     throw GraspError{&e, e.describe() + ": expected " + std::to_string(count) + " numbers (" +
@@ -254,7 +253,7 @@ void experimentsFromElement(const XmlElement& root, const std::string& file,
     } else {
       out.warnings.push_back(errorAt(file, c.location.line, c.location.column,
                                      c.describe() + ": ignored (expected <experiment>)"));
-      out.warnings.back().severity = rw::loaders::Diagnostic::Severity::kWarning;
+      out.warnings.back().severity = rw::common::Diagnostic::Severity::kWarning;
     }
   }
 }
@@ -263,7 +262,7 @@ void experimentsFromElement(const XmlElement& root, const std::string& file,
 GraspFileContents parseExperimentXml(std::string_view text, const std::filesystem::path& file) {
   const auto top = detail::parseXmlOrThrow(text, file);
   if (top.size() != 1 || detail::localName(top.front().name) != "visgrab") {
-    throw rw::loaders::LoadError(
+    throw rw::common::LoadError(
         {detail::errorAt(file.string(), top.empty() ? 0 : top.front().location.line,
                          top.empty() ? 0 : top.front().location.column,
                          "expected one root element <visgrab> (VisGraB experiment file)")});

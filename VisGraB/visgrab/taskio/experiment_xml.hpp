@@ -3,7 +3,7 @@
 #include <filesystem>
 #include <string_view>
 
-#include "rw/loaders/xml/xml_tree.hpp"
+#include "rw/common/xml_tree.hpp"
 #include "visgrab/taskio/grasp_file.hpp"
 
 namespace visgrab::taskio {
@@ -22,16 +22,16 @@ namespace visgrab::taskio {
 /// unknown pre-shape, contacts other than 2 or 3, zero directions, duplicate ids. When both
 /// <quaternion> and <rotmatrix> are given the later one wins (as in the original). Namespace
 /// prefixes are ignored on every element. An experiment without id or sceneID gives one
-/// diagnostic and its grasps are skipped. @throws rw::loaders::LoadError for malformed XML or
+/// diagnostic and its grasps are skipped. @throws rw::common::LoadError for malformed XML or
 /// a root other than <visgrab>.
 GraspFileContents parseExperimentXml(std::string_view text, const std::filesystem::path& file);
 
-/// parseExperimentXml on the content of `file`. @throws rw::loaders::LoadError.
+/// parseExperimentXml on the content of `file`. @throws rw::common::LoadError.
 GraspFileContents readExperimentXml(const std::filesystem::path& file);
 
 namespace detail {
 /// The requests of an already parsed <visgrab> root, appended to `out`.
-void experimentsFromElement(const rw::loaders::xml::XmlElement& root, const std::string& file,
+void experimentsFromElement(const rw::common::XmlElement& root, const std::string& file,
                             GraspFileContents& out);
 }  // namespace detail
 

@@ -4,7 +4,7 @@
 #include <stdexcept>
 #include <system_error>
 
-#include "rw/loaders/xml/diagnostic_sink.hpp"
+#include "rw/common/diagnostic_sink.hpp"
 #include "visgrab/taskio/detail/common.hpp"
 #include "visgrab/taskio/experiment_xml.hpp"
 #include "visgrab/taskio/grasp_list.hpp"
@@ -13,7 +13,6 @@
 namespace visgrab::taskio {
 
 namespace fs = std::filesystem;
-namespace xml = rw::loaders::xml;
 
 namespace {
 
@@ -24,16 +23,16 @@ bool looksLikeXml(std::string_view text) {
 }
 
 /// The root element of XML text; LoadError unless it is <CartesianTask> or <visgrab>.
-xml::XmlElement xmlRoot(std::string_view text, const fs::path& file) {
+rw::common::XmlElement xmlRoot(std::string_view text, const fs::path& file) {
   auto top = detail::parseXmlOrThrow(text, file);
   if (top.size() != 1) {
-    throw rw::loaders::LoadError({detail::errorAt(
+    throw rw::common::LoadError({detail::errorAt(
         file.string(), top.size() > 1 ? top[1].location.line : 0,
         top.size() > 1 ? top[1].location.column : 0, "expected exactly one root element")});
   }
   const auto name = detail::localName(top.front().name);
   if (name != "CartesianTask" && name != "visgrab") {
-    throw rw::loaders::LoadError({detail::errorAt(
+    throw rw::common::LoadError({detail::errorAt(
         file.string(), top.front().location.line, top.front().location.column,
         "unknown grasp file: root element <" + top.front().name +
             ">, expected <CartesianTask> (RobWork task) or <visgrab> (VisGraB experiment)")});
@@ -52,14 +51,14 @@ std::string methodOf(const fs::path& file) {
   return name;
 }
 
-void fromRwTask(const xml::XmlElement& root, const fs::path& file, GraspFileContents& out) {
-  xml::DiagnosticSink sink;
+void fromRwTask(const rw::common::XmlElement& root, const fs::path& file, GraspFileContents& out) {
+  rw::common::DiagnosticSink sink;
   GraspTask task = detail::rwTaskFromElement(root, sink);
-  if (sink.hasErrors()) throw rw::loaders::LoadError(sink.take());
+  if (sink.hasErrors()) throw rw::common::LoadError(sink.take());
   for (auto& d : sink.take()) out.warnings.push_back(std::move(d));
   const auto scene = stringProperty(task.otherProperties, "SceneID");
   if (!scene || scene->empty()) {
-    throw rw::loaders::LoadError({detail::errorAt(
+    throw rw::common::LoadError({detail::errorAt(
         file.string(), root.location.line, root.location.column,
         "RobWork task has no root String property SceneID (as VisGraB wrote it); add "
         "<Property><Name>SceneID</Name><Value><String>scene id</String></Value></Property> to "
@@ -91,7 +90,7 @@ GraspFileFormat detectGraspFileFormat(std::string_view text, const fs::path& fil
 GraspFileContents readGraspFile(const fs::path& file) {
   const std::string text = detail::readFileOrThrow(file, "the grasp file");
   if (!looksLikeXml(text)) return parseGraspList(text, file);
-  const xml::XmlElement root = xmlRoot(text, file);
+  const rw::common::XmlElement root = xmlRoot(text, file);
   GraspFileContents out;
   if (detail::localName(root.name) == "visgrab") {
     detail::experimentsFromElement(root, file.string(), out);
@@ -104,7 +103,7 @@ GraspFileContents readGraspFile(const fs::path& file) {
 GraspFileContents readGraspFolder(const fs::path& folder) {
   std::error_code ec;
   if (!fs::is_directory(folder, ec)) {
-    throw rw::loaders::LoadError(
+    throw rw::common::LoadError(
         {detail::errorAt(folder.string(), 0, 0, "cannot read the grasp folder: not a folder")});
   }
   std::vector<fs::path> files;
@@ -114,7 +113,7 @@ GraspFileContents readGraspFolder(const fs::path& folder) {
     if (entry.is_regular_file(ec)) files.push_back(entry.path());
   }
   if (ec) {
-    throw rw::loaders::LoadError(
+    throw rw::common::LoadError(
         {detail::errorAt(folder.string(), 0, 0, "cannot list the grasp folder: " + ec.message())});
   }
   std::sort(files.begin(), files.end(),

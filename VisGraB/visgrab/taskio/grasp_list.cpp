@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <tuple>
 
-#include "rw/loaders/xml/numbers.hpp"
+#include "rw/common/numbers.hpp"
 #include "visgrab/taskio/detail/common.hpp"
 
 namespace visgrab::taskio {
@@ -57,7 +57,7 @@ class LineReader {
 
   double number(std::string_view what) {
     const Field& f = next(what);
-    const auto n = rw::loaders::xml::parseFiniteNumber(f.text);
+    const auto n = rw::common::parseFiniteNumber(f.text);
     if (!n.error.empty()) {
       throw LineError{f.column, std::string(what) + ": " + n.error + " (expected a finite number)"};
     }
@@ -66,7 +66,7 @@ class LineReader {
 
   int count(std::string_view what, int low, int high) {
     const Field& f = next(what);
-    const auto n = rw::loaders::xml::parseFiniteNumber(f.text);
+    const auto n = rw::common::parseFiniteNumber(f.text);
     if (!n.error.empty() || n.value != std::floor(n.value) || n.value < low || n.value > high) {
       throw LineError{f.column, std::string(what) + ": expected a whole number from " +
                                     std::to_string(low) + " to " + std::to_string(high) +

@@ -16,7 +16,7 @@ namespace visgrab::taskio {
 /// lines are read. Never throws for bad content.
 GraspFileContents parseGraspList(std::string_view text, const std::filesystem::path& file);
 
-/// parseGraspList on the content of `file`. @throws rw::loaders::LoadError if unreadable.
+/// parseGraspList on the content of `file`. @throws rw::common::LoadError if unreadable.
 GraspFileContents readGraspList(const std::filesystem::path& file);
 
 /// The grasp list text for `requests` (a comment header, then one line per grasp; numbers in

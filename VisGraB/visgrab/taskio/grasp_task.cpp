@@ -10,7 +10,7 @@ std::optional<std::string> stringProperty(const std::vector<Property>& propertie
                                           std::string_view name) {
   for (const auto& p : properties) {
     if (p.name == name && p.value.name == "String") {
-      return std::string(rw::loaders::xml::trimXmlSpace(p.value.text));
+      return std::string(rw::common::trimXmlSpace(p.value.text));
     }
   }
   return std::nullopt;
@@ -18,7 +18,7 @@ std::optional<std::string> stringProperty(const std::vector<Property>& propertie
 
 void setStringProperty(std::vector<Property>& properties, std::string_view name,
                        std::string_view value) {
-  rw::loaders::xml::XmlElement element;
+  rw::common::XmlElement element;
   element.name = "String";
   element.text = std::string(value);
   for (auto& p : properties) {

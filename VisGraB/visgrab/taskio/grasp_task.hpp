@@ -7,7 +7,7 @@
 #include <string_view>
 #include <vector>
 
-#include "rw/loaders/xml/xml_tree.hpp"
+#include "rw/common/xml_tree.hpp"
 #include "rw/math/types.hpp"
 #include "rwsim/simulator/grasp_trial.hpp"
 #include "visgrab/grasp/grasp_request.hpp"
@@ -23,7 +23,7 @@ struct Property {
   /// The property's <Description> (usually empty).
   std::string description;
   /// The typed element inside <Value>, e.g. <String>text</String> or <Q>1 2</Q>.
-  rw::loaders::xml::XmlElement value;
+  rw::common::XmlElement value;
 };
 
 /// The value of the <String> property `name` in `properties`, if there is one.

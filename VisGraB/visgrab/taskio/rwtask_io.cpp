@@ -7,19 +7,18 @@
 #include <map>
 #include <numbers>
 
-#include "rw/loaders/xml/numbers.hpp"
-#include "rw/loaders/xml/strings.hpp"
+#include "rw/common/numbers.hpp"
+#include "rw/common/strings.hpp"
 #include "rw/math/rpy.hpp"
 #include "visgrab/taskio/detail/common.hpp"
 
 namespace visgrab::taskio {
 
-namespace xml = rw::loaders::xml;
+using rw::common::XmlElement;
 using rw::math::Q;
 using rw::math::Rotation3D;
 using rw::math::Transform3D;
 using rw::math::Vector3D;
-using xml::XmlElement;
 
 namespace {
 
@@ -55,7 +54,7 @@ struct RawProperty {
 
 class TaskParser {
  public:
-  explicit TaskParser(xml::DiagnosticSink& sink) : sink_(sink) {}
+  explicit TaskParser(rw::common::DiagnosticSink& sink) : sink_(sink) {}
 
   GraspTask parseRoot(const XmlElement& root) {
     GraspTask task;
@@ -113,7 +112,7 @@ class TaskParser {
           }
         }
       } else if (name == "Id") {
-        sub.taskId = std::string(xml::trimXmlSpace(c.text));
+        sub.taskId = std::string(rw::common::trimXmlSpace(c.text));
       } else if (name == "PropertyMap") {
         for (auto& p : readPropertyMap(c)) {
           if (p.name == "refframe") {
@@ -232,7 +231,7 @@ class TaskParser {
         sink_.error(c.location, "<Property> without <Name>");
         continue;
       }
-      p.name = std::string(xml::trimXmlSpace(name->text));
+      p.name = std::string(rw::common::trimXmlSpace(name->text));
       if (const XmlElement* d = detail::child(c, "Description")) p.description = d->text;
       if (value == nullptr || value->children.size() != 1) {
         sink_.error(value ? value->location : c.location,
@@ -264,15 +263,16 @@ class TaskParser {
 
   std::string readString(const RawProperty& p) {
     if (!expectType(p, "String")) return {};
-    return std::string(xml::trimXmlSpace(p.value->text));
+    return std::string(rw::common::trimXmlSpace(p.value->text));
   }
 
   int readInteger(const RawProperty& p) {
     if (!expectType(p, "Integer")) return 0;
-    const auto n = xml::parseFiniteNumber(p.value->text);
+    const auto n = rw::common::parseFiniteNumber(p.value->text);
     if (!n.error.empty() || n.value != std::floor(n.value) || std::abs(n.value) > 1e9) {
       sink_.error(p.value->location, "property '" + p.name + "': expected an integer, got \"" +
-                                         std::string(xml::trimXmlSpace(p.value->text)) + "\"");
+                                         std::string(rw::common::trimXmlSpace(p.value->text)) +
+                                         "\"");
       return 0;
     }
     return static_cast<int>(n.value);
@@ -281,7 +281,7 @@ class TaskParser {
   double readDouble(const RawProperty& p) {
     const auto type = detail::localName(p.value->name);
     if (type != "Float" && !expectType(p, "Double")) return 0.0;
-    const auto n = xml::parseFiniteNumber(p.value->text);
+    const auto n = rw::common::parseFiniteNumber(p.value->text);
     if (!n.error.empty()) {
       sink_.error(p.value->location, "property '" + p.name + "': " + n.error);
       return 0.0;
@@ -293,7 +293,7 @@ class TaskParser {
   bool numbers(const XmlElement& element, std::size_t count, std::vector<double>& values,
                std::string_view what) {
     values.clear();
-    const std::string why = xml::parseNumberList(element.text, values);
+    const std::string why = rw::common::parseNumberList(element.text, values);
     if (!why.empty()) {
       sink_.error(element.location, element.describe() + ": " + why);
       return false;
@@ -305,7 +305,7 @@ class TaskParser {
       return false;
     }
     if (const std::string* unit = element.attribute("unit")) {
-      const double factor = unitFactor(xml::trimXmlSpace(*unit));
+      const double factor = unitFactor(rw::common::trimXmlSpace(*unit));
       if (factor == 0.0) {
         sink_.error(element.location,
                     element.describe() + ": unknown unit \"" + *unit +
@@ -434,7 +434,7 @@ class TaskParser {
       Rotation3D R = Rotation3D::Identity();
       if (name == "Rotation3D") {
         v.clear();
-        const std::string why = xml::parseNumberList(c.text, v);
+        const std::string why = rw::common::parseNumberList(c.text, v);
         if (!why.empty()) {
           sink_.error(c.location, c.describe() + ": " + why);
           continue;
@@ -482,7 +482,7 @@ class TaskParser {
     return X;
   }
 
-  xml::DiagnosticSink& sink_;
+  rw::common::DiagnosticSink& sink_;
 };
 
 // --- writer -------------------------------------------------------------------------------
@@ -540,9 +540,10 @@ void writePropertyMap(std::string& out, std::vector<OutProperty> props, int inde
   out += pad(indent) + "<PropertyMap>\n";
   for (const auto& p : props) {
     out += pad(indent + 2) + "<Property>\n";
-    out += pad(indent + 4) + "<Name>" + xml::escapeXml(p.name) + "</Name>\n";
+    out += pad(indent + 4) + "<Name>" + rw::common::escapeXml(p.name) + "</Name>\n";
     if (!p.description.empty()) {
-      out += pad(indent + 4) + "<Description>" + xml::escapeXml(p.description) + "</Description>\n";
+      out += pad(indent + 4) + "<Description>" + rw::common::escapeXml(p.description) +
+             "</Description>\n";
     }
     out += pad(indent + 4) + "<Value>\n" + p.body + pad(indent + 4) + "</Value>\n";
     out += pad(indent + 2) + "</Property>\n";
@@ -617,23 +618,23 @@ std::vector<OutProperty> resultProperties(const GraspResult& r, int vi) {
 }  // namespace
 
 namespace detail {
-GraspTask rwTaskFromElement(const XmlElement& root, xml::DiagnosticSink& sink) {
+GraspTask rwTaskFromElement(const XmlElement& root, rw::common::DiagnosticSink& sink) {
   return TaskParser(sink).parseRoot(root);
 }
 }  // namespace detail
 
 GraspTask parseRwTask(std::string_view text, const std::filesystem::path& file,
-                      std::vector<rw::loaders::Diagnostic>* warnings) {
+                      std::vector<rw::common::Diagnostic>* warnings) {
   const auto top = detail::parseXmlOrThrow(text, file);
-  xml::DiagnosticSink sink;
+  rw::common::DiagnosticSink sink;
   if (top.size() != 1 || detail::localName(top.front().name) != "CartesianTask") {
     sink.error({detail::sourceFile(file), top.empty() ? 0 : top.front().location.line,
                 top.empty() ? 0 : top.front().location.column},
                "expected one root element <CartesianTask> (RobWork's grasp task format)");
-    throw rw::loaders::LoadError(sink.take());
+    throw rw::common::LoadError(sink.take());
   }
   GraspTask task = detail::rwTaskFromElement(top.front(), sink);
-  if (sink.hasErrors()) throw rw::loaders::LoadError(sink.take());
+  if (sink.hasErrors()) throw rw::common::LoadError(sink.take());
   if (warnings != nullptr) {
     for (auto& d : sink.take()) warnings->push_back(std::move(d));
   }
@@ -641,7 +642,7 @@ GraspTask parseRwTask(std::string_view text, const std::filesystem::path& file,
 }
 
 GraspTask readRwTask(const std::filesystem::path& file,
-                     std::vector<rw::loaders::Diagnostic>* warnings) {
+                     std::vector<rw::common::Diagnostic>* warnings) {
   return parseRwTask(detail::readFileOrThrow(file, "the grasp task"), file, warnings);
 }
 
@@ -660,14 +661,15 @@ std::string formatRwTask(const GraspTask& task) {
                        10);
       out += "        </CartesianTarget>\n";
     }
-    out += "      </Targets>\n      <Entities/>\n      <Id>" + xml::escapeXml(sub.taskId) +
+    out += "      </Targets>\n      <Entities/>\n      <Id>" + rw::common::escapeXml(sub.taskId) +
            "</Id>\n      <Index>0</Index>\n";
     std::vector<OutProperty> props;
     const auto add = [&](const char* name, std::string body) {
       props.push_back({name, "", std::move(body)});
     };
-    add("refframe", simple("String", xml::escapeXml(sub.refframe), 12));
-    if (!sub.objectId.empty()) add("ObjectID", simple("String", xml::escapeXml(sub.objectId), 12));
+    add("refframe", simple("String", rw::common::escapeXml(sub.refframe), 12));
+    if (!sub.objectId.empty())
+      add("ObjectID", simple("String", rw::common::escapeXml(sub.objectId), 12));
     add("Offset", transformXml(sub.offset, 12));
     add("Approach", transformXml(sub.approach, 12));
     add("Retract", transformXml(sub.retract, 12));
@@ -680,9 +682,9 @@ std::string formatRwTask(const GraspTask& task) {
   }
   out += "  </Entities>\n  <Id></Id>\n  <Index>-1</Index>\n";
   std::vector<OutProperty> props = {
-      {"GraspController", "", simple("String", xml::escapeXml(task.graspControllerId), 8)},
-      {"Gripper", "", simple("String", xml::escapeXml(task.gripperId), 8)},
-      {"TCP", "", simple("String", xml::escapeXml(task.tcpId), 8)}};
+      {"GraspController", "", simple("String", rw::common::escapeXml(task.graspControllerId), 8)},
+      {"Gripper", "", simple("String", rw::common::escapeXml(task.gripperId), 8)},
+      {"TCP", "", simple("String", rw::common::escapeXml(task.tcpId), 8)}};
   addKept(props, task.otherProperties, 8);
   writePropertyMap(out, std::move(props), 2);
   out += "</CartesianTask>\n";

@@ -5,9 +5,9 @@
 #include <string_view>
 #include <vector>
 
-#include "rw/loaders/diagnostic.hpp"
-#include "rw/loaders/xml/diagnostic_sink.hpp"
-#include "rw/loaders/xml/xml_tree.hpp"
+#include "rw/common/diagnostic.hpp"
+#include "rw/common/diagnostic_sink.hpp"
+#include "rw/common/xml_tree.hpp"
 #include "visgrab/taskio/grasp_task.hpp"
 
 namespace visgrab::taskio {
@@ -16,14 +16,14 @@ namespace visgrab::taskio {
 /// in messages. Known properties go into the model's fields; other properties are kept verbatim
 /// (a value type RobWork does not know is kept with a warning). Unsupported entities (QTask,
 /// Motion, Action, Augmentations) are skipped with a warning. Warnings are appended to
-/// `warnings` if given. @throws rw::loaders::LoadError with file:line:col for malformed XML or
+/// `warnings` if given. @throws rw::common::LoadError with file:line:col for malformed XML or
 /// any malformed value (the whole file fails, as in RobWork).
 GraspTask parseRwTask(std::string_view text, const std::filesystem::path& file,
-                      std::vector<rw::loaders::Diagnostic>* warnings = nullptr);
+                      std::vector<rw::common::Diagnostic>* warnings = nullptr);
 
-/// parseRwTask on the content of `file`. @throws rw::loaders::LoadError (also if unreadable).
+/// parseRwTask on the content of `file`. @throws rw::common::LoadError (also if unreadable).
 GraspTask readRwTask(const std::filesystem::path& file,
-                     std::vector<rw::loaders::Diagnostic>* warnings = nullptr);
+                     std::vector<rw::common::Diagnostic>* warnings = nullptr);
 
 /// The task as RobWork's DOM saver writes it: properties in alphabetical order of their names,
 /// numbers in shortest round-trip form, transforms as <Pos> + 9-value <Rotation3D>.
@@ -34,8 +34,7 @@ void writeRwTask(const GraspTask& task, const std::filesystem::path& file);
 
 namespace detail {
 /// The task below an already parsed <CartesianTask> root; problems go to `sink`.
-GraspTask rwTaskFromElement(const rw::loaders::xml::XmlElement& root,
-                            rw::loaders::xml::DiagnosticSink& sink);
+GraspTask rwTaskFromElement(const rw::common::XmlElement& root, rw::common::DiagnosticSink& sink);
 }  // namespace detail
 
 }  // namespace visgrab::taskio

@@ -22,7 +22,7 @@ namespace visgrab::view {
 class SceneSession {
  public:
   /// Loads the scene's dynamic workcell. `hand` must outlive the session.
-  /// @throws rw::loaders::LoadError for an unreadable scene, std::invalid_argument if the
+  /// @throws rw::common::LoadError for an unreadable scene, std::invalid_argument if the
   ///   scene's workcell lacks the hand's device, controller or TCP frame.
   SceneSession(const database::SceneEntry& entry, const grasp::HandGraspSetup& hand);
 

@@ -48,10 +48,10 @@ bool hasGeometryNamed(const std::vector<rw::models::GeometryInstance>& list,
 }
 
 std::unique_ptr<WorkCell> loadCompat(const std::filesystem::path& file,
-                                     std::vector<rw::loaders::Diagnostic>* warnings = nullptr) {
+                                     std::vector<rw::common::Diagnostic>* warnings = nullptr) {
   try {
     return rw::loaders::loadWorkCell(file, warnings);
-  } catch (const rw::loaders::LoadError& e) {
+  } catch (const rw::common::LoadError& e) {
     ADD_FAILURE() << e.what();
     return nullptr;
   }
@@ -161,7 +161,7 @@ void checkSchunkHandKinematics(const WorkCell& wc) {
 
 TEST(WorkCellLoaderCompat, SchunkHandTestScene) {
   REQUIRE_COMPAT_DATA(data);
-  std::vector<rw::loaders::Diagnostic> warnings;
+  std::vector<rw::common::Diagnostic> warnings;
   const auto wc = loadCompat(data / "devices/SDH2/test_scene.wc.xml", &warnings);
   ASSERT_NE(wc, nullptr);
   EXPECT_TRUE(warnings.empty()) << warnings.front().format();

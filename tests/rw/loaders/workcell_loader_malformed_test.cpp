@@ -13,8 +13,8 @@
 
 namespace {
 
-using rw::loaders::Diagnostic;
-using rw::loaders::LoadError;
+using rw::common::Diagnostic;
+using rw::common::LoadError;
 using visgrab::test::TempDir;
 using visgrab::test::writeFile;
 

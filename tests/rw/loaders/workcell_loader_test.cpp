@@ -20,12 +20,12 @@
 
 namespace {
 
+using rw::common::Diagnostic;
+using rw::common::LoadError;
 using rw::kinematics::FKTable;
 using rw::kinematics::FrameId;
 using rw::kinematics::FrameTree;
 using rw::kinematics::FrameType;
-using rw::loaders::Diagnostic;
-using rw::loaders::LoadError;
 using rw::math::Transform3D;
 using rw::models::WorkCell;
 using visgrab::test::TempDir;

@@ -13,7 +13,7 @@
 
 namespace {
 
-using rw::loaders::Diagnostic;
+using rw::common::Diagnostic;
 using rwsim::dynamics::Body;
 using rwsim::dynamics::BodyKind;
 using rwsim::dynamics::DynamicWorkCell;
@@ -22,7 +22,7 @@ std::unique_ptr<DynamicWorkCell> loadCompat(const std::filesystem::path& file,
                                             std::vector<Diagnostic>* warnings = nullptr) {
   try {
     return rwsim::loaders::loadDynamicWorkCell(file, warnings);
-  } catch (const rw::loaders::LoadError& e) {
+  } catch (const rw::common::LoadError& e) {
     ADD_FAILURE() << e.what();
     return nullptr;
   }
@@ -191,7 +191,7 @@ TEST(DynamicWorkCellCompat, TactileSdhWarnsAboutSensorsItDoesNotSimulate) {
   try {
     dwc = rwsim::loaders::loadDynamicWorkCellFromString(
         scene, data / "devices/SDH2/tactile6.dwc.xml", &warnings);
-  } catch (const rw::loaders::LoadError& e) {
+  } catch (const rw::common::LoadError& e) {
     FAIL() << e.what();
   }
   ASSERT_TRUE(dwc);

@@ -11,7 +11,7 @@
 
 namespace {
 
-using rw::loaders::Diagnostic;
+using rw::common::Diagnostic;
 using rw::math::Vector3D;
 using rwsim::dynamics::Body;
 using rwsim::dynamics::BodyKind;
@@ -27,7 +27,7 @@ class DynamicWorkCellLoader : public ::testing::Test {
     warnings_.clear();
     try {
       return rwsim::loaders::loadDynamicWorkCell(scene_.writeTop(text), &warnings_);
-    } catch (const rw::loaders::LoadError& e) {
+    } catch (const rw::common::LoadError& e) {
       ADD_FAILURE() << e.what();
       return nullptr;
     }

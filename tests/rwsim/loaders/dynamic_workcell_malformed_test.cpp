@@ -14,7 +14,7 @@
 
 namespace {
 
-using rw::loaders::Diagnostic;
+using rw::common::Diagnostic;
 using visgrab::test::dwc::SceneDir;
 using visgrab::test::dwc::sdhController;
 using visgrab::test::dwc::sdhDevice;
@@ -318,7 +318,7 @@ TEST_P(MalformedDynamicWorkCell, GivesOneErrorAtTheRightPlace) {
   try {
     (void)rwsim::loaders::loadDynamicWorkCell(top);
     FAIL() << "loaded without error";
-  } catch (const rw::loaders::LoadError& e) {
+  } catch (const rw::common::LoadError& e) {
     std::vector<Diagnostic> errors;
     for (const Diagnostic& d : e.diagnostics()) {
       if (d.severity == Diagnostic::Severity::kError) errors.push_back(d);
@@ -343,11 +343,11 @@ TEST(MalformedDynamicWorkCellFile, AMissingFileIsOneError) {
   try {
     (void)rwsim::loaders::loadDynamicWorkCell(dir.path() / "none.dwc.xml");
     FAIL() << "loaded";
-  } catch (const rw::loaders::LoadError& e) {
+  } catch (const rw::common::LoadError& e) {
     ASSERT_EQ(e.diagnostics().size(), 1u);
     EXPECT_NE(e.diagnostics()[0].message.find("no such file"), std::string::npos);
   }
-  EXPECT_THROW((void)rwsim::loaders::loadDynamicWorkCell(""), rw::loaders::LoadError);
+  EXPECT_THROW((void)rwsim::loaders::loadDynamicWorkCell(""), rw::common::LoadError);
 }
 
 TEST(MalformedDynamicWorkCellFile, ErrorsInTheWorkCellNameTheDynamicWorkCell) {
@@ -360,7 +360,7 @@ TEST(MalformedDynamicWorkCellFile, ErrorsInTheWorkCellNameTheDynamicWorkCell) {
     (void)rwsim::loaders::loadDynamicWorkCell(
         scene.writeTop("<DynamicWorkcell workcell=\"broken.wc.xml\">\n</DynamicWorkcell>\n"));
     FAIL() << "loaded";
-  } catch (const rw::loaders::LoadError& e) {
+  } catch (const rw::common::LoadError& e) {
     ASSERT_FALSE(e.diagnostics().empty());
     const auto& chain = e.diagnostics().front().includedFrom;
     ASSERT_FALSE(chain.empty());

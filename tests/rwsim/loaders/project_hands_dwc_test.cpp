@@ -13,7 +13,7 @@
 
 namespace {
 
-using rw::loaders::Diagnostic;
+using rw::common::Diagnostic;
 using rwsim::dynamics::BodyKind;
 using rwsim::dynamics::DynamicWorkCell;
 using visgrab::test::sourceDir;
@@ -24,7 +24,7 @@ std::unique_ptr<DynamicWorkCell> loadHand(const std::filesystem::path& file) {
     auto dwc = rwsim::loaders::loadDynamicWorkCell(file, &warnings);
     for (const Diagnostic& w : warnings) ADD_FAILURE() << w.format();
     return dwc;
-  } catch (const rw::loaders::LoadError& e) {
+  } catch (const rw::common::LoadError& e) {
     ADD_FAILURE() << e.what();
     return nullptr;
   }

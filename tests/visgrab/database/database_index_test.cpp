@@ -4,14 +4,14 @@
 
 #include <string>
 
-#include "rw/loaders/diagnostic.hpp"
+#include "rw/common/diagnostic.hpp"
 #include "rw/math/rpy.hpp"
 #include "support/test_support.hpp"
 
 namespace visgrab::database {
 namespace {
 
-using rw::loaders::LoadError;
+using rw::common::LoadError;
 
 DatabaseIndex sampleIndex() {
   DatabaseIndex index;

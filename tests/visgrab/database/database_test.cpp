@@ -15,7 +15,7 @@ namespace visgrab::database {
 namespace {
 
 namespace fs = std::filesystem;
-using rw::loaders::LoadError;
+using rw::common::LoadError;
 
 // Writes a tiny scene (8x6 images, ideal calibration, stub models) and records it.
 void addFakeScene(DatabaseWriter& writer, const SceneConditions& c, int shade) {

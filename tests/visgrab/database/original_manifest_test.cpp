@@ -9,7 +9,7 @@
 namespace visgrab::database {
 namespace {
 
-using rw::loaders::LoadError;
+using rw::common::LoadError;
 namespace fs = std::filesystem;
 
 const fs::path kManifest = "/data/visgrab/benchmark.xml";

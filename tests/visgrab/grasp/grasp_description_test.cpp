@@ -7,7 +7,7 @@
 #include <string>
 
 #include "grasp_test_support.hpp"
-#include "rw/loaders/diagnostic.hpp"
+#include "rw/common/diagnostic.hpp"
 #include "visgrab/grasp/hand_grasp_setup.hpp"
 
 namespace {
@@ -202,10 +202,10 @@ TEST(GraspDescription, MalformedGiveOneErrorAtTheirLine) {
     try {
       loadHandGraspSetupFromString(c.xml, virtualFile());
       ADD_FAILURE() << "loaded";
-    } catch (const rw::loaders::LoadError& e) {
+    } catch (const rw::common::LoadError& e) {
       int errors = 0;
       for (const auto& d : e.diagnostics()) {
-        if (d.severity != rw::loaders::Diagnostic::Severity::kError) continue;
+        if (d.severity != rw::common::Diagnostic::Severity::kError) continue;
         ++errors;
         EXPECT_EQ(d.line, c.line) << d.format();
         EXPECT_NE(d.message.find(c.message), std::string::npos) << d.format();
@@ -226,7 +226,7 @@ TEST(GraspDescription, DuplicatePreshapeName) {
   try {
     loadHandGraspSetupFromString(xml, virtualFile());
     ADD_FAILURE() << "loaded";
-  } catch (const rw::loaders::LoadError& e) {
+  } catch (const rw::common::LoadError& e) {
     ASSERT_EQ(e.diagnostics().size(), 1u) << e.what();
     EXPECT_EQ(e.diagnostics()[0].line, 3);
     EXPECT_NE(e.diagnostics()[0].message.find("already used (line 2)"), std::string::npos);
@@ -239,7 +239,7 @@ TEST(GraspDescription, MissingWorkcellNamesTheDescription) {
   try {
     loadHandGraspSetupFromString(xml, virtualFile());
     ADD_FAILURE() << "loaded";
-  } catch (const rw::loaders::LoadError& e) {
+  } catch (const rw::common::LoadError& e) {
     EXPECT_NE(std::string(e.what()).find("inline.grasp.xml:1"), std::string::npos) << e.what();
   }
 }

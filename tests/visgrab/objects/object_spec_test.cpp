@@ -4,13 +4,13 @@
 #include <string>
 
 #include "objects_test_support.hpp"
-#include "rw/loaders/diagnostic.hpp"
+#include "rw/common/diagnostic.hpp"
 #include "visgrab/objects/object_spec.hpp"
 
 namespace {
 
-using rw::loaders::Diagnostic;
-using rw::loaders::LoadError;
+using rw::common::Diagnostic;
+using rw::common::LoadError;
 using visgrab::objects::loadObjectSpecsFromString;
 using visgrab::objects::PatternKind;
 using visgrab::objects::ShapeKind;

@@ -141,14 +141,14 @@ TEST_F(WrittenObjects, AssimpReadsTheSameTriangles) {
 
 TEST_F(WrittenObjects, ExampleFilesLoad) {
   for (std::size_t i = 0; i < files_.size(); ++i) {
-    std::vector<rw::loaders::Diagnostic> warnings;
+    std::vector<rw::common::Diagnostic> warnings;
     try {
       const auto wc = rw::loaders::loadWorkCell(files_[i].workcell, &warnings);
       ASSERT_TRUE(wc);
       const auto dwc = rwsim::loaders::loadDynamicWorkCell(files_[i].dynamics, &warnings);
       ASSERT_TRUE(dwc);
       EXPECT_GE(dwc->findBody(projectModels()[i].name), 0);
-    } catch (const rw::loaders::LoadError& e) {
+    } catch (const rw::common::LoadError& e) {
       FAIL() << e.what();
     }
     for (const auto& w : warnings) ADD_FAILURE() << w.format();
@@ -181,7 +181,7 @@ TEST_F(WrittenObjects, SceneWithEachObjectLoadsInBothLoaders) {
                                 visgrab::objects::objectBodyXml(model) + "</DynamicWorkcell>\n";
     const fs::path dwcFile =
         visgrab::test::writeFile(dir_->path() / ("scene_" + model.name + ".dwc.xml"), dwcText);
-    std::vector<rw::loaders::Diagnostic> warnings;
+    std::vector<rw::common::Diagnostic> warnings;
     try {
       const auto wc = rw::loaders::loadWorkCell(wcFile, &warnings);
       const auto frame = wc->findFrame(model.name);
@@ -221,7 +221,7 @@ TEST_F(WrittenObjects, SceneWithEachObjectLoadsInBothLoaders) {
       EXPECT_LT((body2.mass.cog - model.mass.cog).norm(), 1e-6) << model.name;
       EXPECT_LT((body2.mass.inertia - model.mass.inertia).norm(), 1e-5 * model.mass.inertia.norm())
           << model.name;
-    } catch (const rw::loaders::LoadError& e) {
+    } catch (const rw::common::LoadError& e) {
       FAIL() << e.what();
     }
     for (const auto& w : warnings) ADD_FAILURE() << w.format();
@@ -241,7 +241,7 @@ TEST_F(WrittenObjects, CanWorkcellHoldsTrueCylinderAndFrusta) {
   EXPECT_NE(text.find("<Custom type=\"Frustum\" param="), std::string::npos) << text;
   EXPECT_EQ(text.find(".stl"), std::string::npos) << text;
   EXPECT_TRUE(files.hulls.empty());
-  std::vector<rw::loaders::Diagnostic> warnings;
+  std::vector<rw::common::Diagnostic> warnings;
   const auto wc = rw::loaders::loadWorkCell(files.workcell, &warnings);
   EXPECT_TRUE(warnings.empty());
   const auto* object = wc->findObject(wc->findFrame(spec.name));

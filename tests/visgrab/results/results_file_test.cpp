@@ -138,7 +138,7 @@ TEST(ResultsFileTest, TornLastLineIsDroppedWithAWarning) {
     std::ofstream out(dir.path() / "trials.csv", std::ios::app | std::ios::binary);
     out << "textured/single/cocacola/03,s3EGA1,g9,0,stab";
   }
-  std::vector<rw::loaders::Diagnostic> warnings;
+  std::vector<rw::common::Diagnostic> warnings;
   const RunResults back = readResults(dir.path(), &warnings);
   EXPECT_EQ(back.trials.size(), 3u);
   ASSERT_EQ(warnings.size(), 1u);
@@ -159,7 +159,7 @@ void expectLoadError(const std::string& text, const std::string& where, const st
   try {
     parseTrials(text, "r/trials.csv");
     FAIL() << "no error for " << where;
-  } catch (const rw::loaders::LoadError& e) {
+  } catch (const rw::common::LoadError& e) {
     const std::string message = e.what();
     EXPECT_EQ(message.rfind(where + ": error: ", 0), 0u) << message;
     EXPECT_NE(message.find(what), std::string::npos) << message;
@@ -232,7 +232,7 @@ TEST(ResultsFileTest, CorruptRunFileGivesFileAndLine) {
   try {
     readResults(dir.path());
     FAIL();
-  } catch (const rw::loaders::LoadError& e) {
+  } catch (const rw::common::LoadError& e) {
     const std::string message = e.what();
     EXPECT_NE(message.find("run.csv:4: error: arrangement 'standing' does not match pose 7"),
               std::string::npos)

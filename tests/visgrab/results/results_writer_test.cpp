@@ -150,7 +150,7 @@ TEST(ResultsWriterTest, CorruptExistingFileIsAnErrorWithItsLine) {
   try {
     ResultsWriter writer(dir.path());
     FAIL();
-  } catch (const rw::loaders::LoadError& e) {
+  } catch (const rw::common::LoadError& e) {
     EXPECT_NE(std::string(e.what()).find("trials.csv:3: error: 3 fields"), std::string::npos)
         << e.what();
   }

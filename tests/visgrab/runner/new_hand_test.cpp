@@ -231,7 +231,7 @@ TEST(NewHand, AFolderWithoutOneGraspDescriptionIsAnError) {
   try {
     visgrab::grasp::loadHandGraspSetup(tmp.path());
     FAIL() << "loaded a hand from an empty folder";
-  } catch (const rw::loaders::LoadError& e) {
+  } catch (const rw::common::LoadError& e) {
     EXPECT_NE(std::string(e.what()).find("holds no grasp description"), std::string::npos)
         << e.what();
   }
@@ -240,7 +240,7 @@ TEST(NewHand, AFolderWithoutOneGraspDescriptionIsAnError) {
   try {
     visgrab::grasp::loadHandGraspSetup(tmp.path());
     FAIL() << "loaded a hand from a folder with two descriptions";
-  } catch (const rw::loaders::LoadError& e) {
+  } catch (const rw::common::LoadError& e) {
     EXPECT_NE(std::string(e.what()).find("a.grasp.xml, b.grasp.xml"), std::string::npos)
         << e.what();
   }

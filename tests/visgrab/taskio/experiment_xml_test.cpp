@@ -240,9 +240,9 @@ TEST(ExperimentXmlTest, ExperimentWithoutSceneIsSkippedWithOneDiagnostic) {
 
 TEST(ExperimentXmlTest, WholeFileProblemsThrow) {
   EXPECT_THROW(parseExperimentXml("<visgrab><experiment></visgrab>", "x.xml"),
-               rw::loaders::LoadError);
-  EXPECT_THROW(parseExperimentXml("<CartesianTask/>", "x.xml"), rw::loaders::LoadError);
-  EXPECT_THROW(readExperimentXml("/no/such/file.xml"), rw::loaders::LoadError);
+               rw::common::LoadError);
+  EXPECT_THROW(parseExperimentXml("<CartesianTask/>", "x.xml"), rw::common::LoadError);
+  EXPECT_THROW(readExperimentXml("/no/such/file.xml"), rw::common::LoadError);
 }
 
 }  // namespace

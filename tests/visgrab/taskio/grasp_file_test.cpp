@@ -39,7 +39,7 @@ TEST(GraspFileTest, DetectsTheFormat) {
   EXPECT_EQ(detectGraspFileFormat(kExperiment, "a"), GraspFileFormat::kExperiment);
   EXPECT_EQ(detectGraspFileFormat(rwTaskText(true), "a"), GraspFileFormat::kRwTask);
   EXPECT_EQ(detectGraspFileFormat("", "a"), GraspFileFormat::kGraspList);
-  EXPECT_THROW(detectGraspFileFormat("<other/>", "a"), rw::loaders::LoadError);
+  EXPECT_THROW(detectGraspFileFormat("<other/>", "a"), rw::common::LoadError);
 }
 
 TEST(GraspFileTest, ReadsAGraspList) {
@@ -82,7 +82,7 @@ TEST(GraspFileTest, RwTaskWithoutSceneIdIsAnError) {
   try {
     readGraspFile(file);
     FAIL() << "expected LoadError";
-  } catch (const rw::loaders::LoadError& e) {
+  } catch (const rw::common::LoadError& e) {
     EXPECT_NE(std::string(e.what()).find("SceneID"), std::string::npos) << e.what();
     EXPECT_EQ(e.diagnostics()[0].line, 2);
   }
@@ -100,11 +100,11 @@ TEST(GraspFileTest, RwTaskWithObjectRefframeRejectsItsTargets) {
 
 TEST(GraspFileTest, WholeFileProblemsThrow) {
   test::TempDir dir;
-  EXPECT_THROW(readGraspFile(dir.path() / "missing.csv"), rw::loaders::LoadError);
+  EXPECT_THROW(readGraspFile(dir.path() / "missing.csv"), rw::common::LoadError);
   EXPECT_THROW(readGraspFile(test::writeFile(dir.path() / "bad.xml", "<visgrab><a></visgrab>")),
-               rw::loaders::LoadError);
+               rw::common::LoadError);
   EXPECT_THROW(readGraspFile(test::writeFile(dir.path() / "other.xml", "<root/>")),
-               rw::loaders::LoadError);
+               rw::common::LoadError);
 }
 
 TEST(GraspFileTest, FolderReadsAllFilesSortedByName) {
@@ -121,7 +121,7 @@ TEST(GraspFileTest, FolderReadsAllFilesSortedByName) {
   EXPECT_EQ(got.requests[2].method, "c");
   ASSERT_EQ(got.rejected.size(), 1u);
   EXPECT_EQ(std::filesystem::path(got.rejected[0].file).filename(), "b_list.csv");
-  EXPECT_THROW(readGraspFolder(dir.path() / "nope"), rw::loaders::LoadError);
+  EXPECT_THROW(readGraspFolder(dir.path() / "nope"), rw::common::LoadError);
 }
 
 }  // namespace

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <string>
 
-#include "rw/loaders/xml/text_file.hpp"
+#include "rw/common/text_file.hpp"
 #include "support/test_support.hpp"
 
 namespace visgrab::taskio {
@@ -188,8 +188,7 @@ INSTANTIATE_TEST_SUITE_P(
 
 TEST(GraspListTest, DocumentedExamplesRead) {
   std::string doc;
-  ASSERT_TRUE(
-      rw::loaders::xml::readTextFile(test::sourceDir() / "docs/grasp-format.md", doc).empty());
+  ASSERT_TRUE(rw::common::readTextFile(test::sourceDir() / "docs/grasp-format.md", doc).empty());
   const std::string start = "### Example\n\n```\n";
   const auto from = doc.find(start);
   ASSERT_NE(from, std::string::npos);

@@ -145,7 +145,7 @@ void expectSameTask(const GraspTask& a, const GraspTask& b) {
 TEST(RwTaskIoTest, WriteThenReadKeepsEveryField) {
   const GraspTask task = referenceTask();
   const std::string text = formatRwTask(task);
-  std::vector<rw::loaders::Diagnostic> warnings;
+  std::vector<rw::common::Diagnostic> warnings;
   const GraspTask back = parseRwTask(text, "mem.rwtask.xml", &warnings);
   EXPECT_TRUE(warnings.empty()) << warnings[0].format();
   expectSameTask(task, back);
@@ -169,7 +169,7 @@ TEST(RwTaskIoTest, WritesPropertiesAlphabeticallyWithRobWorksNames) {
 TEST(RwTaskIoTest, ReadsRobWorksPg70Task) {
   REQUIRE_COMPAT_DATA(data);
   const auto file = data / "scene/grasping/grasptask_pg70_box.rwtask.xml";
-  std::vector<rw::loaders::Diagnostic> warnings;
+  std::vector<rw::common::Diagnostic> warnings;
   const GraspTask task = readRwTask(file, &warnings);
   EXPECT_TRUE(warnings.empty()) << warnings[0].format();
   EXPECT_EQ(task.gripperId, "PG70");
@@ -249,7 +249,7 @@ TEST(RwTaskIoTest, BadValueIsAnErrorWithFileLineColumn) {
   try {
     parseRwTask(text, "bad.rwtask.xml");
     FAIL() << "expected LoadError";
-  } catch (const rw::loaders::LoadError& e) {
+  } catch (const rw::common::LoadError& e) {
     ASSERT_FALSE(e.diagnostics().empty());
     const auto& d = e.diagnostics()[0];
     EXPECT_EQ(d.line, 2);
@@ -268,7 +268,7 @@ TEST(RwTaskIoTest, WrongPropertyTypeAndMissingIdAreErrors) {
   try {
     parseRwTask(text, "bad.rwtask.xml");
     FAIL() << "expected LoadError";
-  } catch (const rw::loaders::LoadError& e) {
+  } catch (const rw::common::LoadError& e) {
     ASSERT_EQ(e.diagnostics().size(), 2u) << e.what();
     EXPECT_EQ(e.diagnostics()[0].line, 2);
     EXPECT_NE(e.diagnostics()[0].message.find("no id attribute"), std::string::npos);
@@ -278,8 +278,8 @@ TEST(RwTaskIoTest, WrongPropertyTypeAndMissingIdAreErrors) {
 
 TEST(RwTaskIoTest, MalformedXmlThrows) {
   EXPECT_THROW(parseRwTask("<CartesianTask><Entities></CartesianTask>", "x.xml"),
-               rw::loaders::LoadError);
-  EXPECT_THROW(parseRwTask("<visgrab/>", "x.xml"), rw::loaders::LoadError);
+               rw::common::LoadError);
+  EXPECT_THROW(parseRwTask("<visgrab/>", "x.xml"), rw::common::LoadError);
 }
 
 TEST(RwTaskIoTest, UnknownPropertyTypesAreKeptWithAWarning) {
@@ -289,7 +289,7 @@ TEST(RwTaskIoTest, UnknownPropertyTypesAreKeptWithAWarning) {
       "<Property><Name>Nested</Name><Value><PropertyMap><Property><Name>a</Name><Value>"
       "<Integer>1</Integer></Value></Property></PropertyMap></Value></Property>\n"
       "</PropertyMap></CartesianTask>";
-  std::vector<rw::loaders::Diagnostic> warnings;
+  std::vector<rw::common::Diagnostic> warnings;
   const GraspTask task = parseRwTask(text, "x.xml", &warnings);
   ASSERT_EQ(warnings.size(), 1u);
   EXPECT_EQ(warnings[0].line, 2);
@@ -311,10 +311,10 @@ TEST(RwTaskIoTest, NonOrthonormalRotationIsProjectedWithAWarning) {
       "<CartesianTask><Entities><CartesianTask><Targets><CartesianTarget id=\"0\"><Transform3D>"
       "<Pos>0 0 0</Pos><Rotation3D>1.1 0 0 0 1 0 0 0 1</Rotation3D></Transform3D>"
       "</CartesianTarget></Targets></CartesianTask></Entities></CartesianTask>";
-  std::vector<rw::loaders::Diagnostic> warnings;
+  std::vector<rw::common::Diagnostic> warnings;
   const GraspTask task = parseRwTask(text, "x.xml", &warnings);
   ASSERT_EQ(warnings.size(), 1u);
-  EXPECT_EQ(warnings[0].severity, rw::loaders::Diagnostic::Severity::kWarning);
+  EXPECT_EQ(warnings[0].severity, rw::common::Diagnostic::Severity::kWarning);
   EXPECT_TRANSFORM_NEAR(task.subTasks[0].targets[0].pose, Transform3D::Identity(), 1e-12);
 }
 

@@ -24,9 +24,9 @@ std::string identityOf(const fs::path& file) {
   return canonical.string();
 }
 
-std::size_t totalSize(const std::vector<XmlElement>& elements) {
+std::size_t totalSize(const std::vector<common::XmlElement>& elements) {
   std::size_t n = 0;
-  for (const XmlElement& e : elements) n += e.subtreeSize();
+  for (const common::XmlElement& e : elements) n += e.subtreeSize();
   return n;
 }
 
@@ -36,10 +36,10 @@ std::string displayPathOf(const fs::path& file) { return file.lexically_normal()
 
 struct Preprocessor::FileScope {
   struct Definition {
-    std::vector<XmlElement> elements;
-    SourceLocation location;
+    std::vector<common::XmlElement> elements;
+    common::SourceLocation location;
   };
-  std::shared_ptr<const SourceFile> file;
+  std::shared_ptr<const common::SourceFile> file;
   fs::path dir;
   std::map<std::string, Definition> defines;
   std::vector<std::string> identities;
@@ -47,38 +47,39 @@ struct Preprocessor::FileScope {
   int depth = 0;
 };
 
-std::optional<std::vector<XmlElement>> Preprocessor::expandFile(const fs::path& file) {
+std::optional<std::vector<common::XmlElement>> Preprocessor::expandFile(const fs::path& file) {
   std::string text;
   const std::string problem = readTextFile(file, text);
   if (!problem.empty()) {
-    auto source = std::make_shared<SourceFile>(SourceFile{displayPathOf(file), {}});
-    sink_.error(SourceLocation{source, 0, 0}, "cannot read the file: " + problem);
+    auto source = std::make_shared<common::SourceFile>(common::SourceFile{displayPathOf(file), {}});
+    sink_.error(common::SourceLocation{source, 0, 0}, "cannot read the file: " + problem);
     return std::nullopt;
   }
   return expandTopLevel(text, file);
 }
 
-std::optional<std::vector<XmlElement>> Preprocessor::expandText(std::string_view text,
-                                                                const fs::path& virtualFile) {
+std::optional<std::vector<common::XmlElement>> Preprocessor::expandText(
+    std::string_view text, const fs::path& virtualFile) {
   return expandTopLevel(text, virtualFile);
 }
 
-std::optional<std::vector<XmlElement>> Preprocessor::expandTopLevel(std::string_view text,
-                                                                    const fs::path& file) {
+std::optional<std::vector<common::XmlElement>> Preprocessor::expandTopLevel(std::string_view text,
+                                                                            const fs::path& file) {
   FileScope scope;
-  scope.file = std::make_shared<SourceFile>(SourceFile{displayPathOf(file), {}});
+  scope.file = std::make_shared<common::SourceFile>(common::SourceFile{displayPathOf(file), {}});
   scope.dir = fs::path(scope.file->displayPath).parent_path();
   scope.identities.push_back(identityOf(file));
   scope.displays.push_back(scope.file->displayPath);
   auto parsed = reader_.parse(text, scope.file, sink_);
   if (!parsed) return std::nullopt;
-  if (!spendBudget(totalSize(*parsed), SourceLocation{scope.file, 0, 0})) return std::nullopt;
-  std::vector<XmlElement> expanded = expandList(std::move(*parsed), scope);
+  if (!spendBudget(totalSize(*parsed), common::SourceLocation{scope.file, 0, 0}))
+    return std::nullopt;
+  std::vector<common::XmlElement> expanded = expandList(std::move(*parsed), scope);
   if (sink_.hasErrors()) return std::nullopt;
   return expanded;
 }
 
-bool Preprocessor::spendBudget(std::size_t elements, const SourceLocation& where) {
+bool Preprocessor::spendBudget(std::size_t elements, const common::SourceLocation& where) {
   if (overBudget_) return false;
   elementBudgetUsed_ += elements;
   if (elementBudgetUsed_ <= kMaxExpandedElements) return true;
@@ -88,15 +89,15 @@ bool Preprocessor::spendBudget(std::size_t elements, const SourceLocation& where
   return false;
 }
 
-std::vector<XmlElement> Preprocessor::expandList(std::vector<XmlElement> elements,
-                                                 FileScope& scope) {
-  std::vector<XmlElement> out;
+std::vector<common::XmlElement> Preprocessor::expandList(std::vector<common::XmlElement> elements,
+                                                         FileScope& scope) {
+  std::vector<common::XmlElement> out;
   out.reserve(elements.size());
-  for (XmlElement& e : elements) {
+  for (common::XmlElement& e : elements) {
     if (overBudget_) break;
     if (e.name == "Define") {
       const std::string id = e.attributeOr("id", "");
-      std::vector<XmlElement> content = expandList(std::move(e.children), scope);
+      std::vector<common::XmlElement> content = expandList(std::move(e.children), scope);
       const auto previous = scope.defines.find(id);
       if (previous != scope.defines.end()) {
         sink_.warning(e.location, e.describe() + " replaces the Define of the same id at line " +
@@ -115,8 +116,8 @@ std::vector<XmlElement> Preprocessor::expandList(std::vector<XmlElement> element
   return out;
 }
 
-void Preprocessor::expandUse(const XmlElement& use, FileScope& scope,
-                             std::vector<XmlElement>& out) {
+void Preprocessor::expandUse(const common::XmlElement& use, FileScope& scope,
+                             std::vector<common::XmlElement>& out) {
   const std::string id = use.attributeOr("id", "");
   const auto it = scope.defines.find(id);
   if (it == scope.defines.end()) {
@@ -129,8 +130,8 @@ void Preprocessor::expandUse(const XmlElement& use, FileScope& scope,
   out.insert(out.end(), it->second.elements.begin(), it->second.elements.end());
 }
 
-void Preprocessor::expandInclude(const XmlElement& include, FileScope& scope,
-                                 std::vector<XmlElement>& out) {
+void Preprocessor::expandInclude(const common::XmlElement& include, FileScope& scope,
+                                 std::vector<common::XmlElement>& out) {
   const fs::path name(include.attributeOr("file", ""));
   const fs::path path = (name.is_absolute() ? name : scope.dir / name).lexically_normal();
   const std::string display = path.string();
@@ -163,7 +164,7 @@ void Preprocessor::expandInclude(const XmlElement& include, FileScope& scope,
                 include.describe() + ": cannot read \"" + display + "\": " + problem);
     return;
   }
-  auto source = std::make_shared<SourceFile>();
+  auto source = std::make_shared<common::SourceFile>();
   source->displayPath = display;
   source->includedFrom.push_back(scope.file->displayPath + ":" +
                                  std::to_string(include.location.line));
@@ -183,8 +184,8 @@ void Preprocessor::expandInclude(const XmlElement& include, FileScope& scope,
   child.displays = scope.displays;
   child.displays.push_back(display);
   child.depth = scope.depth + 1;
-  std::vector<XmlElement> expanded = expandList(std::move(*parsed), child);
-  for (XmlElement& e : expanded) out.push_back(std::move(e));
+  std::vector<common::XmlElement> expanded = expandList(std::move(*parsed), child);
+  for (common::XmlElement& e : expanded) out.push_back(std::move(e));
 }
 
 }  // namespace rw::loaders::detail

@@ -6,17 +6,17 @@
 #include <string_view>
 #include <vector>
 
-#include "rw/loaders/detail/diagnostic_sink.hpp"
-#include "rw/loaders/detail/xml_reader.hpp"
-#include "rw/loaders/detail/xml_tree.hpp"
-#include "rw/loaders/xml/text_file.hpp"
+#include "rw/common/diagnostic_sink.hpp"
+#include "rw/common/text_file.hpp"
+#include "rw/common/xml_reader.hpp"
+#include "rw/common/xml_tree.hpp"
 
 namespace rw::loaders::detail {
 
 /// Deepest Include nesting accepted.
 inline constexpr int kMaxIncludeDepth = 32;
 
-using rw::loaders::xml::readTextFile;
+using rw::common::readTextFile;
 
 /// How a file is named in messages: the path as given, lexically normalised.
 std::string displayPathOf(const std::filesystem::path& file);
@@ -29,27 +29,31 @@ std::string displayPathOf(const std::filesystem::path& file);
 class Preprocessor {
  public:
   /// Uses `reader` to parse every file; reports problems to `sink`.
-  Preprocessor(XmlReader& reader, DiagnosticSink& sink) : reader_(reader), sink_(sink) {}
+  Preprocessor(common::XmlReader& reader, common::DiagnosticSink& sink)
+      : reader_(reader), sink_(sink) {}
 
   /// Reads, parses and expands `file`; nullopt after an error in any file.
-  std::optional<std::vector<XmlElement>> expandFile(const std::filesystem::path& file);
+  std::optional<std::vector<common::XmlElement>> expandFile(const std::filesystem::path& file);
 
   /// Same for text that stands for `virtualFile` (relative Includes start in its folder).
-  std::optional<std::vector<XmlElement>> expandText(std::string_view text,
-                                                    const std::filesystem::path& virtualFile);
+  std::optional<std::vector<common::XmlElement>> expandText(
+      std::string_view text, const std::filesystem::path& virtualFile);
 
  private:
   struct FileScope;
 
-  std::optional<std::vector<XmlElement>> expandTopLevel(std::string_view text,
-                                                        const std::filesystem::path& file);
-  std::vector<XmlElement> expandList(std::vector<XmlElement> elements, FileScope& scope);
-  void expandUse(const XmlElement& use, FileScope& scope, std::vector<XmlElement>& out);
-  void expandInclude(const XmlElement& include, FileScope& scope, std::vector<XmlElement>& out);
-  bool spendBudget(std::size_t elements, const SourceLocation& where);
+  std::optional<std::vector<common::XmlElement>> expandTopLevel(std::string_view text,
+                                                                const std::filesystem::path& file);
+  std::vector<common::XmlElement> expandList(std::vector<common::XmlElement> elements,
+                                             FileScope& scope);
+  void expandUse(const common::XmlElement& use, FileScope& scope,
+                 std::vector<common::XmlElement>& out);
+  void expandInclude(const common::XmlElement& include, FileScope& scope,
+                     std::vector<common::XmlElement>& out);
+  bool spendBudget(std::size_t elements, const common::SourceLocation& where);
 
-  XmlReader& reader_;
-  DiagnosticSink& sink_;
+  common::XmlReader& reader_;
+  common::DiagnosticSink& sink_;
   std::size_t elementBudgetUsed_ = 0;
   std::size_t filesRead_ = 0;
   bool overBudget_ = false;

@@ -19,9 +19,10 @@ namespace {
 // A default setup larger than this is cut (it only makes collision checking slower).
 constexpr std::size_t kMaxDefaultPairs = 1'000'000;
 
-void warnUnknownAttributes(const XmlElement& e, std::initializer_list<std::string_view> known,
-                           DiagnosticSink& sink) {
-  for (const XmlAttribute& a : e.attributes) {
+void warnUnknownAttributes(const common::XmlElement& e,
+                           std::initializer_list<std::string_view> known,
+                           common::DiagnosticSink& sink) {
+  for (const common::XmlAttribute& a : e.attributes) {
     bool ok = false;
     for (std::string_view k : known) ok = ok || a.name == k;
     if (!ok) {
@@ -30,8 +31,8 @@ void warnUnknownAttributes(const XmlElement& e, std::initializer_list<std::strin
   }
 }
 
-const std::string* requiredAttribute(const XmlElement& e, std::string_view name,
-                                     DiagnosticSink& sink) {
+const std::string* requiredAttribute(const common::XmlElement& e, std::string_view name,
+                                     common::DiagnosticSink& sink) {
   const std::string* value = e.attribute(name);
   if (value == nullptr) {
     sink.error(e.location,
@@ -41,8 +42,9 @@ const std::string* requiredAttribute(const XmlElement& e, std::string_view name,
 }
 
 // Reads a setup file and returns its root element if it is `rootName`.
-std::optional<XmlElement> readSetupRoot(const SetupRef& ref, const char* rootName,
-                                        XmlReader& reader, DiagnosticSink& sink) {
+std::optional<common::XmlElement> readSetupRoot(const SetupRef& ref, const char* rootName,
+                                                common::XmlReader& reader,
+                                                common::DiagnosticSink& sink) {
   std::string text;
   const std::string problem = readTextFile(ref.path, text);
   if (!problem.empty()) {
@@ -50,9 +52,9 @@ std::optional<XmlElement> readSetupRoot(const SetupRef& ref, const char* rootNam
                ref.origin.element + ": cannot read \"" + ref.path + "\": " + problem);
     return std::nullopt;
   }
-  auto file = std::make_shared<SourceFile>();
+  auto file = std::make_shared<common::SourceFile>();
   file->displayPath = ref.path;
-  const SourceLocation& at = ref.origin.location;
+  const common::SourceLocation& at = ref.origin.location;
   if (at.file) {
     file->includedFrom.push_back(at.file->displayPath + ":" + std::to_string(at.line));
     file->includedFrom.insert(file->includedFrom.end(), at.file->includedFrom.begin(),
@@ -61,9 +63,9 @@ std::optional<XmlElement> readSetupRoot(const SetupRef& ref, const char* rootNam
   auto elements = reader.parse(text, file, sink);
   if (!elements) return std::nullopt;
   if (elements->size() != 1 || elements->front().name != rootName) {
-    const SourceLocation where = elements->empty()
-                                     ? SourceLocation{file, 1, 0}
-                                     : (*elements)[elements->size() > 1 ? 1 : 0].location;
+    const common::SourceLocation where = elements->empty()
+                                             ? common::SourceLocation{file, 1, 0}
+                                             : (*elements)[elements->size() > 1 ? 1 : 0].location;
     sink.error(where,
                std::string("a ") + rootName + " file holds exactly one <" + rootName + "> element");
     return std::nullopt;
@@ -71,17 +73,18 @@ std::optional<XmlElement> readSetupRoot(const SetupRef& ref, const char* rootNam
   return std::move(elements->front());
 }
 
-void warnUnknownFrame(const XmlElement& e, const std::string& name, const FrameTree& frames,
-                      DiagnosticSink& sink) {
+void warnUnknownFrame(const common::XmlElement& e, const std::string& name, const FrameTree& frames,
+                      common::DiagnosticSink& sink) {
   if (!frames.find(name).valid()) {
     sink.warning(e.location,
                  e.describe() + ": there is no frame \"" + name + "\"; this entry has no effect");
   }
 }
 
-void readExclude(const XmlElement& exclude, const std::string& prefix, const FrameTree& frames,
-                 rw::models::CollisionSetup& setup, DiagnosticSink& sink) {
-  for (const XmlElement& pair : exclude.children) {
+void readExclude(const common::XmlElement& exclude, const std::string& prefix,
+                 const FrameTree& frames, rw::models::CollisionSetup& setup,
+                 common::DiagnosticSink& sink) {
+  for (const common::XmlElement& pair : exclude.children) {
     if (pair.name != "FramePair") {
       sink.error(pair.location, "unknown element <" + pair.name +
                                     "> in <Exclude>; expected "
@@ -99,15 +102,15 @@ void readExclude(const XmlElement& exclude, const std::string& prefix, const Fra
 }
 
 // Old format: <CollisionSetup> with Exclude/FramePair, Volatile and ExcludeStaticPairs.
-void readCollisionSetup(const SetupRef& ref, XmlReader& reader, const FrameTree& frames,
-                        rw::models::CollisionSetup& setup, DiagnosticSink& sink) {
+void readCollisionSetup(const SetupRef& ref, common::XmlReader& reader, const FrameTree& frames,
+                        rw::models::CollisionSetup& setup, common::DiagnosticSink& sink) {
   const auto root = readSetupRoot(ref, "CollisionSetup", reader, sink);
   if (!root) return;
-  for (const XmlElement& child : root->children) {
+  for (const common::XmlElement& child : root->children) {
     if (child.name == "Exclude") {
       readExclude(child, ref.prefix, frames, setup, sink);
     } else if (child.name == "Volatile") {
-      const std::string name = ref.prefix + std::string(trimXmlSpace(child.text));
+      const std::string name = ref.prefix + std::string(common::trimXmlSpace(child.text));
       setup.volatileFrames.push_back(name);
       warnUnknownFrame(child, name, frames, sink);
     } else if (child.name == "ExcludeStaticPairs") {
@@ -134,8 +137,9 @@ std::string scopedPattern(const std::string& prefix, const std::string& pattern)
 }
 
 // New format: <ProximitySetup> with Include/Exclude PatternA PatternB rules.
-void readProximitySetup(const SetupRef& ref, XmlReader& reader,
-                        std::vector<rw::models::ProximityRule>& rules, DiagnosticSink& sink) {
+void readProximitySetup(const SetupRef& ref, common::XmlReader& reader,
+                        std::vector<rw::models::ProximityRule>& rules,
+                        common::DiagnosticSink& sink) {
   const auto root = readSetupRoot(ref, "ProximitySetup", reader, sink);
   if (!root) return;
   warnUnknownAttributes(*root, {"UseIncludeAll", "UseExcludeStaticPairs"}, sink);
@@ -145,7 +149,7 @@ void readProximitySetup(const SetupRef& ref, XmlReader& reader,
                                      "ProximitySetup file are not used by the workcell (RobWork "
                                      "merges only the rules)");
   }
-  for (const XmlElement& child : root->children) {
+  for (const common::XmlElement& child : root->children) {
     if (child.name != "Include" && child.name != "Exclude") {
       sink.error(child.location, "unknown element <" + child.name +
                                      "> in <ProximitySetup>; expected Include or Exclude");
@@ -188,8 +192,8 @@ rw::models::CollisionSetup defaultCollisionSetup(const FrameTree& frames) {
   return setup;
 }
 
-void buildSetups(rw::models::WorkCell& wc, const WorkCellDesc& desc, XmlReader& reader,
-                 DiagnosticSink& sink) {
+void buildSetups(rw::models::WorkCell& wc, const WorkCellDesc& desc, common::XmlReader& reader,
+                 common::DiagnosticSink& sink) {
   rw::models::CollisionSetup collision;
   for (const SetupRef& ref : desc.collisionSetups) {
     readCollisionSetup(ref, reader, wc.frames(), collision, sink);

@@ -1,9 +1,9 @@
 #pragma once
 
+#include "rw/common/diagnostic_sink.hpp"
+#include "rw/common/xml_reader.hpp"
 #include "rw/kinematics/frame_tree.hpp"
-#include "rw/loaders/detail/diagnostic_sink.hpp"
 #include "rw/loaders/detail/wc_description.hpp"
-#include "rw/loaders/detail/xml_reader.hpp"
 #include "rw/models/setups.hpp"
 #include "rw/models/workcell.hpp"
 
@@ -16,8 +16,8 @@ namespace rw::loaders::detail {
 /// collision setup's pairs as Exclude rules (useIncludeAll true, useExcludeStaticPairs from
 /// <ExcludeStaticPairs/>) and appends every ProximitySetup file's rules, patterns prefixed with
 /// the scope. The files' own UseIncludeAll/UseExcludeStaticPairs are not merged (as in RobWork).
-void buildSetups(rw::models::WorkCell& wc, const WorkCellDesc& desc, XmlReader& reader,
-                 DiagnosticSink& sink);
+void buildSetups(rw::models::WorkCell& wc, const WorkCellDesc& desc, common::XmlReader& reader,
+                 common::DiagnosticSink& sink);
 
 /// RobWork's default collision setup (reference §1.5.6): every pair (B, A) where B's parent P
 /// is not WORLD and A is a child of P's parent (so A = P, or a sibling of P). Frames that are

@@ -7,9 +7,9 @@
 #include <unordered_map>
 #include <utility>
 
+#include "rw/common/strings.hpp"
 #include "rw/loaders/detail/setup_files.hpp"
 #include "rw/loaders/detail/wc_geometry.hpp"
-#include "rw/loaders/xml/strings.hpp"
 
 namespace rw::loaders::detail {
 
@@ -34,7 +34,7 @@ bool isJointType(FrameType type) {
   return type == FrameType::kRevolute || type == FrameType::kPrismatic;
 }
 
-std::string where(const SourceLocation& location) {
+std::string where(const common::SourceLocation& location) {
   std::string text = location.file ? location.file->displayPath : std::string("?");
   return text + ":" + std::to_string(location.line);
 }
@@ -42,7 +42,7 @@ std::string where(const SourceLocation& location) {
 // Resolves names, orders frames and creates the model.
 class Builder {
  public:
-  Builder(const WorkCellDesc& desc, DiagnosticSink& sink)
+  Builder(const WorkCellDesc& desc, common::DiagnosticSink& sink)
       : d_(desc),
         sink_(sink),
         parent_(desc.frames.size(), kUnresolved),
@@ -51,7 +51,7 @@ class Builder {
         ids_(desc.frames.size()),
         dropped_(desc.frames.size(), 0) {}
 
-  std::unique_ptr<WorkCell> run(XmlReader& setupReader, const std::string& fileName);
+  std::unique_ptr<WorkCell> run(common::XmlReader& setupReader, const std::string& fileName);
 
  private:
   void indexNames();
@@ -69,7 +69,7 @@ class Builder {
   void setDefaultState(WorkCell& wc);
 
   const WorkCellDesc& d_;
-  DiagnosticSink& sink_;
+  common::DiagnosticSink& sink_;
   std::unordered_map<std::string, int> byName_;
   std::vector<std::string> names_;
   std::vector<int> parent_;
@@ -369,7 +369,8 @@ void Builder::setDefaultState(WorkCell& wc) {
   wc.setDefaultState(std::move(state));
 }
 
-std::unique_ptr<WorkCell> Builder::run(XmlReader& setupReader, const std::string& fileName) {
+std::unique_ptr<WorkCell> Builder::run(common::XmlReader& setupReader,
+                                       const std::string& fileName) {
   indexNames();
   resolveParents();
   resolveDependencies();
@@ -400,7 +401,7 @@ std::string suggestName(std::string_view wanted, const std::vector<std::string>&
   std::size_t bestScore = std::string::npos;
   for (const std::string& c : candidates) {
     if (c.size() > kLongest || c == wanted) continue;
-    std::size_t score = xml::editDistance(wanted, c);
+    std::size_t score = rw::common::editDistance(wanted, c);
     const bool sameLast = lastComponent(c) == wantedLast;
     if (sameLast) score = std::min<std::size_t>(score, 1);
     const std::size_t allowed = std::max<std::size_t>(2, wanted.size() / 4);
@@ -412,8 +413,8 @@ std::string suggestName(std::string_view wanted, const std::vector<std::string>&
   return best == nullptr ? std::string() : "; did you mean \"" + *best + "\"?";
 }
 
-std::unique_ptr<WorkCell> buildWorkCell(const WorkCellDesc& desc, XmlReader& setupReader,
-                                        const std::string& fileName, DiagnosticSink& sink) {
+std::unique_ptr<WorkCell> buildWorkCell(const WorkCellDesc& desc, common::XmlReader& setupReader,
+                                        const std::string& fileName, common::DiagnosticSink& sink) {
   return Builder(desc, sink).run(setupReader, fileName);
 }
 

@@ -5,9 +5,9 @@
 #include <string_view>
 #include <vector>
 
-#include "rw/loaders/detail/diagnostic_sink.hpp"
+#include "rw/common/diagnostic_sink.hpp"
+#include "rw/common/xml_reader.hpp"
 #include "rw/loaders/detail/wc_description.hpp"
-#include "rw/loaders/detail/xml_reader.hpp"
 #include "rw/models/workcell.hpp"
 
 namespace rw::loaders::detail {
@@ -19,9 +19,9 @@ namespace rw::loaders::detail {
 /// absolute name stored in the workcell. Returns nullptr if the model could not be made; errors
 /// after that point (meshes, setup files) are in `sink` with a workcell returned.
 std::unique_ptr<rw::models::WorkCell> buildWorkCell(const WorkCellDesc& desc,
-                                                    XmlReader& setupReader,
+                                                    common::XmlReader& setupReader,
                                                     const std::string& fileName,
-                                                    DiagnosticSink& sink);
+                                                    common::DiagnosticSink& sink);
 
 /// "; did you mean \"X\"?" for the candidate closest to `wanted`, or an empty string if none is
 /// close (edit distance, with a bonus for the same last name component).

@@ -5,10 +5,10 @@
 #include <string>
 #include <vector>
 
+#include "rw/common/diagnostic_sink.hpp"
 #include "rw/geometry/geometry.hpp"
 #include "rw/kinematics/frame.hpp"
 #include "rw/kinematics/property_map.hpp"
-#include "rw/loaders/detail/diagnostic_sink.hpp"
 #include "rw/math/types.hpp"
 
 /// The plain description of a workcell file (first pass): what the XML says, with scoped names
@@ -18,7 +18,7 @@ namespace rw::loaders::detail {
 /// Where an element is and how messages name it.
 struct Origin {
   /// Position of the element's start tag.
-  SourceLocation location;
+  common::SourceLocation location;
   /// `<Joint name="j1">`: the element as messages show it.
   std::string element;
 };

@@ -10,7 +10,7 @@
 #include <utility>
 #include <vector>
 
-#include "rw/loaders/detail/numbers.hpp"
+#include "rw/common/numbers.hpp"
 #include "rw/math/dh.hpp"
 #include "rw/math/rpy.hpp"
 
@@ -39,7 +39,8 @@ std::pair<rw::math::Rotation3D, double> nearestRotation(const rw::math::Rotation
   return {nearest, (nearest - R).cwiseAbs().maxCoeff()};
 }
 
-std::optional<Transform3D> matrixTransform(const XmlElement& matrix, DiagnosticSink& sink) {
+std::optional<Transform3D> matrixTransform(const common::XmlElement& matrix,
+                                           common::DiagnosticSink& sink) {
   const auto v = readNumberText(matrix, 12, sink);
   if (!v) return std::nullopt;
   rw::math::Rotation3D R;
@@ -60,9 +61,9 @@ std::optional<Transform3D> matrixTransform(const XmlElement& matrix, DiagnosticS
 }
 
 // Reads the named attributes as numbers, in order; nullopt if any is bad (each reported).
-std::optional<std::vector<double>> readNumbers(const XmlElement& element,
+std::optional<std::vector<double>> readNumbers(const common::XmlElement& element,
                                                std::initializer_list<std::string_view> names,
-                                               DiagnosticSink& sink) {
+                                               common::DiagnosticSink& sink) {
   std::vector<double> values;
   bool ok = true;
   for (std::string_view name : names) {
@@ -75,8 +76,8 @@ std::optional<std::vector<double>> readNumbers(const XmlElement& element,
 }
 
 // Checks a primitive size: > 0 (or >= 0 when zero is allowed).
-bool checkSize(const XmlElement& element, std::string_view name, double value, bool allowZero,
-               DiagnosticSink& sink) {
+bool checkSize(const common::XmlElement& element, std::string_view name, double value,
+               bool allowZero, common::DiagnosticSink& sink) {
   if (value > 0.0 || (allowZero && value == 0.0)) return true;
   sink.error(element.location, element.describe() + ": " + std::string(name) + " must be " +
                                    (allowZero ? ">= 0" : "> 0") + " (got " + formatNumber(value) +
@@ -122,10 +123,10 @@ constexpr std::array<NumberAttributes, 10> kNumberAttributes{{
 
 }  // namespace
 
-std::optional<std::vector<double>> readNumberText(const XmlElement& element, int count,
-                                                  DiagnosticSink& sink) {
+std::optional<std::vector<double>> readNumberText(const common::XmlElement& element, int count,
+                                                  common::DiagnosticSink& sink) {
   std::vector<double> values;
-  const std::string problem = parseNumberList(element.text, values);
+  const std::string problem = common::parseNumberList(element.text, values);
   if (!problem.empty()) {
     sink.error(element.location, element.describe() + ": " + problem);
     return std::nullopt;
@@ -138,17 +139,19 @@ std::optional<std::vector<double>> readNumberText(const XmlElement& element, int
   return values;
 }
 
-Origin originOf(const XmlElement& element) { return Origin{element.location, element.describe()}; }
+Origin originOf(const common::XmlElement& element) {
+  return Origin{element.location, element.describe()};
+}
 
-std::optional<double> readNumberAttribute(const XmlElement& element, std::string_view name,
-                                          DiagnosticSink& sink) {
+std::optional<double> readNumberAttribute(const common::XmlElement& element, std::string_view name,
+                                          common::DiagnosticSink& sink) {
   const std::string* value = element.attribute(name);
   if (value == nullptr) {
     sink.error(element.location,
                element.describe() + ": missing required attribute \"" + std::string(name) + "\"");
     return std::nullopt;
   }
-  const ParsedNumber n = parseFiniteNumber(*value);
+  const common::ParsedNumber n = common::parseFiniteNumber(*value);
   if (!n.error.empty()) {
     sink.error(element.location,
                element.describe() + ": attribute " + std::string(name) + ": " + n.error);
@@ -157,8 +160,9 @@ std::optional<double> readNumberAttribute(const XmlElement& element, std::string
   return n.value;
 }
 
-bool TransformReader::take(const XmlElement& owner, const XmlElement& child, DiagnosticSink& sink) {
-  const XmlElement** slot = nullptr;
+bool TransformReader::take(const common::XmlElement& owner, const common::XmlElement& child,
+                           common::DiagnosticSink& sink) {
+  const common::XmlElement** slot = nullptr;
   if (child.name == "RPY") slot = &rpy_;
   if (child.name == "Pos") slot = &pos_;
   if (child.name == "Transform") slot = &matrix_;
@@ -176,12 +180,12 @@ bool TransformReader::take(const XmlElement& owner, const XmlElement& child, Dia
   return true;
 }
 
-std::optional<Transform3D> TransformReader::finish(const XmlElement& owner,
-                                                   DiagnosticSink& sink) const {
+std::optional<Transform3D> TransformReader::finish(const common::XmlElement& owner,
+                                                   common::DiagnosticSink& sink) const {
   if (matrix_ != nullptr) return matrixTransform(*matrix_, sink);
   if (rpy_ == nullptr && pos_ == nullptr) return Transform3D::Identity();
   if (rpy_ == nullptr || pos_ == nullptr) {
-    const XmlElement& lone = rpy_ != nullptr ? *rpy_ : *pos_;
+    const common::XmlElement& lone = rpy_ != nullptr ? *rpy_ : *pos_;
     const char* other = rpy_ != nullptr ? "<Pos>" : "<RPY>";
     sink.error(lone.location, owner.describe() + ": <" + lone.name + "> without " + other +
                                   " (RobWork reads RPY and Pos only as a pair)");
@@ -201,7 +205,8 @@ bool isGeometryElement(std::string_view name) {
   return name == "Custom" || name == "Polytope";
 }
 
-std::optional<GeometryDesc> readGeometry(const XmlElement& element, DiagnosticSink& sink) {
+std::optional<GeometryDesc> readGeometry(const common::XmlElement& element,
+                                         common::DiagnosticSink& sink) {
   GeometryDesc g;
   g.origin = originOf(element);
   if (element.name == "Polytope") {
@@ -221,7 +226,8 @@ std::optional<GeometryDesc> readGeometry(const XmlElement& element, DiagnosticSi
                                        "\"; this project knows \"Frustum\"");
       return std::nullopt;
     }
-    const std::string problem = parseNumberList(element.attributeOr("param", ""), g.parameters);
+    const std::string problem =
+        common::parseNumberList(element.attributeOr("param", ""), g.parameters);
     if (!problem.empty() || g.parameters.size() != 3) {
       sink.error(element.location,
                  element.describe() +
@@ -250,7 +256,8 @@ std::optional<GeometryDesc> readGeometry(const XmlElement& element, DiagnosticSi
   return std::nullopt;
 }
 
-std::optional<PropertyDesc> readProperty(const XmlElement& element, DiagnosticSink& sink) {
+std::optional<PropertyDesc> readProperty(const common::XmlElement& element,
+                                         common::DiagnosticSink& sink) {
   PropertyDesc p;
   p.origin = originOf(element);
   p.name = element.attributeOr("name", "");
@@ -259,7 +266,7 @@ std::optional<PropertyDesc> readProperty(const XmlElement& element, DiagnosticSi
   if (type == "string") {
     p.property.value = element.text;
   } else if (type == "double") {
-    const ParsedNumber n = parseFiniteNumber(element.text);
+    const common::ParsedNumber n = common::parseFiniteNumber(element.text);
     if (!n.error.empty()) {
       sink.error(element.location, element.describe() + ": type double: " + n.error);
       return std::nullopt;
@@ -267,7 +274,7 @@ std::optional<PropertyDesc> readProperty(const XmlElement& element, DiagnosticSi
     p.property.value = n.value;
   } else if (type == "Q") {
     std::vector<double> values;
-    const std::string problem = parseNumberList(element.text, values);
+    const std::string problem = common::parseNumberList(element.text, values);
     if (!problem.empty()) {
       sink.error(element.location, element.describe() + ": type Q: " + problem);
       return std::nullopt;
@@ -283,8 +290,8 @@ std::optional<PropertyDesc> readProperty(const XmlElement& element, DiagnosticSi
   return p;
 }
 
-std::optional<LimitDesc> readLimit(const XmlElement& element, const std::string& owner,
-                                   DiagnosticSink& sink) {
+std::optional<LimitDesc> readLimit(const common::XmlElement& element, const std::string& owner,
+                                   common::DiagnosticSink& sink) {
   LimitDesc limit;
   limit.origin = originOf(element);
   const std::string prefix =
@@ -314,7 +321,8 @@ std::optional<LimitDesc> readLimit(const XmlElement& element, const std::string&
   return limit;
 }
 
-std::optional<DependDesc> readDepend(const XmlElement& element, DiagnosticSink& sink) {
+std::optional<DependDesc> readDepend(const common::XmlElement& element,
+                                     common::DiagnosticSink& sink) {
   DependDesc d;
   d.origin = originOf(element);
   d.on = element.attributeOr("on", "");
@@ -325,7 +333,7 @@ std::optional<DependDesc> readDepend(const XmlElement& element, DiagnosticSink& 
   return d;
 }
 
-std::optional<QDesc> readQ(const XmlElement& element, DiagnosticSink& sink) {
+std::optional<QDesc> readQ(const common::XmlElement& element, common::DiagnosticSink& sink) {
   QDesc q;
   q.origin = originOf(element);
   q.name = element.attributeOr("name", "");
@@ -335,8 +343,8 @@ std::optional<QDesc> readQ(const XmlElement& element, DiagnosticSink& sink) {
   return q;
 }
 
-std::optional<FrameKind> readFrameType(const XmlElement& element, const std::string& value,
-                                       DiagnosticSink& sink) {
+std::optional<FrameKind> readFrameType(const common::XmlElement& element, const std::string& value,
+                                       common::DiagnosticSink& sink) {
   if (value == "Fixed") return FrameKind{FrameType::kFixed, false};
   if (value == "Movable") return FrameKind{FrameType::kMovable, false};
   if (value == "EndEffector") return FrameKind{FrameType::kFixed, true};
@@ -359,7 +367,8 @@ std::optional<FrameKind> readFrameType(const XmlElement& element, const std::str
 // (or the HGP "parallel" flag of a b/beta joint) carries over to the next DHJoint (reference
 // Appendix A.16). That is a bug, not a format rule: here every DHJoint stands on its own, with
 // craig as the default type.
-std::optional<DhPlacement> readDhJoint(const XmlElement& element, DiagnosticSink& sink) {
+std::optional<DhPlacement> readDhJoint(const common::XmlElement& element,
+                                       common::DiagnosticSink& sink) {
   int forms = 0;
   std::string form;
   for (const char* name : {"d", "theta", "b", "beta"}) {
@@ -414,21 +423,21 @@ std::optional<DhPlacement> readDhJoint(const XmlElement& element, DiagnosticSink
   return dh;
 }
 
-std::string explainWorkCellValueError(const XmlElement& element) {
+std::string explainWorkCellValueError(const common::XmlElement& element) {
   for (const NumberAttributes& rule : kNumberAttributes) {
     if (rule.element != element.name) continue;
     for (std::string_view name : rule.attributes) {
       if (name.empty()) continue;
       const std::string* value = element.attribute(name);
       if (value == nullptr) continue;
-      const ParsedNumber n = parseFiniteNumber(*value);
+      const common::ParsedNumber n = common::parseFiniteNumber(*value);
       if (!n.error.empty()) return "attribute " + std::string(name) + ": " + n.error;
     }
   }
   if (element.name == "RPY" || element.name == "Pos" || element.name == "Transform" ||
       element.name == "Q") {
     std::vector<double> values;
-    return parseNumberList(element.text, values);
+    return common::parseNumberList(element.text, values);
   }
   if (const std::string* daf = element.attribute("daf")) {
     if (*daf != "true" && *daf != "false" && *daf != "1" && *daf != "0") {

@@ -24,7 +24,7 @@ constexpr const char* kTriedExtensions =
 // Makes geometry objects, sharing one per mesh file.
 class GeometryMaker {
  public:
-  explicit GeometryMaker(DiagnosticSink& sink) : sink_(sink) {}
+  explicit GeometryMaker(common::DiagnosticSink& sink) : sink_(sink) {}
 
   std::shared_ptr<const Geometry> primitive(const GeometryDesc& g) {
     const auto& p = g.parameters;
@@ -91,7 +91,7 @@ class GeometryMaker {
   }
 
  private:
-  DiagnosticSink& sink_;
+  common::DiagnosticSink& sink_;
   std::map<std::string, std::shared_ptr<const Geometry>> meshes_;
   std::map<std::string, std::string> failures_;
 };
@@ -132,7 +132,7 @@ void addModel(rw::models::WorkCell& wc, const ModelDesc& model, GeometryMaker& m
 }  // namespace
 
 void addGeometry(rw::models::WorkCell& wc, const std::vector<ModelDesc>& models,
-                 DiagnosticSink& sink) {
+                 common::DiagnosticSink& sink) {
   GeometryMaker maker(sink);
   for (const ModelDesc& model : models) addModel(wc, model, maker);
 }

@@ -2,7 +2,7 @@
 
 #include <vector>
 
-#include "rw/loaders/detail/diagnostic_sink.hpp"
+#include "rw/common/diagnostic_sink.hpp"
 #include "rw/loaders/detail/wc_description.hpp"
 #include "rw/models/workcell.hpp"
 
@@ -13,6 +13,6 @@ namespace rw::loaders::detail {
 /// first for drawing) and each resolved file is read once per call. A missing or unreadable
 /// mesh is an error at its Polytope element; the rest of the geometry is still made.
 void addGeometry(rw::models::WorkCell& wc, const std::vector<ModelDesc>& models,
-                 DiagnosticSink& sink);
+                 common::DiagnosticSink& sink);
 
 }  // namespace rw::loaders::detail

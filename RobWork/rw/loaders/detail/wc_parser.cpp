@@ -44,10 +44,10 @@ bool isModel(const std::string& name) { return name == "Drawable" || name == "Co
 // Walks the expanded element tree and fills a WorkCellDesc.
 class DescriptionParser {
  public:
-  explicit DescriptionParser(DiagnosticSink& sink) : sink_(sink) {}
+  explicit DescriptionParser(common::DiagnosticSink& sink) : sink_(sink) {}
 
-  std::optional<WorkCellDesc> run(const std::vector<XmlElement>& topLevel,
-                                  const SourceLocation& file);
+  std::optional<WorkCellDesc> run(const std::vector<common::XmlElement>& topLevel,
+                                  const common::SourceLocation& file);
 
  private:
   struct DeviceState {
@@ -57,30 +57,31 @@ class DescriptionParser {
     int frameElements = 0;
   };
 
-  void notAllowed(const XmlElement& child, const XmlElement& parent, const char* expected);
-  void unsupportedDevice(const XmlElement& element);
-  void parseWorkCell(const XmlElement& element);
-  void parseDevice(const XmlElement& element);
-  void parseDeviceBody(const XmlElement& element, bool isChain);
-  void parseFrame(const XmlElement& element);
-  bool parseFrameChild(const XmlElement& child, const XmlElement& element, FrameDesc& frame,
-                       TransformReader& transform);
-  void attach(const XmlElement& element, FrameDesc& frame);
-  bool readFrameAttributes(const XmlElement& element, FrameDesc& frame);
-  bool readColor(const XmlElement& model, const XmlElement& rgb, ModelDesc& desc);
-  void parseModel(const XmlElement& element, const std::string& ownerFrame);
-  void parseDeviceLimit(const XmlElement& element);
-  void addSetup(const XmlElement& element);
+  void notAllowed(const common::XmlElement& child, const common::XmlElement& parent,
+                  const char* expected);
+  void unsupportedDevice(const common::XmlElement& element);
+  void parseWorkCell(const common::XmlElement& element);
+  void parseDevice(const common::XmlElement& element);
+  void parseDeviceBody(const common::XmlElement& element, bool isChain);
+  void parseFrame(const common::XmlElement& element);
+  bool parseFrameChild(const common::XmlElement& child, const common::XmlElement& element,
+                       FrameDesc& frame, TransformReader& transform);
+  void attach(const common::XmlElement& element, FrameDesc& frame);
+  bool readFrameAttributes(const common::XmlElement& element, FrameDesc& frame);
+  bool readColor(const common::XmlElement& model, const common::XmlElement& rgb, ModelDesc& desc);
+  void parseModel(const common::XmlElement& element, const std::string& ownerFrame);
+  void parseDeviceLimit(const common::XmlElement& element);
+  void addSetup(const common::XmlElement& element);
   std::string scoped(const std::string& name) const;
   std::string scopePrefix() const;
 
-  DiagnosticSink& sink_;
+  common::DiagnosticSink& sink_;
   WorkCellDesc desc_;
   std::vector<std::string> scope_;
   std::optional<DeviceState> device_;
   std::string lastWorkCellFrame_;
   bool seenWorkCellFrame_ = false;
-  std::map<std::string, SourceLocation> deviceNames_;
+  std::map<std::string, common::SourceLocation> deviceNames_;
 };
 
 std::string DescriptionParser::scopePrefix() const {
@@ -93,22 +94,22 @@ std::string DescriptionParser::scoped(const std::string& name) const {
   return scopePrefix() + name;
 }
 
-void DescriptionParser::notAllowed(const XmlElement& child, const XmlElement& parent,
-                                   const char* expected) {
+void DescriptionParser::notAllowed(const common::XmlElement& child,
+                                   const common::XmlElement& parent, const char* expected) {
   sink_.error(child.location, "<" + child.name + "> is not allowed in " + parent.describe() +
                                   "; expected one of: " + expected);
 }
 
-void DescriptionParser::unsupportedDevice(const XmlElement& element) {
+void DescriptionParser::unsupportedDevice(const common::XmlElement& element) {
   sink_.error(element.location, element.describe() + ": <" + element.name +
                                     "> is not supported by this project (SerialDevice and "
                                     "TreeDevice are)");
 }
 
-std::optional<WorkCellDesc> DescriptionParser::run(const std::vector<XmlElement>& topLevel,
-                                                   const SourceLocation& file) {
+std::optional<WorkCellDesc> DescriptionParser::run(const std::vector<common::XmlElement>& topLevel,
+                                                   const common::SourceLocation& file) {
   if (topLevel.empty()) {
-    sink_.error(SourceLocation{file.file, 1, 0},
+    sink_.error(common::SourceLocation{file.file, 1, 0},
                 "the file holds no element; expected <WorkCell> or a device as its root");
     return std::nullopt;
   }
@@ -118,7 +119,7 @@ std::optional<WorkCellDesc> DescriptionParser::run(const std::vector<XmlElement>
                                           ": a workcell file has one root element");
     return std::nullopt;
   }
-  const XmlElement& root = topLevel.front();
+  const common::XmlElement& root = topLevel.front();
   if (root.name == "WorkCell") {
     desc_.name = root.attributeOr("name", "");
     parseWorkCell(root);
@@ -135,8 +136,8 @@ std::optional<WorkCellDesc> DescriptionParser::run(const std::vector<XmlElement>
   return std::move(desc_);
 }
 
-void DescriptionParser::parseWorkCell(const XmlElement& element) {
-  for (const XmlElement& child : element.children) {
+void DescriptionParser::parseWorkCell(const common::XmlElement& element) {
+  for (const common::XmlElement& child : element.children) {
     const std::string& n = child.name;
     if (n == "SerialDevice" || n == "TreeDevice") {
       parseDevice(child);
@@ -163,7 +164,7 @@ void DescriptionParser::parseWorkCell(const XmlElement& element) {
   }
 }
 
-void DescriptionParser::parseDevice(const XmlElement& element) {
+void DescriptionParser::parseDevice(const common::XmlElement& element) {
   DeviceDesc device;
   device.origin = originOf(element);
   device.name = element.attributeOr("name", "");
@@ -191,9 +192,9 @@ void DescriptionParser::parseDevice(const XmlElement& element) {
   device_.reset();
 }
 
-void DescriptionParser::parseDeviceBody(const XmlElement& element, bool isChain) {
+void DescriptionParser::parseDeviceBody(const common::XmlElement& element, bool isChain) {
   DeviceDesc& device = desc_.devices[static_cast<std::size_t>(device_->index)];
-  for (const XmlElement& child : element.children) {
+  for (const common::XmlElement& child : element.children) {
     const std::string& n = child.name;
     if (n == "Frame" || n == "Joint" || n == "DHJoint") {
       parseFrame(child);
@@ -222,7 +223,7 @@ void DescriptionParser::parseDeviceBody(const XmlElement& element, bool isChain)
   }
 }
 
-void DescriptionParser::parseDeviceLimit(const XmlElement& element) {
+void DescriptionParser::parseDeviceLimit(const common::XmlElement& element) {
   auto limit = readLimit(element, "", sink_);
   if (!limit) return;
   const std::string* refjoint = element.attribute("refjoint");
@@ -236,7 +237,7 @@ void DescriptionParser::parseDeviceLimit(const XmlElement& element) {
   desc_.devices[static_cast<std::size_t>(device_->index)].limits.push_back(std::move(*limit));
 }
 
-void DescriptionParser::addSetup(const XmlElement& element) {
+void DescriptionParser::addSetup(const common::XmlElement& element) {
   SetupRef ref;
   ref.origin = originOf(element);
   ref.file = element.attributeOr("file", "");
@@ -253,7 +254,8 @@ void DescriptionParser::addSetup(const XmlElement& element) {
   }
 }
 
-void DescriptionParser::parseModel(const XmlElement& element, const std::string& ownerFrame) {
+void DescriptionParser::parseModel(const common::XmlElement& element,
+                                   const std::string& ownerFrame) {
   ModelDesc model;
   model.origin = originOf(element);
   model.name = element.attributeOr("name", "");
@@ -285,7 +287,7 @@ void DescriptionParser::parseModel(const XmlElement& element, const std::string&
   }
   TransformReader transform;
   bool ok = true;
-  for (const XmlElement& child : element.children) {
+  for (const common::XmlElement& child : element.children) {
     if (transform.take(element, child, sink_)) continue;
     if (child.name == "RGB") {
       if (!readColor(element, child, model)) ok = false;
@@ -308,7 +310,8 @@ void DescriptionParser::parseModel(const XmlElement& element, const std::string&
   desc_.models.push_back(std::move(model));
 }
 
-bool DescriptionParser::readColor(const XmlElement& model, const XmlElement& rgb, ModelDesc& desc) {
+bool DescriptionParser::readColor(const common::XmlElement& model, const common::XmlElement& rgb,
+                                  ModelDesc& desc) {
   if (desc.color) {
     sink_.error(rgb.location, model.describe() + ": more than one <RGB>");
     return false;
@@ -344,7 +347,7 @@ bool DescriptionParser::readColor(const XmlElement& model, const XmlElement& rgb
   return true;
 }
 
-bool DescriptionParser::readFrameAttributes(const XmlElement& element, FrameDesc& frame) {
+bool DescriptionParser::readFrameAttributes(const common::XmlElement& element, FrameDesc& frame) {
   bool ok = true;
   if (element.name == "DHJoint") {
     if (const auto dh = readDhJoint(element, sink_)) {
@@ -374,14 +377,14 @@ bool DescriptionParser::readFrameAttributes(const XmlElement& element, FrameDesc
   return ok;
 }
 
-void DescriptionParser::parseFrame(const XmlElement& element) {
+void DescriptionParser::parseFrame(const common::XmlElement& element) {
   FrameDesc frame;
   frame.origin = originOf(element);
   frame.name = scoped(element.attributeOr("name", ""));
   frame.device = device_ ? device_->index : -1;
   bool ok = readFrameAttributes(element, frame);
   TransformReader transform;
-  for (const XmlElement& child : element.children) {
+  for (const common::XmlElement& child : element.children) {
     ok = parseFrameChild(child, element, frame, transform) && ok;
   }
   if (element.name == "DHJoint" && transform.any()) {
@@ -424,8 +427,9 @@ void DescriptionParser::parseFrame(const XmlElement& element) {
   desc_.frames.push_back(std::move(frame));
 }
 
-bool DescriptionParser::parseFrameChild(const XmlElement& child, const XmlElement& element,
-                                        FrameDesc& frame, TransformReader& transform) {
+bool DescriptionParser::parseFrameChild(const common::XmlElement& child,
+                                        const common::XmlElement& element, FrameDesc& frame,
+                                        TransformReader& transform) {
   const bool isJointElement = element.name != "Frame";
   if (transform.take(element, child, sink_)) return true;
   if (child.name == "Property") {
@@ -467,7 +471,7 @@ bool DescriptionParser::parseFrameChild(const XmlElement& child, const XmlElemen
 
 // RobWork's attachment rules (reference §1.3, §1.4; XMLParserUtil's AddFrameToWorkcell,
 // AddFrameToDevice and AddDeviceToWorkcell).
-void DescriptionParser::attach(const XmlElement& element, FrameDesc& frame) {
+void DescriptionParser::attach(const common::XmlElement& element, FrameDesc& frame) {
   const std::string* refframe = element.attribute("refframe");
   const bool given = refframe != nullptr && !refframe->empty();
   if (!device_) {
@@ -516,9 +520,9 @@ void DescriptionParser::attach(const XmlElement& element, FrameDesc& frame) {
 
 }  // namespace
 
-std::optional<WorkCellDesc> parseWorkCellDescription(const std::vector<XmlElement>& topLevel,
-                                                     const SourceLocation& file,
-                                                     DiagnosticSink& sink) {
+std::optional<WorkCellDesc> parseWorkCellDescription(
+    const std::vector<common::XmlElement>& topLevel, const common::SourceLocation& file,
+    common::DiagnosticSink& sink) {
   return DescriptionParser(sink).run(topLevel, file);
 }
 

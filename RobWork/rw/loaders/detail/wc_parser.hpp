@@ -3,9 +3,9 @@
 #include <optional>
 #include <vector>
 
-#include "rw/loaders/detail/diagnostic_sink.hpp"
+#include "rw/common/diagnostic_sink.hpp"
+#include "rw/common/xml_tree.hpp"
 #include "rw/loaders/detail/wc_description.hpp"
-#include "rw/loaders/detail/xml_tree.hpp"
 
 namespace rw::loaders::detail {
 
@@ -14,8 +14,8 @@ namespace rw::loaders::detail {
 /// attachment rules (reference §1.3, §1.4, §1.6). Name lookups that need the whole file
 /// (refframes, Depend owners, refjoints) are left to the builder. `file` locates problems that
 /// concern the whole file. Returns nullopt if an error was reported.
-std::optional<WorkCellDesc> parseWorkCellDescription(const std::vector<XmlElement>& topLevel,
-                                                     const SourceLocation& file,
-                                                     DiagnosticSink& sink);
+std::optional<WorkCellDesc> parseWorkCellDescription(
+    const std::vector<common::XmlElement>& topLevel, const common::SourceLocation& file,
+    common::DiagnosticSink& sink);
 
 }  // namespace rw::loaders::detail

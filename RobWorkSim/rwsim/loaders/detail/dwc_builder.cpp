@@ -14,9 +14,9 @@ namespace rwsim::loaders::detail {
 
 namespace {
 
+using rw::common::DiagnosticSink;
 using rw::kinematics::FrameId;
 using rw::kinematics::FrameType;
-using rw::loaders::xml::DiagnosticSink;
 using rw::models::Device;
 using rwsim::dynamics::Body;
 using rwsim::dynamics::BodyKind;

@@ -3,7 +3,7 @@
 #include <memory>
 #include <string>
 
-#include "rw/loaders/xml/diagnostic_sink.hpp"
+#include "rw/common/diagnostic_sink.hpp"
 #include "rw/models/workcell.hpp"
 #include "rwsim/dynamics/dynamic_workcell.hpp"
 #include "rwsim/loaders/detail/dwc_description.hpp"
@@ -18,6 +18,6 @@ namespace rwsim::loaders::detail {
 /// Returns null if an error was reported.
 std::unique_ptr<rwsim::dynamics::DynamicWorkCell> buildDynamicWorkCell(
     const DynamicWorkCellDesc& desc, std::unique_ptr<rw::models::WorkCell> workcell,
-    rw::loaders::xml::DiagnosticSink& sink);
+    rw::common::DiagnosticSink& sink);
 
 }  // namespace rwsim::loaders::detail

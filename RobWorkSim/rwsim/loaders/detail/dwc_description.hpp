@@ -6,14 +6,14 @@
 #include <utility>
 #include <vector>
 
+#include "rw/common/diagnostic_sink.hpp"
 #include "rw/kinematics/property_map.hpp"
-#include "rw/loaders/xml/diagnostic_sink.hpp"
 #include "rw/math/types.hpp"
 #include "rwsim/dynamics/material_map.hpp"
 
 namespace rwsim::loaders::detail {
 
-using rw::loaders::xml::SourceLocation;
+using rw::common::SourceLocation;
 
 /// A name or value together with where it was written.
 struct LocatedText {

@@ -11,9 +11,9 @@
 namespace rwsim::loaders::detail {
 
 namespace fs = std::filesystem;
-using rw::loaders::xml::SourceFile;
-using rw::loaders::xml::SourceLocation;
-using rw::loaders::xml::XmlElement;
+using rw::common::SourceFile;
+using rw::common::SourceLocation;
+using rw::common::XmlElement;
 
 namespace {
 

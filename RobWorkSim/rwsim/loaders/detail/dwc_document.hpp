@@ -7,25 +7,25 @@
 #include <string_view>
 #include <vector>
 
-#include "rw/loaders/xml/diagnostic_sink.hpp"
-#include "rw/loaders/xml/text_file.hpp"
-#include "rw/loaders/xml/xml_reader.hpp"
-#include "rw/loaders/xml/xml_tree.hpp"
+#include "rw/common/diagnostic_sink.hpp"
+#include "rw/common/text_file.hpp"
+#include "rw/common/xml_reader.hpp"
+#include "rw/common/xml_tree.hpp"
 
 namespace rwsim::loaders::detail {
 
 /// Deepest Include nesting accepted.
 inline constexpr int kMaxIncludeDepth = 32;
 
-using rw::loaders::xml::readTextFile;
+using rw::common::readTextFile;
 
 /// A dynamic workcell file and its includes, read into one list of top-level elements.
 struct DynamicWorkCellDocument {
   /// The <DynamicWorkcell> root (its children are not used; see `topLevel`).
-  rw::loaders::xml::XmlElement root;
+  rw::common::XmlElement root;
   /// The root's children with every Include replaced by the included file's children, in
   /// document order; each element keeps the file and line it was written at.
-  std::vector<rw::loaders::xml::XmlElement> topLevel;
+  std::vector<rw::common::XmlElement> topLevel;
 };
 
 /// Reads dynamic workcell files: repairs mismatched closing tags (with a warning each, as
@@ -36,7 +36,7 @@ struct DynamicWorkCellDocument {
 class DocumentReader {
  public:
   /// Uses `reader` (with the dynamic workcell schema) and reports to `sink`.
-  DocumentReader(rw::loaders::xml::XmlReader& reader, rw::loaders::xml::DiagnosticSink& sink)
+  DocumentReader(rw::common::XmlReader& reader, rw::common::DiagnosticSink& sink)
       : reader_(reader), sink_(sink) {}
 
   /// Reads the top-level file `file` whose content is `text`; nullopt after an error.
@@ -46,19 +46,19 @@ class DocumentReader {
  private:
   struct Context;
 
-  std::optional<rw::loaders::xml::XmlElement> parseRoot(
-      std::string_view text, const std::shared_ptr<const rw::loaders::xml::SourceFile>& source,
+  std::optional<rw::common::XmlElement> parseRoot(
+      std::string_view text, const std::shared_ptr<const rw::common::SourceFile>& source,
       std::string_view expectedRoot);
-  void expand(const std::vector<rw::loaders::xml::XmlElement>& elements, const Context& context,
-              std::vector<rw::loaders::xml::XmlElement>& out);
-  void include(const rw::loaders::xml::XmlElement& element, const Context& context,
-               std::vector<rw::loaders::xml::XmlElement>& out);
-  std::optional<std::filesystem::path> resolveInclude(const rw::loaders::xml::XmlElement& element,
+  void expand(const std::vector<rw::common::XmlElement>& elements, const Context& context,
+              std::vector<rw::common::XmlElement>& out);
+  void include(const rw::common::XmlElement& element, const Context& context,
+               std::vector<rw::common::XmlElement>& out);
+  std::optional<std::filesystem::path> resolveInclude(const rw::common::XmlElement& element,
                                                       const std::string& file,
                                                       const Context& context);
 
-  rw::loaders::xml::XmlReader& reader_;
-  rw::loaders::xml::DiagnosticSink& sink_;
+  rw::common::XmlReader& reader_;
+  rw::common::DiagnosticSink& sink_;
   std::filesystem::path topDir_;
   std::size_t filesRead_ = 0;
 };

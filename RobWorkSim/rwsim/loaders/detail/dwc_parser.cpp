@@ -10,18 +10,18 @@
 #include <sstream>
 #include <utility>
 
-#include "rw/loaders/xml/numbers.hpp"
+#include "rw/common/numbers.hpp"
 
 namespace rwsim::loaders::detail {
 
 namespace {
 
-using rw::loaders::xml::DiagnosticSink;
-using rw::loaders::xml::ParsedNumber;
-using rw::loaders::xml::parseFiniteNumber;
-using rw::loaders::xml::parseNumberList;
-using rw::loaders::xml::trimXmlSpace;
-using rw::loaders::xml::XmlElement;
+using rw::common::DiagnosticSink;
+using rw::common::ParsedNumber;
+using rw::common::parseFiniteNumber;
+using rw::common::parseNumberList;
+using rw::common::trimXmlSpace;
+using rw::common::XmlElement;
 using rw::math::Vector3D;
 using rwsim::dynamics::FrictionData;
 

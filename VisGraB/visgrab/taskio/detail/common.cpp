@@ -7,13 +7,11 @@
 #include <fstream>
 #include <stdexcept>
 
-#include "rw/loaders/xml/strings.hpp"
-#include "rw/loaders/xml/text_file.hpp"
-#include "rw/loaders/xml/xml_reader.hpp"
+#include "rw/common/strings.hpp"
+#include "rw/common/text_file.hpp"
+#include "rw/common/xml_reader.hpp"
 
 namespace visgrab::taskio::detail {
-
-namespace xml = rw::loaders::xml;
 
 std::string formatNumber(double value) {
   if (value == 0.0) return "0";  // also -0
@@ -62,58 +60,57 @@ rw::math::Rotation3D nearestRotation(const rw::math::Rotation3D& R) {
   return U * V.transpose();
 }
 
-std::shared_ptr<const xml::SourceFile> sourceFile(const std::filesystem::path& file) {
-  return std::make_shared<const xml::SourceFile>(xml::SourceFile{file.string(), {}});
+std::shared_ptr<const rw::common::SourceFile> sourceFile(const std::filesystem::path& file) {
+  return std::make_shared<const rw::common::SourceFile>(rw::common::SourceFile{file.string(), {}});
 }
 
-std::vector<xml::XmlElement> parseXmlOrThrow(std::string_view text,
-                                             const std::filesystem::path& file) {
-  xml::DiagnosticSink sink;
-  xml::XmlReader reader(xml::XmlReaderOptions{});
+std::vector<rw::common::XmlElement> parseXmlOrThrow(std::string_view text,
+                                                    const std::filesystem::path& file) {
+  rw::common::DiagnosticSink sink;
+  rw::common::XmlReader reader(rw::common::XmlReaderOptions{});
   auto top = reader.parse(text, sourceFile(file), sink);
   if (!top || sink.hasErrors()) {
     if (!sink.hasErrors()) sink.error({sourceFile(file), 0, 0}, "cannot parse the XML");
-    throw rw::loaders::LoadError(sink.take());
+    throw rw::common::LoadError(sink.take());
   }
   return std::move(*top);
 }
 
-const xml::XmlElement* child(const xml::XmlElement& element, std::string_view name) {
+const rw::common::XmlElement* child(const rw::common::XmlElement& element, std::string_view name) {
   for (const auto& c : element.children) {
     if (localName(c.name) == name) return &c;
   }
   return nullptr;
 }
 
-void writeElement(std::string& out, const xml::XmlElement& element, int indent) {
+void writeElement(std::string& out, const rw::common::XmlElement& element, int indent) {
   const std::string pad(static_cast<std::size_t>(indent), ' ');
   out += pad + "<" + element.name;
   for (const auto& a : element.attributes) {
-    out += " " + a.name + "=\"" + xml::escapeXml(a.value) + "\"";
+    out += " " + a.name + "=\"" + rw::common::escapeXml(a.value) + "\"";
   }
-  const std::string_view text = xml::trimXmlSpace(element.text);
+  const std::string_view text = rw::common::trimXmlSpace(element.text);
   if (element.children.empty()) {
-    out += text.empty() ? "/>\n" : ">" + xml::escapeXml(text) + "</" + element.name + ">\n";
+    out += text.empty() ? "/>\n" : ">" + rw::common::escapeXml(text) + "</" + element.name + ">\n";
     return;
   }
   out += ">";
-  if (!text.empty()) out += xml::escapeXml(text);
+  if (!text.empty()) out += rw::common::escapeXml(text);
   out += "\n";
   for (const auto& c : element.children) writeElement(out, c, indent + 2);
   out += pad + "</" + element.name + ">\n";
 }
 
-rw::loaders::Diagnostic errorAt(const std::string& file, int line, int column,
-                                std::string message) {
-  return rw::loaders::Diagnostic{
-      rw::loaders::Diagnostic::Severity::kError, file, line, column, std::move(message), {}};
+rw::common::Diagnostic errorAt(const std::string& file, int line, int column, std::string message) {
+  return rw::common::Diagnostic{
+      rw::common::Diagnostic::Severity::kError, file, line, column, std::move(message), {}};
 }
 
 std::string readFileOrThrow(const std::filesystem::path& file, std::string_view what) {
   std::string text;
-  const std::string why = xml::readTextFile(file, text);
+  const std::string why = rw::common::readTextFile(file, text);
   if (!why.empty()) {
-    throw rw::loaders::LoadError(
+    throw rw::common::LoadError(
         {errorAt(file.string(), 0, 0, "cannot read " + std::string(what) + ": " + why)});
   }
   return text;

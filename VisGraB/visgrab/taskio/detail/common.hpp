@@ -6,9 +6,9 @@
 #include <string_view>
 #include <vector>
 
-#include "rw/loaders/diagnostic.hpp"
-#include "rw/loaders/xml/diagnostic_sink.hpp"
-#include "rw/loaders/xml/xml_tree.hpp"
+#include "rw/common/diagnostic.hpp"
+#include "rw/common/diagnostic_sink.hpp"
+#include "rw/common/xml_tree.hpp"
 #include "rw/math/types.hpp"
 
 namespace visgrab::taskio::detail {
@@ -34,23 +34,22 @@ double orthonormalityError(const rw::math::Rotation3D& R);
 rw::math::Rotation3D nearestRotation(const rw::math::Rotation3D& R);
 
 /// A source file description for XML positions.
-std::shared_ptr<const rw::loaders::xml::SourceFile> sourceFile(const std::filesystem::path& file);
+std::shared_ptr<const rw::common::SourceFile> sourceFile(const std::filesystem::path& file);
 
-/// Parses XML text; throws rw::loaders::LoadError when it is not well-formed.
-std::vector<rw::loaders::xml::XmlElement> parseXmlOrThrow(std::string_view text,
-                                                          const std::filesystem::path& file);
+/// Parses XML text; throws rw::common::LoadError when it is not well-formed.
+std::vector<rw::common::XmlElement> parseXmlOrThrow(std::string_view text,
+                                                    const std::filesystem::path& file);
 
 /// The first child element whose local name is `name`, or nullptr.
-const rw::loaders::xml::XmlElement* child(const rw::loaders::xml::XmlElement& element,
-                                          std::string_view name);
+const rw::common::XmlElement* child(const rw::common::XmlElement& element, std::string_view name);
 
 /// XML text of `element` (attributes, text, children) for re-writing kept properties.
-void writeElement(std::string& out, const rw::loaders::xml::XmlElement& element, int indent);
+void writeElement(std::string& out, const rw::common::XmlElement& element, int indent);
 
 /// An error diagnostic at file:line:column.
-rw::loaders::Diagnostic errorAt(const std::string& file, int line, int column, std::string message);
+rw::common::Diagnostic errorAt(const std::string& file, int line, int column, std::string message);
 
-/// Reads the whole file; throws rw::loaders::LoadError if it cannot.
+/// Reads the whole file; throws rw::common::LoadError if it cannot.
 std::string readFileOrThrow(const std::filesystem::path& file, std::string_view what);
 /// Writes `text` to `file`; throws std::runtime_error if it cannot.
 void writeFileOrThrow(const std::filesystem::path& file, const std::string& text);

@@ -1,9 +1,9 @@
-#include "rw/loaders/xml/diagnostic_sink.hpp"
+#include "rw/common/diagnostic_sink.hpp"
 
 #include <cstdio>
 #include <utility>
 
-namespace rw::loaders::xml {
+namespace rw::common {
 
 namespace {
 
@@ -78,4 +78,4 @@ void DiagnosticSink::add(Diagnostic::Severity severity, const SourceLocation& wh
   diagnostics_.push_back(std::move(d));
 }
 
-}  // namespace rw::loaders::xml
+}  // namespace rw::common

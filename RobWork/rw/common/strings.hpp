@@ -5,7 +5,7 @@
 #include <string_view>
 #include <vector>
 
-namespace rw::loaders::xml {
+namespace rw::common {
 
 /// `text` with &, <, > and " escaped for XML element text and attribute values.
 std::string escapeXml(std::string_view text);
@@ -16,4 +16,4 @@ std::size_t editDistance(std::string_view a, std::string_view b);
 /// The parts of `text` between the `separator`s (n separators give n + 1 parts, empty ones too).
 std::vector<std::string_view> split(std::string_view text, char separator);
 
-}  // namespace rw::loaders::xml
+}  // namespace rw::common

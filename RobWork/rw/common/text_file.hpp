@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <string>
 
-namespace rw::loaders::xml {
+namespace rw::common {
 
 /// Largest input file the loaders read (protection against runaway inputs).
 inline constexpr std::size_t kMaxFileBytes = std::size_t{64} << 20;
@@ -14,7 +14,7 @@ inline constexpr std::size_t kMaxFileBytes = std::size_t{64} << 20;
 /// phrased to follow "cannot read FILE: ".
 std::string readTextFile(const std::filesystem::path& file, std::string& text);
 
-/// The whole file. @throws rw::loaders::LoadError naming the file and why it cannot be read.
+/// The whole file. @throws rw::common::LoadError naming the file and why it cannot be read.
 std::string readTextFileOrThrow(const std::filesystem::path& file);
 
-}  // namespace rw::loaders::xml
+}  // namespace rw::common

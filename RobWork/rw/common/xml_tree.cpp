@@ -1,6 +1,6 @@
-#include "rw/loaders/xml/xml_tree.hpp"
+#include "rw/common/xml_tree.hpp"
 
-namespace rw::loaders::xml {
+namespace rw::common {
 
 const std::string* XmlElement::attribute(std::string_view attributeName) const {
   for (const XmlAttribute& a : attributes) {
@@ -38,4 +38,4 @@ std::string_view trimXmlSpace(std::string_view text) {
   return text.substr(first, last - first + 1);
 }
 
-}  // namespace rw::loaders::xml
+}  // namespace rw::common

@@ -1,8 +1,8 @@
-#include "rw/loaders/diagnostic.hpp"
+#include "rw/common/diagnostic.hpp"
 
 #include <utility>
 
-namespace rw::loaders {
+namespace rw::common {
 
 namespace {
 
@@ -39,4 +39,4 @@ std::string Diagnostic::format() const {
 LoadError::LoadError(std::vector<Diagnostic> diagnostics)
     : std::runtime_error(joinErrors(diagnostics)), diagnostics_(std::move(diagnostics)) {}
 
-}  // namespace rw::loaders
+}  // namespace rw::common

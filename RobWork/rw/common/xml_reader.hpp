@@ -7,10 +7,10 @@
 #include <string_view>
 #include <vector>
 
-#include "rw/loaders/xml/diagnostic_sink.hpp"
-#include "rw/loaders/xml/xml_tree.hpp"
+#include "rw/common/diagnostic_sink.hpp"
+#include "rw/common/xml_tree.hpp"
 
-namespace rw::loaders::xml {
+namespace rw::common {
 
 /// Name of the element every file is wrapped in before parsing, so that a file may hold several
 /// top-level elements (RobWork's Include is textual). Declared, as internal, in the schema.
@@ -51,4 +51,4 @@ class XmlReader {
   std::unique_ptr<Impl> impl_;
 };
 
-}  // namespace rw::loaders::xml
+}  // namespace rw::common

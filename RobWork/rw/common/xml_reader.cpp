@@ -1,4 +1,4 @@
-#include "rw/loaders/xml/xml_reader.hpp"
+#include "rw/common/xml_reader.hpp"
 
 #include <xercesc/framework/MemBufInputSource.hpp>
 #include <xercesc/framework/XMLPScanToken.hpp>
@@ -21,7 +21,7 @@
 #include <tuple>
 #include <utility>
 
-namespace rw::loaders::xml {
+namespace rw::common {
 
 namespace xc = XERCES_CPP_NAMESPACE;
 
@@ -539,4 +539,4 @@ std::optional<std::vector<XmlElement>> XmlReader::parse(
   return builder.takeTopLevel();
 }
 
-}  // namespace rw::loaders::xml
+}  // namespace rw::common

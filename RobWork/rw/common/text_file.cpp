@@ -1,11 +1,11 @@
-#include "rw/loaders/xml/text_file.hpp"
+#include "rw/common/text_file.hpp"
 
-#include "rw/loaders/diagnostic.hpp"
+#include "rw/common/diagnostic.hpp"
 
 #include <fstream>
 #include <system_error>
 
-namespace rw::loaders::xml {
+namespace rw::common {
 
 namespace fs = std::filesystem;
 
@@ -37,4 +37,4 @@ std::string readTextFileOrThrow(const std::filesystem::path& file) {
   return text;
 }
 
-}  // namespace rw::loaders::xml
+}  // namespace rw::common

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-namespace rw::loaders {
+namespace rw::common {
 
 /// One problem found in an input file, located at file:line:column.
 struct Diagnostic {
@@ -43,4 +43,4 @@ class LoadError : public std::runtime_error {
   std::vector<Diagnostic> diagnostics_;
 };
 
-}  // namespace rw::loaders
+}  // namespace rw::common

@@ -7,11 +7,11 @@
 #include <tuple>
 #include <vector>
 
-#include "rw/loaders/diagnostic.hpp"
+#include "rw/common/diagnostic.hpp"
 
 /// XML reading shared by the loaders of RobWork's formats: positions, diagnostics, an
 /// element tree, a schema-validating reader and number parsing.
-namespace rw::loaders::xml {
+namespace rw::common {
 
 /// A file read by a loader: the name used in messages and the Include chain that led to it.
 struct SourceFile {
@@ -59,4 +59,4 @@ class DiagnosticSink {
 /// Makes `text` printable: invalid UTF-8 bytes and control characters become "\xNN".
 std::string sanitizeText(std::string_view text);
 
-}  // namespace rw::loaders::xml
+}  // namespace rw::common

@@ -5,7 +5,7 @@
 #include <string_view>
 #include <vector>
 
-namespace rw::loaders::xml {
+namespace rw::common {
 
 /// A number read from XML text, or why it could not be read.
 struct ParsedNumber {
@@ -23,4 +23,4 @@ ParsedNumber parseFiniteNumber(std::string_view text);
 /// the first bad token and leaves `values` partly filled.
 std::string parseNumberList(std::string_view text, std::vector<double>& values);
 
-}  // namespace rw::loaders::xml
+}  // namespace rw::common

@@ -1,9 +1,9 @@
-#include "rw/loaders/xml/strings.hpp"
+#include "rw/common/strings.hpp"
 
 #include <algorithm>
 #include <vector>
 
-namespace rw::loaders::xml {
+namespace rw::common {
 
 std::string escapeXml(std::string_view text) {
   std::string out;
@@ -58,4 +58,4 @@ std::vector<std::string_view> split(std::string_view text, char separator) {
   }
 }
 
-}  // namespace rw::loaders::xml
+}  // namespace rw::common

@@ -6,9 +6,9 @@
 #include <utility>
 #include <vector>
 
-#include "rw/loaders/xml/diagnostic_sink.hpp"
+#include "rw/common/diagnostic_sink.hpp"
 
-namespace rw::loaders::xml {
+namespace rw::common {
 
 /// One attribute of an element, as written.
 struct XmlAttribute {
@@ -47,4 +47,4 @@ struct XmlElement {
 /// Removes leading and trailing XML whitespace.
 std::string_view trimXmlSpace(std::string_view text);
 
-}  // namespace rw::loaders::xml
+}  // namespace rw::common

@@ -1,12 +1,12 @@
-#include "rw/loaders/xml/numbers.hpp"
+#include "rw/common/numbers.hpp"
 
 #include <charconv>
 #include <cmath>
 #include <system_error>
 
-#include "rw/loaders/xml/xml_tree.hpp"
+#include "rw/common/xml_tree.hpp"
 
-namespace rw::loaders::xml {
+namespace rw::common {
 
 namespace {
 
@@ -57,4 +57,4 @@ std::string parseNumberList(std::string_view text, std::vector<double>& values) 
   return {};
 }
 
-}  // namespace rw::loaders::xml
+}  // namespace rw::common
