@@ -5,6 +5,7 @@
 #include <string>
 #include <utility>
 
+#include "rw/common/xml_attributes.hpp"
 #include "rw/kinematics/frame_tree.hpp"
 #include "rw/loaders/detail/wc_elements.hpp"
 
@@ -316,7 +317,7 @@ bool DescriptionParser::readColor(const common::XmlElement& model, const common:
     sink_.error(rgb.location, model.describe() + ": more than one <RGB>");
     return false;
   }
-  const auto values = readNumberText(rgb, -1, sink_);
+  const auto values = common::XmlValueReader(sink_).textNumbers(rgb);
   if (!values) return false;
   if (values->size() != 3 && values->size() != 4) {
     sink_.error(rgb.location, rgb.describe() +
@@ -372,8 +373,7 @@ bool DescriptionParser::readFrameAttributes(const common::XmlElement& element, F
     ok = false;
   }
   frame.passive = state == "Passive";
-  const std::string daf = element.attributeOr("daf", "false");
-  frame.daf = daf == "true" || daf == "1";
+  frame.daf = common::XmlValueReader(sink_).optionalBoolean(element, "daf").value_or(false);
   return ok;
 }
 
