@@ -11,14 +11,13 @@
 #include <utility>
 
 #include "rw/common/numbers.hpp"
+#include "rw/common/xml_attributes.hpp"
 
 namespace rwsim::loaders::detail {
 
 namespace {
 
 using rw::common::DiagnosticSink;
-using rw::common::ParsedNumber;
-using rw::common::parseFiniteNumber;
 using rw::common::parseNumberList;
 using rw::common::trimXmlSpace;
 using rw::common::XmlElement;
@@ -79,7 +78,7 @@ std::optional<bool> parseBool(std::string_view text) {
 /// Reads one dynamic workcell's elements into a description.
 class Parser {
  public:
-  explicit Parser(DiagnosticSink& sink) : sink_(sink) {}
+  explicit Parser(DiagnosticSink& sink) : sink_(sink), read_(sink, describeElement) {}
 
   std::optional<DynamicWorkCellDesc> run(const XmlElement& root,
                                          const std::vector<XmlElement>& topLevel) {
@@ -92,12 +91,8 @@ class Parser {
   }
 
  private:
-  void error(const XmlElement& e, const std::string& message) {
-    sink_.error(e.location, describeElement(e) + ": " + message);
-  }
-  void warning(const XmlElement& e, const std::string& message) {
-    sink_.warning(e.location, describeElement(e) + ": " + message);
-  }
+  void error(const XmlElement& e, const std::string& message) { read_.error(e, message); }
+  void warning(const XmlElement& e, const std::string& message) { read_.warning(e, message); }
 
   void topLevelElement(const XmlElement& e);
   void physicsEngine(const XmlElement& e);
@@ -114,14 +109,15 @@ class Parser {
   void controller(const XmlElement& e);
   void finish();
 
-  std::optional<double> number(const XmlElement& e);
-  std::optional<std::vector<double>> numbers(const XmlElement& e);
+  std::optional<double> number(const XmlElement& e) { return read_.textNumber(e); }
+  std::optional<std::vector<double>> numbers(const XmlElement& e) { return read_.textNumbers(e); }
   std::optional<Vector3D> vector3(const XmlElement& e);
   std::optional<Eigen::Matrix3d> inertia(const XmlElement& e);
   std::optional<std::string> nonEmptyText(const XmlElement& e);
   std::optional<rw::kinematics::PropertyValue> property(const XmlElement& e, std::string& text);
 
   DiagnosticSink& sink_;
+  rw::common::XmlValueReader read_;
   DynamicWorkCellDesc desc_;
 };
 
@@ -481,33 +477,10 @@ void Parser::finish() {
   }
 }
 
-std::optional<double> Parser::number(const XmlElement& e) {
-  const ParsedNumber n = parseFiniteNumber(e.text);
-  if (!n.error.empty()) {
-    error(e, n.error);
-    return std::nullopt;
-  }
-  return n.value;
-}
-
-std::optional<std::vector<double>> Parser::numbers(const XmlElement& e) {
-  std::vector<double> values;
-  const std::string problem = parseNumberList(e.text, values);
-  if (!problem.empty()) {
-    error(e, problem);
-    return std::nullopt;
-  }
-  return values;
-}
-
 std::optional<Vector3D> Parser::vector3(const XmlElement& e) {
-  auto values = numbers(e);
-  if (!values) return std::nullopt;
-  if (values->size() != 3) {
-    error(e, "expected 3 numbers, got " + std::to_string(values->size()));
-    return std::nullopt;
-  }
-  return Vector3D((*values)[0], (*values)[1], (*values)[2]);
+  const auto v = read_.textVector3(e);
+  if (!v) return std::nullopt;
+  return Vector3D((*v)[0], (*v)[1], (*v)[2]);
 }
 
 std::optional<Eigen::Matrix3d> Parser::inertia(const XmlElement& e) {
