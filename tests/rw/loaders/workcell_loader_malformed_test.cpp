@@ -201,7 +201,7 @@ std::vector<Case> cases() {
        {{"main.wc.xml", device("  <Joint name=\"j1\" type=\"Revolute\" state=\"Asleep\"/>")}},
        "main.wc.xml",
        5,
-       "state must be Active or Passive"},
+       "<Joint name=\"j1\">: attribute state: expected \"Active\" or \"Passive\", got \"Asleep\""},
       {"DependOnMissingJoint",
        {{"main.wc.xml", device("  <Joint name=\"j1\" type=\"Revolute\">\n"
                                "   <Depend on=\"Nope\" gain=\"1\" offset=\"0\"/></Joint>")}},

@@ -1,5 +1,6 @@
 #include "rw/loaders/detail/wc_parser.hpp"
 
+#include <array>
 #include <filesystem>
 #include <map>
 #include <string>
@@ -366,14 +367,14 @@ bool DescriptionParser::readFrameAttributes(const common::XmlElement& element, F
       ok = false;
     }
   }
-  const std::string state = element.attributeOr("state", "Active");
-  if (state != "Active" && state != "Passive") {
-    sink_.error(element.location,
-                element.describe() + ": state must be Active or Passive, not \"" + state + "\"");
-    ok = false;
+  const common::XmlValueReader read(sink_);
+  if (element.has("state")) {
+    constexpr std::array<std::string_view, 2> kStates{"Active", "Passive"};
+    const auto state = read.choice(element, "state", kStates);
+    ok = ok && state.has_value();
+    frame.passive = state == 1u;
   }
-  frame.passive = state == "Passive";
-  frame.daf = common::XmlValueReader(sink_).optionalBoolean(element, "daf").value_or(false);
+  frame.daf = read.optionalBoolean(element, "daf").value_or(false);
   return ok;
 }
 

@@ -6,6 +6,8 @@
 #include <array>
 #include <cctype>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <set>
 #include <sstream>
 #include <utility>
@@ -530,13 +532,18 @@ std::optional<rw::kinematics::PropertyValue> Parser::property(const XmlElement& 
     type = "float";
   }
   if (type == "string") return rw::kinematics::PropertyValue{text};
-  if (type == "int" || type == "float") {
-    auto value = number(e);
-    if (!value) return std::nullopt;
-    if (type == "int" && (std::floor(*value) != *value || std::abs(*value) > 2147483647.0)) {
-      error(e, "expected an integer, got \"" + text + "\"");
+  if (type == "int") {
+    const auto n = rw::common::parseInteger(text, std::numeric_limits<std::int32_t>::min(),
+                                            std::numeric_limits<std::int32_t>::max());
+    if (!n.error.empty()) {
+      error(e, n.error);
       return std::nullopt;
     }
+    return rw::kinematics::PropertyValue{static_cast<double>(n.value)};
+  }
+  if (type == "float") {
+    auto value = number(e);
+    if (!value) return std::nullopt;
     return rw::kinematics::PropertyValue{*value};
   }
   if (type == "Q") {
