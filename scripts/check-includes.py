@@ -153,6 +153,7 @@ def check(map_path, out=sys.stdout):
     roots = sorted({d for t in targets.values() for d in t.include_dirs})
     allowed = {name: allowed_targets(t, targets) for name, t in targets.items()}
     violations = 0
+    checked = 0
     for folder in sorted(owners):
         group = owners[folder]
         for path in files_of(folder, owners):
@@ -171,6 +172,7 @@ def check(map_path, out=sys.stdout):
                 header_folder, owner = header_owner(header, owners)
                 if header_folder is None or header_folder == folder:
                     continue  # not a project header, or one of this folder's own
+                checked += 1
                 if owner is None:
                     owner = owners[header_folder][0]
                 if any(owner.name in allowed[u.name] for u in users):
@@ -182,7 +184,7 @@ def check(map_path, out=sys.stdout):
                     f"which {module} does not link\n"
                 )
                 violations += 1
-    return violations
+    return violations, checked
 
 
 def main(argv):
@@ -190,14 +192,15 @@ def main(argv):
         sys.stderr.write(__doc__)
         return 2
     try:
-        violations = check(argv[1])
+        violations, checked = check(argv[1])
     except (OSError, KeyError, ValueError) as e:
         sys.stderr.write(f"check-includes: cannot read the module map {argv[1]}: {e}\n")
         return 2
     if violations:
-        print(f"check-includes: {violations} include(s) of targets not linked")
+        print(f"check-includes: {violations} of {checked} includes of other targets' headers "
+              "are of targets not linked")
         return 1
-    print("check-includes: every include is of a linked target")
+    print(f"check-includes: all {checked} includes of other targets' headers are of linked targets")
     return 0
 
 
