@@ -32,7 +32,7 @@ packages=(build-essential cmake ninja-build pkg-config
   libode-dev libeigen3-dev libxerces-c-dev libassimp-dev libopencv-dev
   qtbase5-dev libqhull-dev libgtest-dev libbenchmark-dev
   libegl-dev libegl-mesa0 libgl1-mesa-dri libgl-dev
-  xvfb xauth clang-format)
+  xvfb xauth clang-format python3)
 
 install_packages() {
   local missing=()

@@ -1,6 +1,7 @@
 #include "visgrab/database/database_index.hpp"
 
 #include <cstdio>
+#include <limits>
 #include <map>
 #include <memory>
 #include <optional>
@@ -9,9 +10,9 @@
 
 #include "rw/common/diagnostic.hpp"
 #include "rw/common/diagnostic_sink.hpp"
-#include "rw/common/numbers.hpp"
 #include "rw/common/strings.hpp"
 #include "rw/common/text_file.hpp"
+#include "rw/common/xml_attributes.hpp"
 #include "rw/common/xml_reader.hpp"
 #include "rw/math/rpy.hpp"
 #include "visgrab/database/atomic_file.hpp"
@@ -41,13 +42,9 @@ std::string fixed(double value) {
 // accepts NaN and INF).
 bool vector3(const rw::common::XmlElement& e, rw::common::DiagnosticSink& sink,
              Eigen::Vector3d& out) {
-  std::vector<double> values;
-  const std::string why = rw::common::parseNumberList(e.text, values);
-  if (!why.empty() || values.size() != 3) {
-    sink.error(e.location, "<" + e.name + ">: " + (why.empty() ? "expected 3 numbers" : why));
-    return false;
-  }
-  out = Eigen::Vector3d(values[0], values[1], values[2]);
+  const auto values = rw::common::XmlValueReader(sink).textVector3(e);
+  if (!values) return false;
+  out = Eigen::Vector3d((*values)[0], (*values)[1], (*values)[2]);
   return true;
 }
 
@@ -167,7 +164,10 @@ class IndexParser {
 
   std::optional<ObjectPose> parseObject(const rw::common::XmlElement& e) {
     ObjectPose pose;
-    pose.object = std::stoi(e.attributeOr("id", "0"));
+    const auto id =
+        rw::common::XmlValueReader(sink_).integer(e, "id", 1, std::numeric_limits<int>::max());
+    if (!id) return std::nullopt;
+    pose.object = static_cast<int>(*id);
     const std::string name = e.attributeOr("name", "");
     if (name != objectName(pose.object)) {
       sink_.error(e.location, e.describe() + ": object " + std::to_string(pose.object) +

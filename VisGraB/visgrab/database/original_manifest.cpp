@@ -10,6 +10,7 @@
 
 #include "rw/common/diagnostic_sink.hpp"
 #include "rw/common/text_file.hpp"
+#include "rw/common/xml_attributes.hpp"
 #include "rw/common/xml_reader.hpp"
 
 namespace visgrab::database {
@@ -31,6 +32,9 @@ const rw::common::XmlElement* firstChild(const rw::common::XmlElement& e, std::s
   }
   return nullptr;
 }
+
+// How messages name an element of the manifest: its name only.
+std::string bareName(const rw::common::XmlElement& e) { return "<" + e.name + ">"; }
 
 const std::string* attribute(const rw::common::XmlElement& e, std::string_view name) {
   for (const rw::common::XmlAttribute& a : e.attributes) {
@@ -109,7 +113,7 @@ class ManifestParser {
     }
     const std::string* type = attribute(*benchmark, "type");
     if (type == nullptr) {
-      sink_.error(benchmark->location, "<benchmark>: missing required attribute \"type\"");
+      rw::common::XmlValueReader(sink_, bareName).required(*benchmark, "type");
       return;
     }
     if (localName(trimmed(*type)) != "GraspUnknownObject") {
@@ -170,7 +174,7 @@ class ManifestParser {
     scene.line = e.location.line;
     const std::string* id = attribute(e, "id");
     if (id == nullptr) {
-      sink_.error(e.location, "<" + e.name + ">: missing required attribute \"id\"");
+      rw::common::XmlValueReader(sink_, bareName).required(e, "id");
       return false;
     }
     scene.id = trimmed(*id);

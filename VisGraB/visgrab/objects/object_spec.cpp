@@ -11,8 +11,8 @@
 
 #include "rw/common/diagnostic.hpp"
 #include "rw/common/diagnostic_sink.hpp"
-#include "rw/common/numbers.hpp"
 #include "rw/common/text_file.hpp"
+#include "rw/common/xml_attributes.hpp"
 #include "rw/common/xml_reader.hpp"
 #include "rw/common/xml_tree.hpp"
 #include "visgrab/objects/detail/objects_schema.hpp"
@@ -51,45 +51,44 @@ static_assert(kMaterialNames.size() == kSurfaceMaterialCount);
 
 constexpr std::array<std::string_view, 2> kTablePatternNames{"plain", "cluttered"};
 
-// Attributes read as one number (the schema says xs:double); rgb lists are checked separately.
-constexpr std::array<std::string_view, 17> kNumberAttributes{
-    "x",           "y",        "z",         "r",         "mass",     "radius",
-    "height",      "span",     "reach",     "thickness", "specular", "cornerRadius",
-    "labelBottom", "labelTop", "lidBottom", "id",        "seed"};
-constexpr std::array<std::string_view, 3> kRgbAttributes{"rgb", "body", "lid"};
+using rw::common::AttributeRule;
+using rw::common::ValueKind;
+
+// Typed attributes (the schema says xs:double, xs:positiveInteger, ...), for a precise message on
+// a schema datatype error.
+constexpr std::array<AttributeRule, 20> kValueRules{{
+    {"x"},
+    {"y"},
+    {"z"},
+    {"r"},
+    {"mass"},
+    {"radius"},
+    {"height"},
+    {"span"},
+    {"reach"},
+    {"thickness"},
+    {"specular"},
+    {"cornerRadius"},
+    {"labelBottom"},
+    {"labelTop"},
+    {"lidBottom"},
+    {"id", ValueKind::kInteger, 0, {}, 1},
+    {"seed", ValueKind::kInteger, 0, {}, 0},
+    {"rgb", ValueKind::kNumbers, 3, "red green blue"},
+    {"body", ValueKind::kNumbers, 3, "red green blue"},
+    {"lid", ValueKind::kNumbers, 3, "red green blue"},
+}};
 
 std::string inQuotes(std::string_view s) { return "\"" + std::string(s) + "\""; }
 
 std::string explainValueError(const XmlElement& element) {
-  for (const XmlAttribute& a : element.attributes) {
-    if (std::find(kNumberAttributes.begin(), kNumberAttributes.end(), a.name) !=
-        kNumberAttributes.end()) {
-      const rw::common::ParsedNumber n = rw::common::parseFiniteNumber(a.value);
-      if (!n.error.empty()) return "attribute " + a.name + ": " + n.error;
-      if ((a.name == "id" || a.name == "seed") &&
-          (n.value != std::floor(n.value) || n.value < (a.name == "id" ? 1 : 0))) {
-        return "attribute " + a.name + ": expected a " +
-               (a.name == "id" ? "positive" : "non-negative") + " integer, got " +
-               inQuotes(a.value);
-      }
-    }
-    if (std::find(kRgbAttributes.begin(), kRgbAttributes.end(), a.name) != kRgbAttributes.end()) {
-      std::vector<double> values;
-      const std::string error = rw::common::parseNumberList(a.value, values);
-      if (!error.empty()) return "attribute " + a.name + ": " + error;
-      if (values.size() != 3) {
-        return "attribute " + a.name + ": expected 3 numbers (red green blue), got " +
-               std::to_string(values.size());
-      }
-    }
-  }
-  return {};
+  return rw::common::explainAttributeValues(element, kValueRules);
 }
 
 // The semantic pass: reads the validated tree into the spec, reporting meaning errors.
 class SpecReader {
  public:
-  explicit SpecReader(DiagnosticSink& sink) : sink_(sink) {}
+  explicit SpecReader(DiagnosticSink& sink) : read_(sink) {}
 
   ObjectDatabaseSpec read(const XmlElement& root) {
     ObjectDatabaseSpec spec;
@@ -126,20 +125,15 @@ class SpecReader {
   }
 
  private:
-  void error(const XmlElement& e, const std::string& message) {
-    sink_.error(e.location, e.describe() + ": " + message);
-  }
+  void error(const XmlElement& e, const std::string& message) { read_.error(e, message); }
 
   // A required number attribute (the schema guarantees presence and format).
   double number(const XmlElement& e, std::string_view name) {
-    const std::string* v = e.attribute(name);
-    return v == nullptr ? 0.0 : rw::common::parseFiniteNumber(*v).value;
+    return read_.optionalNumber(e, name).value_or(0.0);
   }
 
   std::optional<double> optionalNumber(const XmlElement& e, std::string_view name) {
-    const std::string* v = e.attribute(name);
-    if (v == nullptr) return std::nullopt;
-    return rw::common::parseFiniteNumber(*v).value;
+    return read_.optionalNumber(e, name);
   }
 
   bool positive(const XmlElement& e, std::string_view name, double value) {
@@ -155,29 +149,25 @@ class SpecReader {
   }
 
   bool rgb(const XmlElement& e, std::string_view name, Eigen::Vector3f& out) {
-    const std::string* v = e.attribute(name);
-    if (v == nullptr) return true;
-    std::vector<double> values;
-    rw::common::parseNumberList(*v, values);
-    if (values.size() != 3) return false;  // reported by the schema pass
+    if (!e.has(name)) return true;
+    const auto values = read_.optionalNumberList(e, name, 3, "red green blue");
+    if (!values) return false;
     for (int i = 0; i < 3; ++i) {
-      if (!(values[i] >= 0.0 && values[i] <= 1.0)) {
+      const double value = (*values)[static_cast<std::size_t>(i)];
+      if (!(value >= 0.0 && value <= 1.0)) {
         error(e, "attribute " + std::string(name) + ": colour components must be in [0, 1], got " +
-                     inQuotes(*v));
+                     inQuotes(*e.attribute(name)));
         return false;
       }
-      out[i] = static_cast<float>(values[i]);
+      out[i] = static_cast<float>(value);
     }
     return true;
   }
 
   bool seed(const XmlElement& e, std::uint32_t& out) {
-    const double s = number(e, "seed");
-    if (s > static_cast<double>(std::numeric_limits<std::uint32_t>::max())) {
-      error(e, "attribute seed must be below 2^32, got " + *e.attribute("seed"));
-      return false;
-    }
-    out = static_cast<std::uint32_t>(s);
+    const auto s = read_.integer(e, "seed", 0, std::numeric_limits<std::uint32_t>::max());
+    if (!s) return false;
+    out = static_cast<std::uint32_t>(*s);
     return true;
   }
 
@@ -186,22 +176,15 @@ class SpecReader {
     t.x = number(e, "x");
     t.y = number(e, "y");
     if (!positive(e, "x", t.x) || !positive(e, "y", t.y)) return false;
-    const std::string pattern = e.attributeOr("pattern", "");
-    if (pattern == kTablePatternNames[0]) {
-      t.pattern = TablePattern::kPlain;
-    } else if (pattern == kTablePatternNames[1]) {
-      t.pattern = TablePattern::kCluttered;
-    } else {
-      error(e,
-            "unknown table pattern " + inQuotes(pattern) + "; expected \"plain\" or \"cluttered\"");
-      return false;
-    }
+    const auto pattern = read_.choice(e, "pattern", kTablePatternNames, "table pattern");
+    if (!pattern) return false;
+    t.pattern = *pattern == 0 ? TablePattern::kPlain : TablePattern::kCluttered;
     return rgb(e, "rgb", t.colour) && seed(e, t.seed);
   }
 
   bool readObject(const XmlElement& e, ObjectSpec& o) {
     o.line = e.location.line;
-    o.id = static_cast<int>(number(e, "id"));
+    o.id = static_cast<int>(read_.integer(e, "id", 1, std::numeric_limits<int>::max()).value_or(0));
     o.name = e.attributeOr("name", "");
     o.product = e.attributeOr("product", "");
     o.mass = number(e, "mass");
@@ -390,7 +373,7 @@ class SpecReader {
     return true;
   }
 
-  DiagnosticSink& sink_;
+  rw::common::XmlValueReader read_;
 };
 
 ObjectDatabaseSpec load(std::string_view text, const std::filesystem::path& file,

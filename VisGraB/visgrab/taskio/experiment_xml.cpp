@@ -5,7 +5,7 @@
 #include <set>
 #include <stdexcept>
 
-#include "rw/common/numbers.hpp"
+#include "rw/common/xml_attributes.hpp"
 #include "visgrab/taskio/detail/common.hpp"
 
 namespace visgrab::taskio {
@@ -37,12 +37,8 @@ const XmlElement& required(const XmlElement& parent, std::string_view name) {
 
 std::vector<double> numbers(const XmlElement& e, std::size_t count, std::string_view what) {
   std::vector<double> v;
-  const std::string why = rw::common::parseNumberList(e.text, v);
+  const std::string why = rw::common::parseNumbers(e.text, count, what, v);
   if (!why.empty()) throw GraspError{&e, e.describe() + ": " + why};
-  if (count != 0 && v.size() != count) {
-    throw GraspError{&e, e.describe() + ": expected " + std::to_string(count) + " numbers (" +
-                             std::string(what) + "), got " + std::to_string(v.size())};
-  }
   return v;
 }
 
@@ -157,7 +153,7 @@ class ExperimentReader {
         r.sourceLine = c.location.line;
         const std::string* id = c.attribute("id");
         if (id == nullptr || trimmed(*id).empty()) {
-          throw GraspError{&c, c.describe() + ": missing id attribute"};
+          throw GraspError{&c, c.describe() + ": missing required attribute \"id\""};
         }
         r.id = trimmed(*id);
         if (name == "grasp") {

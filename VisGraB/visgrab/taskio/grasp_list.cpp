@@ -7,6 +7,7 @@
 #include <tuple>
 
 #include "rw/common/numbers.hpp"
+#include "rw/common/xml_attributes.hpp"
 #include "visgrab/taskio/detail/common.hpp"
 
 namespace visgrab::taskio {
@@ -66,12 +67,8 @@ class LineReader {
 
   int count(std::string_view what, int low, int high) {
     const Field& f = next(what);
-    const auto n = rw::common::parseFiniteNumber(f.text);
-    if (!n.error.empty() || n.value != std::floor(n.value) || n.value < low || n.value > high) {
-      throw LineError{f.column, std::string(what) + ": expected a whole number from " +
-                                    std::to_string(low) + " to " + std::to_string(high) +
-                                    ", got \"" + std::string(f.text) + "\""};
-    }
+    const auto n = rw::common::parseInteger(f.text, low, high);
+    if (!n.error.empty()) throw LineError{f.column, std::string(what) + ": " + n.error};
     return static_cast<int>(n.value);
   }
 

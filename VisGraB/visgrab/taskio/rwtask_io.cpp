@@ -9,6 +9,7 @@
 
 #include "rw/common/numbers.hpp"
 #include "rw/common/strings.hpp"
+#include "rw/common/xml_attributes.hpp"
 #include "rw/math/rpy.hpp"
 #include "visgrab/taskio/detail/common.hpp"
 
@@ -51,6 +52,9 @@ struct RawProperty {
   const XmlElement* value = nullptr;    // the typed element inside <Value>
   const XmlElement* element = nullptr;  // the <Property>
 };
+
+/// Largest magnitude of an Integer property.
+constexpr long long kLargestInteger = 1'000'000'000;
 
 class TaskParser {
  public:
@@ -268,11 +272,9 @@ class TaskParser {
 
   int readInteger(const RawProperty& p) {
     if (!expectType(p, "Integer")) return 0;
-    const auto n = rw::common::parseFiniteNumber(p.value->text);
-    if (!n.error.empty() || n.value != std::floor(n.value) || std::abs(n.value) > 1e9) {
-      sink_.error(p.value->location, "property '" + p.name + "': expected an integer, got \"" +
-                                         std::string(rw::common::trimXmlSpace(p.value->text)) +
-                                         "\"");
+    const auto n = rw::common::parseInteger(p.value->text, -kLargestInteger, kLargestInteger);
+    if (!n.error.empty()) {
+      sink_.error(p.value->location, "property '" + p.name + "': " + n.error);
       return 0;
     }
     return static_cast<int>(n.value);
@@ -292,18 +294,9 @@ class TaskParser {
   /// Numbers of `element`, scaled by its unit attribute; `count` 0 = any number.
   bool numbers(const XmlElement& element, std::size_t count, std::vector<double>& values,
                std::string_view what) {
-    values.clear();
-    const std::string why = rw::common::parseNumberList(element.text, values);
-    if (!why.empty()) {
-      sink_.error(element.location, element.describe() + ": " + why);
-      return false;
-    }
-    if (count != 0 && values.size() != count) {
-      sink_.error(element.location, element.describe() + ": expected " + std::to_string(count) +
-                                        " numbers (" + std::string(what) + "), got " +
-                                        std::to_string(values.size()));
-      return false;
-    }
+    auto read = rw::common::XmlValueReader(sink_).textNumbers(element, count, what);
+    if (!read) return false;
+    values = std::move(*read);
     if (const std::string* unit = element.attribute("unit")) {
       const double factor = unitFactor(rw::common::trimXmlSpace(*unit));
       if (factor == 0.0) {
@@ -433,12 +426,9 @@ class TaskParser {
       }
       Rotation3D R = Rotation3D::Identity();
       if (name == "Rotation3D") {
-        v.clear();
-        const std::string why = rw::common::parseNumberList(c.text, v);
-        if (!why.empty()) {
-          sink_.error(c.location, c.describe() + ": " + why);
-          continue;
-        }
+        auto read = rw::common::XmlValueReader(sink_).textNumbers(c);
+        if (!read) continue;
+        v = std::move(*read);
         if (v.size() == 9) {
           Rotation3D M;
           for (int r = 0; r < 3; ++r) {

@@ -260,6 +260,13 @@ std::vector<Case> cases() {
        "top.dwc.xml",
        "<Property",
        "unknown type \"bool\" (expected string, int, float or Q)"},
+      {"IntPropertyNotAnInteger",
+       SceneDir::dwc("<PhysicsEngine>\n<Property name=\"x\" type=\"int\">2.5</Property>\n"
+                     "</PhysicsEngine>\n"),
+       {},
+       "top.dwc.xml",
+       "<Property",
+       "<Property name=\"x\">: expected an integer from -2147483648 to 2147483647, got \"2.5\""},
       {"AutoDisableNotABoolean",
        SceneDir::dwc("<PhysicsEngine>\n<AutoDisable>maybe</AutoDisable>\n</PhysicsEngine>\n"),
        {},

@@ -243,6 +243,12 @@ INSTANTIATE_TEST_SUITE_P(
                 "<ObjectDatabase>\n<Table name=\"t\" x=\"1\" y=\"1\" pattern=\"wood\" "
                 "rgb=\"1 1 1\" seed=\"1\"/>\n</ObjectDatabase>\n",
                 2, "unknown table pattern \"wood\"; expected \"plain\" or \"cluttered\""},
+        BadSpec{"seed too large",
+                "<ObjectDatabase>\n<Table name=\"t\" x=\"1\" y=\"1\" pattern=\"plain\" "
+                "rgb=\"1 1 1\" seed=\"4294967296\"/>\n</ObjectDatabase>\n",
+                2,
+                "<Table name=\"t\">: attribute seed: expected an integer from 0 to 4294967295, "
+                "got \"4294967296\""},
         BadSpec{"not well-formed",
                 "<ObjectDatabase>\n<Object id=\"1\" name=\"a\" mass=\"0.2\">\n"
                 "</ObjectDatabase>\n",

@@ -276,6 +276,25 @@ TEST(RwTaskIoTest, WrongPropertyTypeAndMissingIdAreErrors) {
   }
 }
 
+TEST(RwTaskIoTest, NonIntegerTestStatusNamesTheProperty) {
+  const std::string text =
+      "<CartesianTask><Entities><CartesianTask><Targets>\n"
+      "  <CartesianTarget id=\"0\"><Transform3D>1 0 0 0 0 1 0 0 0 0 1 0</Transform3D>\n"
+      "<PropertyMap><Property><Name>TestStatus</Name><Value><Integer>2.5</Integer></Value>"
+      "</Property></PropertyMap></CartesianTarget>\n"
+      "</Targets></CartesianTask></Entities></CartesianTask>\n";
+  try {
+    parseRwTask(text, "bad.rwtask.xml");
+    FAIL() << "expected LoadError";
+  } catch (const rw::common::LoadError& e) {
+    ASSERT_EQ(e.diagnostics().size(), 1u) << e.what();
+    EXPECT_EQ(e.diagnostics()[0].line, 3);
+    EXPECT_EQ(e.diagnostics()[0].message,
+              "property 'TestStatus': expected an integer from -1000000000 to 1000000000, got "
+              "\"2.5\"");
+  }
+}
+
 TEST(RwTaskIoTest, MalformedXmlThrows) {
   EXPECT_THROW(parseRwTask("<CartesianTask><Entities></CartesianTask>", "x.xml"),
                rw::common::LoadError);

@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "rw/common/xml_attributes.hpp"
 #include "rw/loaders/detail/preprocess.hpp"
 
 namespace rw::loaders::detail {
@@ -29,16 +30,6 @@ void warnUnknownAttributes(const common::XmlElement& e,
       sink.warning(e.location, e.describe() + ": unknown attribute \"" + a.name + "\" is ignored");
     }
   }
-}
-
-const std::string* requiredAttribute(const common::XmlElement& e, std::string_view name,
-                                     common::DiagnosticSink& sink) {
-  const std::string* value = e.attribute(name);
-  if (value == nullptr) {
-    sink.error(e.location,
-               e.describe() + ": missing required attribute \"" + std::string(name) + "\"");
-  }
-  return value;
 }
 
 // Reads a setup file and returns its root element if it is `rootName`.
@@ -92,8 +83,8 @@ void readExclude(const common::XmlElement& exclude, const std::string& prefix,
       continue;
     }
     warnUnknownAttributes(pair, {"first", "second"}, sink);
-    const std::string* first = requiredAttribute(pair, "first", sink);
-    const std::string* second = requiredAttribute(pair, "second", sink);
+    const std::string* first = common::XmlValueReader(sink).required(pair, "first");
+    const std::string* second = common::XmlValueReader(sink).required(pair, "second");
     if (first == nullptr || second == nullptr) continue;
     setup.excludePairs.emplace_back(prefix + *first, prefix + *second);
     warnUnknownFrame(pair, prefix + *first, frames, sink);
@@ -156,8 +147,8 @@ void readProximitySetup(const SetupRef& ref, common::XmlReader& reader,
       continue;
     }
     warnUnknownAttributes(child, {"PatternA", "PatternB"}, sink);
-    const std::string* a = requiredAttribute(child, "PatternA", sink);
-    const std::string* b = requiredAttribute(child, "PatternB", sink);
+    const std::string* a = common::XmlValueReader(sink).required(child, "PatternA");
+    const std::string* b = common::XmlValueReader(sink).required(child, "PatternB");
     if (a == nullptr || b == nullptr) continue;
     rules.push_back(
         {scopedPattern(ref.prefix, *a), scopedPattern(ref.prefix, *b), child.name == "Include"});

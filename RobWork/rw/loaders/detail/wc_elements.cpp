@@ -6,11 +6,13 @@
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
+#include <span>
 #include <sstream>
 #include <utility>
 #include <vector>
 
 #include "rw/common/numbers.hpp"
+#include "rw/common/xml_attributes.hpp"
 #include "rw/math/dh.hpp"
 #include "rw/math/rpy.hpp"
 
@@ -41,7 +43,7 @@ std::pair<rw::math::Rotation3D, double> nearestRotation(const rw::math::Rotation
 
 std::optional<Transform3D> matrixTransform(const common::XmlElement& matrix,
                                            common::DiagnosticSink& sink) {
-  const auto v = readNumberText(matrix, 12, sink);
+  const auto v = common::XmlValueReader(sink).textNumbers(matrix, 12);
   if (!v) return std::nullopt;
   rw::math::Rotation3D R;
   R << (*v)[0], (*v)[1], (*v)[2], (*v)[4], (*v)[5], (*v)[6], (*v)[8], (*v)[9], (*v)[10];
@@ -58,21 +60,6 @@ std::optional<Transform3D> matrixTransform(const common::XmlElement& matrix,
                                       formatNumber(correction) + "); the nearest rotation is used");
   }
   return rw::math::makeTransform(nearest, rw::math::Vector3D((*v)[3], (*v)[7], (*v)[11]));
-}
-
-// Reads the named attributes as numbers, in order; nullopt if any is bad (each reported).
-std::optional<std::vector<double>> readNumbers(const common::XmlElement& element,
-                                               std::initializer_list<std::string_view> names,
-                                               common::DiagnosticSink& sink) {
-  std::vector<double> values;
-  bool ok = true;
-  for (std::string_view name : names) {
-    const auto v = readNumberAttribute(element, name, sink);
-    ok = ok && v.has_value();
-    values.push_back(v.value_or(0.0));
-  }
-  if (!ok) return std::nullopt;
-  return values;
 }
 
 // Checks a primitive size: > 0 (or >= 0 when zero is allowed).
@@ -102,62 +89,45 @@ constexpr std::array<PrimitiveRule, 6> kPrimitives{{
     {"Plane", GeometryType::kPlane, {"", "", ""}, 0, -1},
 }};
 
-// Number attributes of each element, for explainWorkCellValueError.
-struct NumberAttributes {
+// Typed attributes of each element, for explainWorkCellValueError.
+struct ElementRules {
   std::string_view element;
-  std::array<std::string_view, 7> attributes;
+  std::span<const common::AttributeRule> rules;
 };
 
-constexpr std::array<NumberAttributes, 10> kNumberAttributes{{
-    {"Box", {"x", "y", "z"}},
-    {"Sphere", {"radius"}},
-    {"Cylinder", {"radius", "z"}},
-    {"Tube", {"radius", "thickness", "z"}},
-    {"Cone", {"radius", "z"}},
-    {"PosLimit", {"min", "max"}},
-    {"VelLimit", {"max"}},
-    {"AccLimit", {"max"}},
-    {"Depend", {"gain", "offset"}},
-    {"DHJoint", {"alpha", "a", "d", "theta", "b", "beta", "offset"}},
+using common::ValueKind;
+constexpr std::array<std::string_view, 2> kColModels{"Enabled", "Disabled"};
+constexpr std::array<common::AttributeRule, 7> kDhRules{
+    {{"alpha"}, {"a"}, {"d"}, {"theta"}, {"b"}, {"beta"}, {"offset"}}};
+constexpr std::array<common::AttributeRule, 3> kXyzRules{{{"x"}, {"y"}, {"z"}}};
+constexpr std::array<common::AttributeRule, 3> kTubeRules{{{"radius"}, {"thickness"}, {"z"}}};
+constexpr std::array<common::AttributeRule, 2> kRadiusZRules{{{"radius"}, {"z"}}};
+constexpr std::array<common::AttributeRule, 2> kMinMaxRules{{{"min"}, {"max"}}};
+constexpr std::array<common::AttributeRule, 1> kMaxRules{{{"max"}}};
+constexpr std::array<common::AttributeRule, 2> kDependRules{{{"gain"}, {"offset"}}};
+// Attributes that any element may carry.
+constexpr std::array<common::AttributeRule, 2> kAnyElementRules{{
+    {"daf", ValueKind::kBoolean},
+    {"colmodel", ValueKind::kChoice, 0, {}, 0, 0, kColModels},
+}};
+
+constexpr std::array<ElementRules, 10> kElementRules{{
+    {"Box", kXyzRules},
+    {"Sphere", std::span(kRadiusZRules).first(1)},
+    {"Cylinder", kRadiusZRules},
+    {"Tube", kTubeRules},
+    {"Cone", kRadiusZRules},
+    {"PosLimit", kMinMaxRules},
+    {"VelLimit", kMaxRules},
+    {"AccLimit", kMaxRules},
+    {"Depend", kDependRules},
+    {"DHJoint", kDhRules},
 }};
 
 }  // namespace
 
-std::optional<std::vector<double>> readNumberText(const common::XmlElement& element, int count,
-                                                  common::DiagnosticSink& sink) {
-  std::vector<double> values;
-  const std::string problem = common::parseNumberList(element.text, values);
-  if (!problem.empty()) {
-    sink.error(element.location, element.describe() + ": " + problem);
-    return std::nullopt;
-  }
-  if (count >= 0 && static_cast<int>(values.size()) != count) {
-    sink.error(element.location, element.describe() + ": expected " + std::to_string(count) +
-                                     " numbers, got " + std::to_string(values.size()));
-    return std::nullopt;
-  }
-  return values;
-}
-
 Origin originOf(const common::XmlElement& element) {
   return Origin{element.location, element.describe()};
-}
-
-std::optional<double> readNumberAttribute(const common::XmlElement& element, std::string_view name,
-                                          common::DiagnosticSink& sink) {
-  const std::string* value = element.attribute(name);
-  if (value == nullptr) {
-    sink.error(element.location,
-               element.describe() + ": missing required attribute \"" + std::string(name) + "\"");
-    return std::nullopt;
-  }
-  const common::ParsedNumber n = common::parseFiniteNumber(*value);
-  if (!n.error.empty()) {
-    sink.error(element.location,
-               element.describe() + ": attribute " + std::string(name) + ": " + n.error);
-    return std::nullopt;
-  }
-  return n.value;
 }
 
 bool TransformReader::take(const common::XmlElement& owner, const common::XmlElement& child,
@@ -191,8 +161,9 @@ std::optional<Transform3D> TransformReader::finish(const common::XmlElement& own
                                   " (RobWork reads RPY and Pos only as a pair)");
     return std::nullopt;
   }
-  const auto rpy = readNumberText(*rpy_, 3, sink);
-  const auto pos = readNumberText(*pos_, 3, sink);
+  const common::XmlValueReader read(sink);
+  const auto rpy = read.textNumbers(*rpy_, 3);
+  const auto pos = read.textNumbers(*pos_, 3);
   if (!rpy || !pos) return std::nullopt;
   const rw::math::Vector3D angles((*rpy)[0] * kDeg2Rad, (*rpy)[1] * kDeg2Rad, (*rpy)[2] * kDeg2Rad);
   return rw::math::rpyTransform(angles, rw::math::Vector3D((*pos)[0], (*pos)[1], (*pos)[2]));
@@ -245,7 +216,7 @@ std::optional<GeometryDesc> readGeometry(const common::XmlElement& element,
     bool ok = true;
     for (int i = 0; i < rule.count; ++i) {
       const auto name = rule.attributes[static_cast<std::size_t>(i)];
-      const auto v = readNumberAttribute(element, name, sink);
+      const auto v = common::XmlValueReader(sink).number(element, name);
       ok = ok && v && checkSize(element, name, *v, i == rule.zeroAllowedIndex, sink);
       g.parameters.push_back(v.value_or(0.0));
     }
@@ -298,7 +269,7 @@ std::optional<LimitDesc> readLimit(const common::XmlElement& element, const std:
       owner.empty() ? element.describe() : owner + ": <" + element.name + ">";
   if (element.name == "PosLimit") {
     limit.kind = LimitKind::kPosition;
-    const auto v = readNumbers(element, {"min", "max"}, sink);
+    const auto v = common::XmlValueReader(sink).numbers(element, {"min", "max"});
     if (!v) return std::nullopt;
     limit.min = (*v)[0];
     limit.max = (*v)[1];
@@ -310,7 +281,7 @@ std::optional<LimitDesc> readLimit(const common::XmlElement& element, const std:
     return limit;
   }
   limit.kind = element.name == "VelLimit" ? LimitKind::kVelocity : LimitKind::kAcceleration;
-  const auto v = readNumberAttribute(element, "max", sink);
+  const auto v = common::XmlValueReader(sink).number(element, "max");
   if (!v) return std::nullopt;
   limit.max = *v;
   if (limit.max < 0.0) {
@@ -326,7 +297,7 @@ std::optional<DependDesc> readDepend(const common::XmlElement& element,
   DependDesc d;
   d.origin = originOf(element);
   d.on = element.attributeOr("on", "");
-  const auto v = readNumbers(element, {"gain", "offset"}, sink);
+  const auto v = common::XmlValueReader(sink).numbers(element, {"gain", "offset"});
   if (!v) return std::nullopt;
   d.gain = (*v)[0];
   d.offset = (*v)[1];
@@ -337,7 +308,7 @@ std::optional<QDesc> readQ(const common::XmlElement& element, common::Diagnostic
   QDesc q;
   q.origin = originOf(element);
   q.name = element.attributeOr("name", "");
-  auto values = readNumberText(element, -1, sink);
+  auto values = common::XmlValueReader(sink).textNumbers(element);
   if (!values) return std::nullopt;
   q.values = std::move(*values);
   return q;
@@ -398,7 +369,7 @@ std::optional<DhPlacement> readDhJoint(const common::XmlElement& element,
                                      type + "\"");
     return std::nullopt;
   }
-  const auto v = readNumbers(element, {"alpha", "a", form, "offset"}, sink);
+  const auto v = common::XmlValueReader(sink).numbers(element, {"alpha", "a", form, "offset"});
   if (!v) return std::nullopt;
   const double alpha = (*v)[0] * kDeg2Rad;
   const double a = (*v)[1];
@@ -424,32 +395,17 @@ std::optional<DhPlacement> readDhJoint(const common::XmlElement& element,
 }
 
 std::string explainWorkCellValueError(const common::XmlElement& element) {
-  for (const NumberAttributes& rule : kNumberAttributes) {
-    if (rule.element != element.name) continue;
-    for (std::string_view name : rule.attributes) {
-      if (name.empty()) continue;
-      const std::string* value = element.attribute(name);
-      if (value == nullptr) continue;
-      const common::ParsedNumber n = common::parseFiniteNumber(*value);
-      if (!n.error.empty()) return "attribute " + std::string(name) + ": " + n.error;
-    }
+  for (const ElementRules& rules : kElementRules) {
+    if (rules.element != element.name) continue;
+    std::string problem = common::explainAttributeValues(element, rules.rules);
+    if (!problem.empty()) return problem;
   }
   if (element.name == "RPY" || element.name == "Pos" || element.name == "Transform" ||
       element.name == "Q") {
     std::vector<double> values;
     return common::parseNumberList(element.text, values);
   }
-  if (const std::string* daf = element.attribute("daf")) {
-    if (*daf != "true" && *daf != "false" && *daf != "1" && *daf != "0") {
-      return "attribute daf=\"" + *daf + "\" must be true or false";
-    }
-  }
-  if (const std::string* colmodel = element.attribute("colmodel")) {
-    if (*colmodel != "Enabled" && *colmodel != "Disabled") {
-      return "attribute colmodel=\"" + *colmodel + "\" must be Enabled or Disabled";
-    }
-  }
-  return {};
+  return common::explainAttributeValues(element, kAnyElementRules);
 }
 
 }  // namespace rw::loaders::detail

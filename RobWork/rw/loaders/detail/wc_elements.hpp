@@ -16,15 +16,6 @@ namespace rw::loaders::detail {
 /// Origin (location and label) of an element.
 Origin originOf(const common::XmlElement& element);
 
-/// A required number attribute (finite); reports and returns nullopt if missing or bad.
-std::optional<double> readNumberAttribute(const common::XmlElement& element, std::string_view name,
-                                          common::DiagnosticSink& sink);
-
-/// The numbers of an element's text (RPY, Pos, Transform, Q, RGB); `count` < 0 accepts any
-/// count. Reports and returns nullopt for a bad number or a wrong count.
-std::optional<std::vector<double>> readNumberText(const common::XmlElement& element, int count,
-                                                  common::DiagnosticSink& sink);
-
 /// Collects the RPY/Pos/Transform children of one element and makes the transform.
 class TransformReader {
  public:

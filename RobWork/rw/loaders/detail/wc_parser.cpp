@@ -1,10 +1,12 @@
 #include "rw/loaders/detail/wc_parser.hpp"
 
+#include <array>
 #include <filesystem>
 #include <map>
 #include <string>
 #include <utility>
 
+#include "rw/common/xml_attributes.hpp"
 #include "rw/kinematics/frame_tree.hpp"
 #include "rw/loaders/detail/wc_elements.hpp"
 
@@ -316,7 +318,7 @@ bool DescriptionParser::readColor(const common::XmlElement& model, const common:
     sink_.error(rgb.location, model.describe() + ": more than one <RGB>");
     return false;
   }
-  const auto values = readNumberText(rgb, -1, sink_);
+  const auto values = common::XmlValueReader(sink_).textNumbers(rgb);
   if (!values) return false;
   if (values->size() != 3 && values->size() != 4) {
     sink_.error(rgb.location, rgb.describe() +
@@ -365,15 +367,14 @@ bool DescriptionParser::readFrameAttributes(const common::XmlElement& element, F
       ok = false;
     }
   }
-  const std::string state = element.attributeOr("state", "Active");
-  if (state != "Active" && state != "Passive") {
-    sink_.error(element.location,
-                element.describe() + ": state must be Active or Passive, not \"" + state + "\"");
-    ok = false;
+  const common::XmlValueReader read(sink_);
+  if (element.has("state")) {
+    constexpr std::array<std::string_view, 2> kStates{"Active", "Passive"};
+    const auto state = read.choice(element, "state", kStates);
+    ok = ok && state.has_value();
+    frame.passive = state == 1u;
   }
-  frame.passive = state == "Passive";
-  const std::string daf = element.attributeOr("daf", "false");
-  frame.daf = daf == "true" || daf == "1";
+  frame.daf = read.optionalBoolean(element, "daf").value_or(false);
   return ok;
 }
 

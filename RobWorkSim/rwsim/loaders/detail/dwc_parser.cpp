@@ -6,19 +6,20 @@
 #include <array>
 #include <cctype>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <set>
 #include <sstream>
 #include <utility>
 
 #include "rw/common/numbers.hpp"
+#include "rw/common/xml_attributes.hpp"
 
 namespace rwsim::loaders::detail {
 
 namespace {
 
 using rw::common::DiagnosticSink;
-using rw::common::ParsedNumber;
-using rw::common::parseFiniteNumber;
 using rw::common::parseNumberList;
 using rw::common::trimXmlSpace;
 using rw::common::XmlElement;
@@ -79,7 +80,7 @@ std::optional<bool> parseBool(std::string_view text) {
 /// Reads one dynamic workcell's elements into a description.
 class Parser {
  public:
-  explicit Parser(DiagnosticSink& sink) : sink_(sink) {}
+  explicit Parser(DiagnosticSink& sink) : sink_(sink), read_(sink, describeElement) {}
 
   std::optional<DynamicWorkCellDesc> run(const XmlElement& root,
                                          const std::vector<XmlElement>& topLevel) {
@@ -92,12 +93,8 @@ class Parser {
   }
 
  private:
-  void error(const XmlElement& e, const std::string& message) {
-    sink_.error(e.location, describeElement(e) + ": " + message);
-  }
-  void warning(const XmlElement& e, const std::string& message) {
-    sink_.warning(e.location, describeElement(e) + ": " + message);
-  }
+  void error(const XmlElement& e, const std::string& message) { read_.error(e, message); }
+  void warning(const XmlElement& e, const std::string& message) { read_.warning(e, message); }
 
   void topLevelElement(const XmlElement& e);
   void physicsEngine(const XmlElement& e);
@@ -114,14 +111,15 @@ class Parser {
   void controller(const XmlElement& e);
   void finish();
 
-  std::optional<double> number(const XmlElement& e);
-  std::optional<std::vector<double>> numbers(const XmlElement& e);
+  std::optional<double> number(const XmlElement& e) { return read_.textNumber(e); }
+  std::optional<std::vector<double>> numbers(const XmlElement& e) { return read_.textNumbers(e); }
   std::optional<Vector3D> vector3(const XmlElement& e);
   std::optional<Eigen::Matrix3d> inertia(const XmlElement& e);
   std::optional<std::string> nonEmptyText(const XmlElement& e);
   std::optional<rw::kinematics::PropertyValue> property(const XmlElement& e, std::string& text);
 
   DiagnosticSink& sink_;
+  rw::common::XmlValueReader read_;
   DynamicWorkCellDesc desc_;
 };
 
@@ -481,33 +479,10 @@ void Parser::finish() {
   }
 }
 
-std::optional<double> Parser::number(const XmlElement& e) {
-  const ParsedNumber n = parseFiniteNumber(e.text);
-  if (!n.error.empty()) {
-    error(e, n.error);
-    return std::nullopt;
-  }
-  return n.value;
-}
-
-std::optional<std::vector<double>> Parser::numbers(const XmlElement& e) {
-  std::vector<double> values;
-  const std::string problem = parseNumberList(e.text, values);
-  if (!problem.empty()) {
-    error(e, problem);
-    return std::nullopt;
-  }
-  return values;
-}
-
 std::optional<Vector3D> Parser::vector3(const XmlElement& e) {
-  auto values = numbers(e);
-  if (!values) return std::nullopt;
-  if (values->size() != 3) {
-    error(e, "expected 3 numbers, got " + std::to_string(values->size()));
-    return std::nullopt;
-  }
-  return Vector3D((*values)[0], (*values)[1], (*values)[2]);
+  const auto v = read_.textVector3(e);
+  if (!v) return std::nullopt;
+  return Vector3D((*v)[0], (*v)[1], (*v)[2]);
 }
 
 std::optional<Eigen::Matrix3d> Parser::inertia(const XmlElement& e) {
@@ -557,13 +532,18 @@ std::optional<rw::kinematics::PropertyValue> Parser::property(const XmlElement& 
     type = "float";
   }
   if (type == "string") return rw::kinematics::PropertyValue{text};
-  if (type == "int" || type == "float") {
-    auto value = number(e);
-    if (!value) return std::nullopt;
-    if (type == "int" && (std::floor(*value) != *value || std::abs(*value) > 2147483647.0)) {
-      error(e, "expected an integer, got \"" + text + "\"");
+  if (type == "int") {
+    const auto n = rw::common::parseInteger(text, std::numeric_limits<std::int32_t>::min(),
+                                            std::numeric_limits<std::int32_t>::max());
+    if (!n.error.empty()) {
+      error(e, n.error);
       return std::nullopt;
     }
+    return rw::kinematics::PropertyValue{static_cast<double>(n.value)};
+  }
+  if (type == "float") {
+    auto value = number(e);
+    if (!value) return std::nullopt;
     return rw::kinematics::PropertyValue{*value};
   }
   if (type == "Q") {
