@@ -136,6 +136,14 @@ TEST(SimulatorApi, MotorsTrackVelocityAndRespectLimits) {
   EXPECT_THROW(sim.setMotorForceLimits(DeviceId(0), Eigen::Vector2d(1.0, -1.0)),
                std::invalid_argument);
   EXPECT_THROW(sim.jointPositions(DeviceId(5)), std::out_of_range);
+  EXPECT_THROW(sim.jointPositions(DeviceId::none()), std::out_of_range);
+  EXPECT_THROW(sim.bodyPose(BodyId::none()), std::out_of_range);
+  try {
+    sim.bodyLinearVelocity(BodyId(99));
+    ADD_FAILURE() << "no exception for body 99";
+  } catch (const std::out_of_range& e) {
+    EXPECT_STREQ(e.what(), "Simulator: no body 99");
+  }
 }
 
 TEST(SimulatorApi, ForceLimitsBoundTheMotors) {
