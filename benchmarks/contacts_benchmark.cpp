@@ -175,15 +175,16 @@ BENCHMARK(BM_Contacts_HullOnMesh);
 
 /// Body pairs joined by a joint (a body and the nearest body above its frame), which the
 /// simulator leaves out: their hulls overlap at the joint.
-std::vector<std::pair<int, int>> jointConnected(const rwsim::dynamics::DynamicWorkCell& dwc) {
-  std::vector<std::pair<int, int>> pairs;
+std::vector<std::pair<rwsim::dynamics::BodyId, rwsim::dynamics::BodyId>> jointConnected(
+    const rwsim::dynamics::DynamicWorkCell& dwc) {
+  std::vector<std::pair<rwsim::dynamics::BodyId, rwsim::dynamics::BodyId>> pairs;
   const auto& tree = dwc.workcell().frames();
-  for (std::size_t b = 0; b < dwc.bodies().size(); ++b) {
-    for (auto f = tree.frame(dwc.bodies()[b].frame).parent(); f.valid();
-         f = tree.frame(f).parent()) {
-      const int owner = dwc.bodyOfFrame(f);
-      if (owner < 0 || owner == static_cast<int>(b)) continue;
-      pairs.emplace_back(owner, static_cast<int>(b));
+  for (std::size_t i = 0; i < dwc.bodies().size(); ++i) {
+    const rwsim::dynamics::BodyId b(i);
+    for (auto f = tree.frame(dwc.body(b).frame).parent(); f.valid(); f = tree.frame(f).parent()) {
+      const rwsim::dynamics::BodyId owner = dwc.bodyOfFrame(f);
+      if (!owner.valid() || owner == b) continue;
+      pairs.emplace_back(owner, b);
       break;
     }
   }

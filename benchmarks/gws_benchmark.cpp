@@ -130,7 +130,7 @@ const std::vector<HeldGrasp>& heldGrasps() {
           if (r.outcome != sim::GraspOutcome::kStable && r.outcome != sim::GraspOutcome::kSlipped) {
             continue;
           }
-          const auto& body = dwc.bodies()[static_cast<std::size_t>(r.object)];
+          const auto& body = dwc.body(r.object);
           // The box is 6 x 6 x 10 cm around its centre of mass.
           out.push_back(
               HeldGrasp{r.contacts, body.mass.cog, std::sqrt(0.03 * 0.03 * 2 + 0.05 * 0.05)});

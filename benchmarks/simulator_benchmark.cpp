@@ -42,7 +42,7 @@ sim::GraspParameters cylinderGrasp(double x) {
 rw::kinematics::State placedHand(const sim::GraspParameters& g) {
   const auto& dwc = scene();
   const auto& tree = dwc.workcell().frames();
-  const auto& hand = *dwc.devices()[static_cast<std::size_t>(dwc.findDevice("SchunkHand"))].device;
+  const auto& hand = *dwc.device(dwc.findDevice("SchunkHand")).device;
   rw::kinematics::State state = dwc.workcell().defaultState();
   hand.setQ(g.qOpen, state);
   const auto base = hand.base();
@@ -56,7 +56,7 @@ rw::kinematics::State placedHand(const sim::GraspParameters& g) {
 
 void BM_Sim_SdhStep(benchmark::State& state) {
   const auto& dwc = scene();
-  const int hand = dwc.findDevice("SchunkHand");
+  const auto hand = dwc.findDevice("SchunkHand");
   const auto g = cylinderGrasp(0.0);
   const auto start = placedHand(g);
   sim::Simulator simulator(dwc, sim::optionsFromEngineProperties(dwc));

@@ -157,7 +157,7 @@ int runSim(const std::vector<std::string>& args) {
   const auto writeAll = [&] {
     if (!file.is_open()) return;
     for (std::size_t b = 0; b < bodies.size(); ++b) {
-      writePoseRow(file, sim.time(), bodies[b].name, sim.bodyPose(static_cast<int>(b)));
+      writePoseRow(file, sim.time(), bodies[b].name, sim.bodyPose(rwsim::dynamics::BodyId(b)));
     }
   };
   writeAll();
@@ -182,7 +182,7 @@ int runSim(const std::vector<std::string>& args) {
   if (!file.is_open()) {
     std::cout << "final poses (x y z m, qw qx qy qz):\n";
     for (std::size_t b = 0; b < bodies.size(); ++b) {
-      const Transform3D X = sim.bodyPose(static_cast<int>(b));
+      const Transform3D X = sim.bodyPose(rwsim::dynamics::BodyId(b));
       const Eigen::Quaterniond q(X.linear());
       std::cout << "  " << bodies[b].name << "  " << vectorText(X.translation()) << "  "
                 << fmt(q.w()) << " " << fmt(q.x()) << " " << fmt(q.y()) << " " << fmt(q.z())
@@ -215,7 +215,7 @@ std::string handName(const Arguments& a, const DynamicWorkCell& dwc) {
   std::string names;
   for (const auto& d : dwc.devices()) names += (names.empty() ? "" : ", ") + d.device->name();
   if (const auto hand = a.option("hand")) {
-    if (dwc.findDevice(*hand) < 0) {
+    if (!dwc.findDevice(*hand).valid()) {
       throw UsageError("no rigid device '" + *hand +
                        "' (devices: " + (names.empty() ? "none" : names) + ")");
     }
@@ -231,8 +231,7 @@ void printResult(const rwsim::simulator::GraspTrialResult& r, const DynamicWorkC
             << "Q_lift: " << fmt(r.qLift) << "\nQ_GWS: " << fmt(r.qGws)
             << " (cones on the measured contact forces, the paper's)\nQ_GWS,unit: "
             << fmt(r.qGwsUnit) << " (unit normal forces)\n"
-            << "object: "
-            << (r.object >= 0 ? dwc.bodies()[static_cast<std::size_t>(r.object)].name : "-")
+            << "object: " << (r.object.valid() ? dwc.body(r.object).name : "-")
             << "\nsimulated time: " << fmt(r.simulatedTime) << " s\n"
             << "q grasp: " << vectorText(r.qGrasp) << "\n";
   if (r.outcome == rwsim::simulator::GraspOutcome::kStable ||
@@ -248,8 +247,7 @@ void printResult(const rwsim::simulator::GraspTrialResult& r, const DynamicWorkC
     std::cout << "  p " << vectorText(c.position) << "  n " << vectorText(c.normal, 4) << "  f "
               << fmt(c.normalForce, 4) << "  mu " << fmt(c.mu, 3) << "  F "
               << vectorText(c.force, 4) << "  link "
-              << (c.handBody >= 0 ? dwc.bodies()[static_cast<std::size_t>(c.handBody)].name : "-")
-              << "\n";
+              << (c.handBody.valid() ? dwc.body(c.handBody).name : "-") << "\n";
   }
 }
 
@@ -300,7 +298,7 @@ int runGrasp(const std::vector<std::string>& raw) {
   rwsim::simulator::GraspTrialSetup setup;
   if (description) {
     setup = runner::trialSetup(*description, *dwc);
-    if (dwc->findDevice(setup.hand) < 0) {
+    if (!dwc->findDevice(setup.hand).valid()) {
       throw UsageError("the dynamic workcell has no device '" + setup.hand + "' (the hand of " +
                        description->description().file + ")");
     }
@@ -323,7 +321,7 @@ int runGrasp(const std::vector<std::string>& raw) {
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
-  const int dof = dwc->devices()[static_cast<std::size_t>(trial->handDevice())].device->dof();
+  const int dof = dwc->device(trial->handDevice()).device->dof();
   rwsim::simulator::GraspParameters grasp;
   const auto& v = pose->second;
   grasp.X_W_tcp = rw::math::rpyTransform(rw::math::Vector3D(v[3], v[4], v[5]) * rw::math::kDeg2Rad,

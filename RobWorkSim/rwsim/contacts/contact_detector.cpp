@@ -17,6 +17,7 @@ using rw::geometry::Aabb;
 using rw::kinematics::FrameId;
 using rw::math::Transform3D;
 using rw::math::Vector3D;
+using rwsim::dynamics::BodyId;
 using rwsim::dynamics::BodyKind;
 
 /// A shape placed in its body's frame.
@@ -83,9 +84,9 @@ std::vector<PlacedShape> placeShapes(
 struct ContactDetector::Impl {
   /// Pairs of shape indices (into the two bodies' shape lists) that may touch.
   struct BodyPair {
-    int a = -1;
-    int b = -1;
-    std::vector<std::pair<int, int>> shapes;
+    BodyId a;
+    BodyId b;
+    std::vector<std::pair<std::size_t, std::size_t>> shapes;
   };
   std::vector<std::vector<PlacedShape>> bodies;
   std::vector<BodyPair> pairs;
@@ -95,7 +96,7 @@ ContactDetector::ContactDetector(const dynamics::DynamicWorkCell& dwc, ContactOp
     : ContactDetector(dwc, options, {}) {}
 
 ContactDetector::ContactDetector(const dynamics::DynamicWorkCell& dwc, ContactOptions options,
-                                 const std::vector<std::pair<int, int>>& excluded)
+                                 const std::vector<std::pair<BodyId, BodyId>>& excluded)
     : options_(options), impl_(std::make_unique<Impl>()) {
   const rw::models::WorkCell& wc = dwc.workcell();
   const rw::kinematics::FKTable fk(wc.frames(), wc.defaultState());
@@ -105,24 +106,24 @@ ContactDetector::ContactDetector(const dynamics::DynamicWorkCell& dwc, ContactOp
   }
   const rw::proximity::ProximityFilter filter(wc);
   const auto& bodies = dwc.bodies();
-  const auto isExcluded = [&](int i, int j) {
-    return std::any_of(excluded.begin(), excluded.end(), [&](const std::pair<int, int>& e) {
+  const auto isExcluded = [&](BodyId i, BodyId j) {
+    return std::any_of(excluded.begin(), excluded.end(), [&](const std::pair<BodyId, BodyId>& e) {
       return std::min(e.first, e.second) == i && std::max(e.first, e.second) == j;
     });
   };
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     for (std::size_t j = i + 1; j < bodies.size(); ++j) {
       if (bodies[i].kind != BodyKind::kRigid && bodies[j].kind != BodyKind::kRigid) continue;
-      if (isExcluded(static_cast<int>(i), static_cast<int>(j))) continue;
       Impl::BodyPair pair;
-      pair.a = static_cast<int>(i);
-      pair.b = static_cast<int>(j);
+      pair.a = BodyId(i);
+      pair.b = BodyId(j);
+      if (isExcluded(pair.a, pair.b)) continue;
       const auto& sa = impl_->bodies[i];
       const auto& sb = impl_->bodies[j];
       for (std::size_t p = 0; p < sa.size(); ++p) {
         for (std::size_t q = 0; q < sb.size(); ++q) {
           if (sa[p].frame == sb[q].frame || !filter.contains(sa[p].frame, sb[q].frame)) continue;
-          pair.shapes.emplace_back(static_cast<int>(p), static_cast<int>(q));
+          pair.shapes.emplace_back(p, q);
         }
       }
       if (!pair.shapes.empty()) impl_->pairs.push_back(std::move(pair));
@@ -132,8 +133,8 @@ ContactDetector::ContactDetector(const dynamics::DynamicWorkCell& dwc, ContactOp
 
 ContactDetector::~ContactDetector() = default;
 
-std::vector<std::pair<int, int>> ContactDetector::candidatePairs() const {
-  std::vector<std::pair<int, int>> out;
+std::vector<std::pair<BodyId, BodyId>> ContactDetector::candidatePairs() const {
+  std::vector<std::pair<BodyId, BodyId>> out;
   for (const Impl::BodyPair& p : impl_->pairs) out.emplace_back(p.a, p.b);
   return out;
 }
@@ -149,14 +150,14 @@ void ContactDetector::detect(const std::vector<rw::math::Transform3D>& X_W_body,
   thread_local detail::ReduceScratch scratch;
   std::size_t used = 0;
   for (const Impl::BodyPair& pair : impl_->pairs) {
-    const auto& shapesA = impl_->bodies[static_cast<std::size_t>(pair.a)];
-    const auto& shapesB = impl_->bodies[static_cast<std::size_t>(pair.b)];
-    const Transform3D& X_W_a = X_W_body[static_cast<std::size_t>(pair.a)];
-    const Transform3D& X_W_b = X_W_body[static_cast<std::size_t>(pair.b)];
+    const auto& shapesA = impl_->bodies[pair.a.index()];
+    const auto& shapesB = impl_->bodies[pair.b.index()];
+    const Transform3D& X_W_a = X_W_body[pair.a.index()];
+    const Transform3D& X_W_b = X_W_body[pair.b.index()];
     gathered.clear();
     for (const auto& [p, q] : pair.shapes) {
-      const PlacedShape& sa = shapesA[static_cast<std::size_t>(p)];
-      const PlacedShape& sb = shapesB[static_cast<std::size_t>(q)];
+      const PlacedShape& sa = shapesA[p];
+      const PlacedShape& sb = shapesB[q];
       const Transform3D X_W_sa = X_W_a * sa.X_body_shape;
       const Transform3D X_W_sb = X_W_b * sb.X_body_shape;
       if (!overlap(worldBox(sa, X_W_sa), worldBox(sb, X_W_sb), options_.margin)) continue;

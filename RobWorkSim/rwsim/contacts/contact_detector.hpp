@@ -68,10 +68,10 @@ void collide(const ContactShape& a, const rw::math::Transform3D& X_W_a, const Co
 
 /// The contacts between two bodies.
 struct BodyContact {
-  /// Index of the first body in DynamicWorkCell::bodies() (bodyA < bodyB).
-  int bodyA = -1;
-  /// Index of the second body.
-  int bodyB = -1;
+  /// The first body (bodyA < bodyB).
+  dynamics::BodyId bodyA;
+  /// The second body.
+  dynamics::BodyId bodyB;
   /// Points with normals from A towards B.
   std::vector<ContactPoint> points;
 };
@@ -86,7 +86,7 @@ class ContactDetector {
   /// Same, never checking the body pairs in `excluded` (in either order), e.g. links joined by
   /// a device joint, whose model geometry overlaps at the joint.
   ContactDetector(const dynamics::DynamicWorkCell& dwc, ContactOptions options,
-                  const std::vector<std::pair<int, int>>& excluded);
+                  const std::vector<std::pair<dynamics::BodyId, dynamics::BodyId>>& excluded);
   ~ContactDetector();
   ContactDetector(const ContactDetector&) = delete;
   ContactDetector& operator=(const ContactDetector&) = delete;
@@ -101,7 +101,7 @@ class ContactDetector {
   const ContactOptions& options() const { return options_; }
   /// The body pairs detect() checks, sorted (bodyA < bodyB): those with at least one rigid
   /// body and a pair of geometry frames the proximity setup lets touch.
-  std::vector<std::pair<int, int>> candidatePairs() const;
+  std::vector<std::pair<dynamics::BodyId, dynamics::BodyId>> candidatePairs() const;
 
  private:
   struct Impl;

@@ -71,37 +71,39 @@ std::vector<FrameId> rigidlyAttachedFrames(const FrameTree& tree, FrameId frame,
 DynamicWorkCell::DynamicWorkCell(std::unique_ptr<rw::models::WorkCell> workcell)
     : workcell_(std::move(workcell)) {
   if (!workcell_) fail("DynamicWorkCell: the workcell is null");
-  bodyOfFrame_.assign(workcell_->frames().size(), -1);
+  bodyOfFrame_.assign(workcell_->frames().size(), BodyId::none());
 }
 
-int DynamicWorkCell::findBody(std::string_view name) const {
+BodyId DynamicWorkCell::findBody(std::string_view name) const {
   for (std::size_t i = 0; i < bodies_.size(); ++i) {
-    if (bodies_[i].name == name) return static_cast<int>(i);
+    if (bodies_[i].name == name) return BodyId(i);
   }
-  return -1;
+  return BodyId::none();
 }
 
-int DynamicWorkCell::bodyOfFrame(FrameId frame) const {
-  if (!frame.valid() || static_cast<std::size_t>(frame.index) >= bodyOfFrame_.size()) return -1;
+BodyId DynamicWorkCell::bodyOfFrame(FrameId frame) const {
+  if (!frame.valid() || static_cast<std::size_t>(frame.index) >= bodyOfFrame_.size()) {
+    return BodyId::none();
+  }
   return bodyOfFrame_[static_cast<std::size_t>(frame.index)];
 }
 
-int DynamicWorkCell::bodyAbove(FrameId frame) const {
+BodyId DynamicWorkCell::bodyAbove(FrameId frame) const {
   const auto& tree = workcell_->frames();
-  if (!frame.valid() || static_cast<std::size_t>(frame.index) >= tree.size()) return -1;
+  if (!validFrame(tree, frame)) return BodyId::none();
   for (FrameId f = tree.frame(frame).parent(); f.valid(); f = tree.frame(f).parent()) {
-    const int b = bodyOfFrame(f);
-    if (b >= 0) return b;
+    const BodyId b = bodyOfFrame(f);
+    if (b.valid()) return b;
     if (f == rw::kinematics::FrameTree::kWorld) break;
   }
-  return -1;
+  return BodyId::none();
 }
 
-int DynamicWorkCell::findDevice(std::string_view name) const {
+DeviceId DynamicWorkCell::findDevice(std::string_view name) const {
   for (std::size_t i = 0; i < devices_.size(); ++i) {
-    if (devices_[i].device->name() == name) return static_cast<int>(i);
+    if (devices_[i].device->name() == name) return DeviceId(i);
   }
-  return -1;
+  return DeviceId::none();
 }
 
 const PDController* DynamicWorkCell::findController(std::string_view name) const {
@@ -111,13 +113,13 @@ const PDController* DynamicWorkCell::findController(std::string_view name) const
   return nullptr;
 }
 
-int DynamicWorkCell::addBody(Body body) {
+BodyId DynamicWorkCell::addBody(Body body) {
   const FrameTree& tree = workcell_->frames();
   const std::string what = "body \"" + body.name + "\": ";
   if (body.name.empty()) fail("a body needs a name");
-  if (findBody(body.name) >= 0) fail(what + "a body of this name exists");
+  if (findBody(body.name).valid()) fail(what + "a body of this name exists");
   if (!validFrame(tree, body.frame)) fail(what + "unknown frame");
-  if (body.device != -1) fail(what + "Body::device is set by addDevice and must be -1");
+  if (body.device.valid()) fail(what + "Body::device is set by addDevice and must be none");
   const rw::kinematics::Frame& frame = tree.frame(body.frame);
   if (body.kind == BodyKind::kRigid) {
     if (frame.type() != FrameType::kMovable && !frame.isJoint()) {
@@ -142,21 +144,22 @@ int DynamicWorkCell::addBody(Body body) {
   }
   for (const FrameId id : body.geometryFrames) {
     if (!validFrame(tree, id)) fail(what + "unknown geometry frame");
-    const int owner = bodyOfFrame(id);
-    if (owner >= 0 || std::count(body.geometryFrames.begin(), body.geometryFrames.end(), id) > 1) {
+    const BodyId owner = bodyOfFrame(id);
+    if (owner.valid() ||
+        std::count(body.geometryFrames.begin(), body.geometryFrames.end(), id) > 1) {
       fail(what + "frame \"" + tree.frame(id).name() + "\" already belongs to body \"" +
-           (owner >= 0 ? bodies_[static_cast<std::size_t>(owner)].name : body.name) + "\"");
+           (owner.valid() ? this->body(owner).name : body.name) + "\"");
     }
   }
-  const int index = static_cast<int>(bodies_.size());
-  for (const FrameId id : body.geometryFrames) {
-    bodyOfFrame_[static_cast<std::size_t>(id.index)] = index;
+  const BodyId id(bodies_.size());
+  for (const FrameId f : body.geometryFrames) {
+    bodyOfFrame_[static_cast<std::size_t>(f.index)] = id;
   }
   bodies_.push_back(std::move(body));
-  return index;
+  return id;
 }
 
-int DynamicWorkCell::addDevice(RigidDevice device) {
+DeviceId DynamicWorkCell::addDevice(RigidDevice device) {
   const auto& known = workcell_->devices();
   if (device.device == nullptr || std::none_of(known.begin(), known.end(), [&](const auto& d) {
         return d.get() == device.device;
@@ -164,7 +167,7 @@ int DynamicWorkCell::addDevice(RigidDevice device) {
     fail("rigid device: the device is not one of this workcell's devices");
   }
   const std::string what = "rigid device \"" + device.device->name() + "\": ";
-  if (findDevice(device.device->name()) >= 0) fail(what + "already added");
+  if (findDevice(device.device->name()).valid()) fail(what + "already added");
   const auto& joints = device.device->joints();
   if (device.forceLimits.size() != joints.size()) {
     fail(what + "expected " + std::to_string(joints.size()) +
@@ -177,14 +180,14 @@ int DynamicWorkCell::addDevice(RigidDevice device) {
     fail(what + "expected " + std::to_string(joints.size()) + " link bodies (one per joint, -1 " +
          "for none), got " + std::to_string(device.linkBodies.size()));
   }
-  const auto bodyCount = static_cast<int>(bodies_.size());
-  if (device.baseBody < 0 || device.baseBody >= bodyCount) fail(what + "invalid base body");
+  const auto validBody = [&](BodyId b) { return b.valid() && b.index() < bodies_.size(); };
+  if (!validBody(device.baseBody)) fail(what + "invalid base body");
   for (std::size_t j = 0; j < joints.size(); ++j) {
-    const int link = device.linkBodies[j];
-    if (link == -1) continue;
-    if (link < 0 || link >= bodyCount) fail(what + "invalid link body index");
-    const Body& body = bodies_[static_cast<std::size_t>(link)];
-    if (body.kind != BodyKind::kRigid || body.frame != joints[j] || body.device != -1 ||
+    const BodyId link = device.linkBodies[j];
+    if (!link.valid()) continue;
+    if (!validBody(link)) fail(what + "invalid link body index");
+    const Body& body = this->body(link);
+    if (body.kind != BodyKind::kRigid || body.frame != joints[j] || body.device.valid() ||
         link == device.baseBody ||
         std::count(device.linkBodies.begin(), device.linkBodies.end(), link) > 1) {
       fail(what + "body \"" + body.name + "\" cannot be the link of joint \"" +
@@ -192,24 +195,24 @@ int DynamicWorkCell::addDevice(RigidDevice device) {
            "\" (it must be an unused rigid body on that joint's frame)");
     }
   }
-  const int index = static_cast<int>(devices_.size());
-  Body& base = bodies_[static_cast<std::size_t>(device.baseBody)];
-  if (base.device == -1) base.device = index;
-  for (const int link : device.linkBodies) {
-    if (link >= 0) bodies_[static_cast<std::size_t>(link)].device = index;
+  const DeviceId id(devices_.size());
+  Body& base = bodies_[device.baseBody.index()];
+  if (!base.device.valid()) base.device = id;
+  for (const BodyId link : device.linkBodies) {
+    if (link.valid()) bodies_[link.index()].device = id;
   }
   devices_.push_back(std::move(device));
-  return index;
+  return id;
 }
 
 void DynamicWorkCell::addController(PDController controller) {
   const std::string what = "controller \"" + controller.name + "\": ";
   if (controller.name.empty()) fail("a controller needs a name");
   if (findController(controller.name) != nullptr) fail(what + "a controller of this name exists");
-  if (controller.device < 0 || controller.device >= static_cast<int>(devices_.size())) {
+  if (!controller.device.valid() || controller.device.index() >= devices_.size()) {
     fail(what + "invalid device index");
   }
-  const int dof = devices_[static_cast<std::size_t>(controller.device)].device->dof();
+  const int dof = device(controller.device).device->dof();
   if (controller.p.size() != dof || controller.d.size() != dof) {
     fail(what + "expected " + std::to_string(dof) + " P and D gains (one per DOF), got " +
          std::to_string(controller.p.size()) + " and " + std::to_string(controller.d.size()));
@@ -226,14 +229,14 @@ void DynamicWorkCell::addController(PDController controller) {
   controllers_.push_back(std::move(controller));
 }
 
-std::vector<std::pair<int, int>> jointConnectedBodyPairs(const DynamicWorkCell& dwc) {
-  std::vector<std::pair<int, int>> pairs;
+std::vector<std::pair<BodyId, BodyId>> jointConnectedBodyPairs(const DynamicWorkCell& dwc) {
+  std::vector<std::pair<BodyId, BodyId>> pairs;
   for (const RigidDevice& rd : dwc.devices()) {
     const auto& joints = rd.device->joints();
     for (std::size_t j = 0; j < joints.size() && j < rd.linkBodies.size(); ++j) {
-      const int link = rd.linkBodies[j];
-      const int above = link >= 0 ? dwc.bodyAbove(joints[j]) : -1;
-      if (above >= 0 && above != link)
+      const BodyId link = rd.linkBodies[j];
+      const BodyId above = link.valid() ? dwc.bodyAbove(joints[j]) : BodyId::none();
+      if (above.valid() && above != link)
         pairs.emplace_back(std::min(link, above), std::max(link, above));
     }
   }

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "rw/models/workcell.hpp"
+#include "rwsim/dynamics/ids.hpp"
 #include "rwsim/dynamics/material_map.hpp"
 
 namespace rwsim::dynamics {
@@ -47,8 +48,8 @@ struct Body {
   /// Frames whose collision geometry belongs to this body: the body frame, the frames rigidly
   /// attached below it that are no body of their own, and `Associate`d frames.
   std::vector<rw::kinematics::FrameId> geometryFrames;
-  /// Index into DynamicWorkCell::devices() for device bases and links; -1 otherwise.
-  int device = -1;
+  /// The device of device bases and links; none otherwise.
+  DeviceId device;
   /// Body properties (e.g. LinearDamping, AngularDamping).
   rw::kinematics::PropertyMap properties;
 };
@@ -57,10 +58,10 @@ struct Body {
 struct RigidDevice {
   /// The kinematic device in the workcell.
   const rw::models::Device* device = nullptr;
-  /// Index of the base body in DynamicWorkCell::bodies().
-  int baseBody = -1;
-  /// For each joint of device->joints() (dependent ones included), the link body or -1.
-  std::vector<int> linkBodies;
+  /// The base body.
+  BodyId baseBody;
+  /// For each joint of device->joints() (dependent ones included), the link body or none.
+  std::vector<BodyId> linkBodies;
   /// Motor force/torque limit of each joint of device->joints() (N m or N).
   std::vector<double> forceLimits;
 };
@@ -69,8 +70,8 @@ struct RigidDevice {
 struct PDController {
   /// Controller name (e.g. "GraspController").
   std::string name;
-  /// Index into DynamicWorkCell::devices().
-  int device = -1;
+  /// The controlled device.
+  DeviceId device;
   /// Position, CntPosition, Velocity, Force or Current (only Position is simulated).
   std::string type = "Position";
   /// Proportional gain per DOF (1/s for RobWork's velocity-output law).
@@ -92,17 +93,21 @@ class DynamicWorkCell {
   const rw::models::WorkCell& workcell() const { return *workcell_; }
   /// All bodies.
   const std::vector<Body>& bodies() const { return bodies_; }
-  /// Index of the body with this name (frame name), or -1.
-  int findBody(std::string_view name) const;
-  /// Index of the body whose geometry frames include `frame`, or -1.
-  int bodyOfFrame(rw::kinematics::FrameId frame) const;
-  /// Index of the body nearest above `frame`: the first frame on the path from its parent to the
-  /// world that belongs to a body; -1 if there is none.
-  int bodyAbove(rw::kinematics::FrameId frame) const;
+  /// The body with this name (frame name), or none.
+  BodyId findBody(std::string_view name) const;
+  /// The body whose geometry frames include `frame`, or none.
+  BodyId bodyOfFrame(rw::kinematics::FrameId frame) const;
+  /// The body nearest above `frame`: the first frame on the path from its parent to the world
+  /// that belongs to a body; none if there is none.
+  BodyId bodyAbove(rw::kinematics::FrameId frame) const;
+  /// The body with this id. Precondition: `id` is valid and < bodies().size().
+  const Body& body(BodyId id) const { return bodies_[id.index()]; }
   /// Rigid devices.
   const std::vector<RigidDevice>& devices() const { return devices_; }
-  /// Index of the rigid device over the kinematic device with this name, or -1.
-  int findDevice(std::string_view name) const;
+  /// The rigid device over the kinematic device with this name, or none.
+  DeviceId findDevice(std::string_view name) const;
+  /// The rigid device with this id. Precondition: `id` is valid and < devices().size().
+  const RigidDevice& device(DeviceId id) const { return devices_[id.index()]; }
   /// PD controllers.
   const std::vector<PDController>& controllers() const { return controllers_; }
   /// The controller with this name, or nullptr.
@@ -116,24 +121,24 @@ class DynamicWorkCell {
   /// File the dynamic workcell was loaded from (empty when built in code).
   const std::string& fileName() const { return fileName_; }
 
-  /// Adds a body and returns its index. An empty `geometryFrames` is filled with
+  /// Adds a body and returns its id. An empty `geometryFrames` is filled with
   /// rigidlyAttachedFrames(frame, stopAt = the frames of the bodies added so far), so bodies on
   /// Fixed frames below another body's frame must be added first (or their frames listed).
-  /// `device` must be -1: addDevice sets it.
+  /// `device` must be none: addDevice sets it.
   /// @throws std::invalid_argument on an empty or duplicate name, an unknown frame, a frame (or
   /// geometry frame) that belongs to another body, a rigid body that is not on a Movable frame
   /// or a joint, a kinematic body not on a Movable frame, a rigid body whose mass is not > 0 or
   /// whose inertia is not symmetric positive definite, or an undeclared material or object type.
-  int addBody(Body body);
-  /// Adds a rigid device and returns its index; sets Body::device of its base (unless the base
+  BodyId addBody(Body body);
+  /// Adds a rigid device and returns its id; sets Body::device of its base (unless the base
   /// already belongs to another device) and of its links.
   /// @throws std::invalid_argument unless the device is one of workcell().devices() and not yet
   /// added, forceLimits and linkBodies have one entry per device->joints() (limits finite and
-  /// >= 0), the base is a valid body index and each link is -1 or an unused rigid body on its
+  /// >= 0), the base is a valid body and each link is none or an unused rigid body on its
   /// joint's frame.
-  int addDevice(RigidDevice device);
+  DeviceId addDevice(RigidDevice device);
   /// Adds a controller.
-  /// @throws std::invalid_argument on an empty or duplicate name, an invalid device index, gains
+  /// @throws std::invalid_argument on an empty or duplicate name, an invalid device, gains
   /// whose sizes differ from the device's DOF or that are not finite, an unknown type, or a time
   /// step that is not > 0.
   void addController(PDController controller);
@@ -151,7 +156,7 @@ class DynamicWorkCell {
  private:
   std::unique_ptr<rw::models::WorkCell> workcell_;
   std::vector<Body> bodies_;
-  std::vector<int> bodyOfFrame_;
+  std::vector<BodyId> bodyOfFrame_;
   std::vector<RigidDevice> devices_;
   std::vector<PDController> controllers_;
   MaterialMap materials_;
@@ -168,8 +173,8 @@ std::vector<rw::kinematics::FrameId> rigidlyAttachedFrames(
     const std::vector<rw::kinematics::FrameId>& stopAt);
 
 /// The body pairs a device joint connects: each joint's link body with the body nearest above
-/// the joint. Each pair once as (smaller, larger) index, sorted. Their model geometry usually
+/// the joint. Each pair once as (smaller, larger) id, sorted. Their model geometry usually
 /// overlaps at the joint, so contact detection skips them (as MuJoCo skips parent-child pairs).
-std::vector<std::pair<int, int>> jointConnectedBodyPairs(const DynamicWorkCell& dwc);
+std::vector<std::pair<BodyId, BodyId>> jointConnectedBodyPairs(const DynamicWorkCell& dwc);
 
 }  // namespace rwsim::dynamics

@@ -30,15 +30,15 @@ struct FrameShape {
 
 // Everything a trial needs that does not change between trials (shared by copies and threads).
 struct detail::TrialData {
-  int hand = -1;
-  int baseBody = -1;
+  dynamics::DeviceId hand;
+  dynamics::BodyId baseBody;
   FrameId baseFrame;
   FrameId tcp;
   const dynamics::PDController* controller = nullptr;
   std::vector<bool> isHandBody;
   std::vector<bool> isHandFrame;
   std::vector<bool> isObjectFrame;
-  std::vector<int> objects;
+  std::vector<dynamics::BodyId> objects;
   std::vector<double> radius;
   std::shared_ptr<const contacts::ContactDetector> detector;
   std::unique_ptr<const rw::proximity::CollisionDetector> collision;
@@ -52,10 +52,12 @@ std::shared_ptr<detail::TrialData> prepare(const dynamics::DynamicWorkCell& dwc,
                                            const GraspTrialSetup& setup) {
   auto data = std::make_shared<detail::TrialData>();
   data->hand = dwc.findDevice(setup.hand);
-  if (data->hand < 0) throw std::invalid_argument("no rigid device named '" + setup.hand + "'");
-  const auto& rd = dwc.devices()[static_cast<std::size_t>(data->hand)];
+  if (!data->hand.valid()) {
+    throw std::invalid_argument("no rigid device named '" + setup.hand + "'");
+  }
+  const auto& rd = dwc.device(data->hand);
   data->baseBody = rd.baseBody;
-  const auto& base = dwc.bodies()[static_cast<std::size_t>(rd.baseBody)];
+  const auto& base = dwc.body(rd.baseBody);
   if (base.kind != dynamics::BodyKind::kKinematic) {
     throw std::invalid_argument("the base " + base.name + " of hand '" + setup.hand +
                                 "' is not a kinematic body (KinematicBase)");
@@ -80,13 +82,13 @@ std::shared_ptr<detail::TrialData> prepare(const dynamics::DynamicWorkCell& dwc,
 }
 
 void classifyBodies(const dynamics::DynamicWorkCell& dwc, detail::TrialData& data) {
-  const auto& rd = dwc.devices()[static_cast<std::size_t>(data.hand)];
+  const auto& rd = dwc.device(data.hand);
   const auto& tree = dwc.workcell().frames();
   const std::size_t n = dwc.bodies().size();
   data.isHandBody.assign(n, false);
-  data.isHandBody[static_cast<std::size_t>(rd.baseBody)] = true;
-  for (const int link : rd.linkBodies) {
-    if (link >= 0) data.isHandBody[static_cast<std::size_t>(link)] = true;
+  data.isHandBody[rd.baseBody.index()] = true;
+  for (const dynamics::BodyId link : rd.linkBodies) {
+    if (link.valid()) data.isHandBody[link.index()] = true;
   }
   data.isHandFrame.assign(tree.size(), false);
   data.isObjectFrame.assign(tree.size(), false);
@@ -104,8 +106,8 @@ void classifyBodies(const dynamics::DynamicWorkCell& dwc, detail::TrialData& dat
       }
     }
     if (!data.isHandBody[b] && body.kind == dynamics::BodyKind::kRigid) {
-      data.objects.push_back(static_cast<int>(b));
-      data.radius[b] = detail::maxRadiusFromCog(dwc, static_cast<int>(b));
+      data.objects.emplace_back(b);
+      data.radius[b] = detail::maxRadiusFromCog(dwc, dynamics::BodyId(b));
     }
   }
 }
@@ -277,7 +279,7 @@ bool TrialRun::advance(std::string_view phase) {
 
 bool TrialRun::close() {
   const auto& tree = dwc_.workcell().frames();
-  const auto& active = dwc_.devices()[static_cast<std::size_t>(data_.hand)].device->activeJoints();
+  const auto& active = dwc_.device(data_.hand).device->activeJoints();
   Q restSpeed(static_cast<Eigen::Index>(active.size()));
   for (std::size_t i = 0; i < active.size(); ++i) {
     restSpeed[static_cast<Eigen::Index>(i)] =
@@ -327,17 +329,16 @@ bool TrialRun::lift(const Transform3D& X_W_base) {
 }
 
 void TrialRun::evaluate(const Transform3D& X_h0, const Transform3D& X_o0) {
-  const int object = result_.object;
+  const dynamics::BodyId object = result_.object;
   const auto counts =
       detail::handContactCounts(sim_.contacts(), data_.isHandBody, setup_.contactForceThreshold);
   const Transform3D X_h1 = sim_.bodyPose(data_.baseBody);
   const Transform3D X_o1 = sim_.bodyPose(object);
   result_.handLift = X_h1.translation() - X_h0.translation();
   result_.objectLift = X_o1.translation() - X_o0.translation();
-  if (counts[static_cast<std::size_t>(object)] == 0) {
-    finish(GraspOutcome::kDropped, "no hand contact on " +
-                                       dwc_.bodies()[static_cast<std::size_t>(object)].name +
-                                       " after lifting");
+  if (counts[object.index()] == 0) {
+    finish(GraspOutcome::kDropped,
+           "no hand contact on " + dwc_.body(object).name + " after lifting");
     return;
   }
   const double drift = (result_.objectLift - result_.handLift).norm();
@@ -345,12 +346,12 @@ void TrialRun::evaluate(const Transform3D& X_h0, const Transform3D& X_o0) {
   result_.qLift = h > 0.0 ? std::max(0.0, 1.0 - drift / h) : 0.0;
   result_.contacts = detail::objectContacts(dwc_, sim_.contacts(), data_.isHandBody, object, X_o1,
                                             setup_.contactForceThreshold);
-  const auto& body = dwc_.bodies()[static_cast<std::size_t>(object)];
+  const auto& body = dwc_.body(object);
   if (setup_.computeGws) {
     GwsQualityOptions options;
     options.coneEdges = setup_.gwsConeEdges;
-    const GwsQualities q = gwsQualities(result_.contacts, body.mass.cog,
-                                        data_.radius[static_cast<std::size_t>(object)], options);
+    const GwsQualities q =
+        gwsQualities(result_.contacts, body.mass.cog, data_.radius[object.index()], options);
     result_.qGws = q.qGws;
     result_.qGwsUnit = q.qGwsUnit;
   }
@@ -364,7 +365,7 @@ rw::kinematics::State placeHand(const dynamics::DynamicWorkCell& dwc, const deta
                                 const GraspParameters& grasp,
                                 const rw::kinematics::State& initial) {
   const auto& tree = dwc.workcell().frames();
-  const auto& device = *dwc.devices()[static_cast<std::size_t>(data.hand)].device;
+  const auto& device = *dwc.device(data.hand).device;
   rw::kinematics::State state = initial;
   device.setQ(grasp.qOpen, state);
   const Transform3D X_tcp_base =
@@ -377,7 +378,7 @@ rw::kinematics::State placeHand(const dynamics::DynamicWorkCell& dwc, const deta
 }
 
 GraspTrialResult TrialRun::run(const rw::kinematics::State& initial) {
-  const auto& device = *dwc_.devices()[static_cast<std::size_t>(data_.hand)].device;
+  const auto& device = *dwc_.device(data_.hand).device;
   const rw::kinematics::State state = placeHand(dwc_, data_, grasp_, initial);
   result_.qGrasp = grasp_.qOpen;
   if (inCollision(state)) return result_;
@@ -393,13 +394,13 @@ GraspTrialResult TrialRun::run(const rw::kinematics::State& initial) {
   const auto counts =
       detail::handContactCounts(sim_.contacts(), data_.isHandBody, setup_.contactForceThreshold);
   int best = 0;
-  for (const int o : data_.objects) {
-    if (counts[static_cast<std::size_t>(o)] > best) {
-      best = counts[static_cast<std::size_t>(o)];
+  for (const dynamics::BodyId o : data_.objects) {
+    if (counts[o.index()] > best) {
+      best = counts[o.index()];
       result_.object = o;
     }
   }
-  if (result_.object < 0) {
+  if (!result_.object.valid()) {
     finish(GraspOutcome::kMissed, "no finger touches an object after closing");
     return withMessages();
   }
@@ -422,16 +423,15 @@ GraspTrial::GraspTrial(const dynamics::DynamicWorkCell& dwc, GraspTrialSetup set
   data_ = std::move(data);
 }
 
-int GraspTrial::handDevice() const { return data_->hand; }
+dynamics::DeviceId GraspTrial::handDevice() const { return data_->hand; }
 
-bool GraspTrial::isHandBody(int body) const {
-  return body >= 0 && static_cast<std::size_t>(body) < data_->isHandBody.size() &&
-         data_->isHandBody[static_cast<std::size_t>(body)];
+bool GraspTrial::isHandBody(dynamics::BodyId body) const {
+  return body.valid() && body.index() < data_->isHandBody.size() && data_->isHandBody[body.index()];
 }
 
 rw::kinematics::State GraspTrial::placedState(const GraspParameters& grasp,
                                               const rw::kinematics::State& initial) const {
-  const auto& device = *dwc_->devices()[static_cast<std::size_t>(data_->hand)].device;
+  const auto& device = *dwc_->device(data_->hand).device;
   checkGrasp(grasp, device.dof());
   return placeHand(*dwc_, *data_, grasp, initial);
 }
@@ -450,7 +450,7 @@ GraspTrialResult GraspTrial::run(const GraspParameters& grasp,
 
 GraspTrialResult GraspTrial::run(const GraspParameters& grasp, const rw::kinematics::State& initial,
                                  const Observer& observer) const {
-  const auto& device = *dwc_->devices()[static_cast<std::size_t>(data_->hand)].device;
+  const auto& device = *dwc_->device(data_->hand).device;
   checkGrasp(grasp, device.dof());
   TrialRun trial(*dwc_, setup_, *data_, grasp, observer);
   return trial.run(initial);

@@ -130,8 +130,8 @@ struct TrialContact {
   double mu = 0.0;
   /// The whole contact force on the object (normal and friction), N: the paper's f_i.
   rw::math::Vector3D force = rw::math::Vector3D::Zero();
-  /// Body index (in DynamicWorkCell::bodies()) of the hand link that touches the object.
-  int handBody = -1;
+  /// The hand link that touches the object.
+  dynamics::BodyId handBody;
 };
 
 /// What a trial measured.
@@ -147,8 +147,8 @@ struct GraspTrialResult {
   /// The same with unit normal forces and cones on the contact normals (RobWork's
   /// GraspTaskSimulator; this project's Q_GWS before the paper's definition); 0 when not held.
   double qGwsUnit = 0.0;
-  /// Body index of the grasped object (-1 if none).
-  int object = -1;
+  /// The grasped object (none if none).
+  dynamics::BodyId object;
   /// Hand configuration when the fingers came to rest.
   rw::math::Q qGrasp;
   /// Contacts on the object after lifting.
@@ -226,9 +226,9 @@ class GraspTrial {
   PlacementCheck checkPlacement(const GraspParameters& grasp,
                                 const rw::kinematics::State& initial) const;
   /// Index of the hand in DynamicWorkCell::devices().
-  int handDevice() const;
+  dynamics::DeviceId handDevice() const;
   /// True if body `body` (index in DynamicWorkCell::bodies()) is the hand's base or a link.
-  bool isHandBody(int body) const;
+  bool isHandBody(dynamics::BodyId body) const;
   /// The TCP frame used.
   rw::kinematics::FrameId tcpFrame() const;
 

@@ -19,7 +19,9 @@ namespace {
 
 using detail::SimBody;
 using detail::SimJoint;
+using dynamics::BodyId;
 using dynamics::BodyKind;
+using dynamics::DeviceId;
 using rw::math::Transform3D;
 using rw::math::Vector3D;
 
@@ -59,7 +61,7 @@ struct Simulator::Impl {
   std::vector<double> mu;
   std::vector<double> restitution;
   // Bodies with Movable frames in frame order (parents before children).
-  std::vector<int> movableOrder;
+  std::vector<BodyId> movableOrder;
   std::vector<Transform3D> poses;
   std::vector<contacts::BodyContact> geometric;
   std::vector<dJointFeedback> feedback;
@@ -67,19 +69,19 @@ struct Simulator::Impl {
   std::vector<SolvedBodyContact> solved;
   // Body pairs joined by a device joint (sorted), and whether the detector checks any of them
   // (one made by the Simulator excludes them up front; a caller's detector may not).
-  std::vector<std::pair<int, int>> connected;
+  std::vector<std::pair<BodyId, BodyId>> connected;
   bool filterConnected = false;
   // options.stepMethod decided once.
   bool quickStep = false;
   // Last step's tangential contact force per body pair, to orient friction pyramids.
-  std::map<std::pair<int, int>, Vector3D> lastTangentialForce;
+  std::map<std::pair<BodyId, BodyId>, Vector3D> lastTangentialForce;
 
   void init(const dynamics::DynamicWorkCell& cell);
-  double pairValue(const std::vector<double>& table, int a, int b) const {
-    return table[static_cast<std::size_t>(a) * dwc->bodies().size() + static_cast<std::size_t>(b)];
+  double pairValue(const std::vector<double>& table, BodyId a, BodyId b) const {
+    return table[a.index() * dwc->bodies().size() + b.index()];
   }
-  const SimBody& body(int index) const;
-  detail::SimDevice& device(int index) const;
+  const SimBody& body(BodyId id) const;
+  detail::SimDevice& device(DeviceId id) const;
   bool commandsFinite();
   void stepOnce();
   void createContactJoints();
@@ -113,34 +115,32 @@ void Simulator::Impl::init(const dynamics::DynamicWorkCell& cell) {
   for (std::size_t b = 0; b < n; ++b) {
     if (tree.frame(bodies[b].frame).type() == rw::kinematics::FrameType::kMovable &&
         bodies[b].kind != BodyKind::kFixed) {
-      movableOrder.push_back(static_cast<int>(b));
+      movableOrder.push_back(BodyId(b));
     }
   }
-  std::sort(movableOrder.begin(), movableOrder.end(), [&](int x, int y) {
-    return bodies[static_cast<std::size_t>(x)].frame < bodies[static_cast<std::size_t>(y)].frame;
-  });
+  std::sort(movableOrder.begin(), movableOrder.end(),
+            [&](BodyId x, BodyId y) { return cell.body(x).frame < cell.body(y).frame; });
 }
 
-const SimBody& Simulator::Impl::body(int index) const {
-  if (index < 0 || static_cast<std::size_t>(index) >= ode->bodies().size()) {
-    throw std::out_of_range("Simulator: no body " + std::to_string(index));
+const SimBody& Simulator::Impl::body(BodyId id) const {
+  if (!id.valid() || id.index() >= ode->bodies().size()) {
+    throw std::out_of_range("Simulator: no body " + dynamics::toString(id));
   }
-  return ode->bodies()[static_cast<std::size_t>(index)];
+  return ode->bodies()[id.index()];
 }
 
-detail::SimDevice& Simulator::Impl::device(int index) const {
-  if (index < 0 || static_cast<std::size_t>(index) >= ode->devices().size()) {
-    throw std::out_of_range("Simulator: no device " + std::to_string(index));
+detail::SimDevice& Simulator::Impl::device(DeviceId id) const {
+  if (!id.valid() || id.index() >= ode->devices().size()) {
+    throw std::out_of_range("Simulator: no device " + dynamics::toString(id));
   }
-  return ode->devices()[static_cast<std::size_t>(index)];
+  return ode->devices()[id.index()];
 }
 
 bool Simulator::Impl::commandsFinite() {
   for (const SimBody& b : ode->bodies()) {
     if (!b.commandLinear.allFinite() || !b.commandAngular.allFinite()) {
       fail(StepStatus::kNumericalFailure,
-           "body " + dwc->bodies()[static_cast<std::size_t>(b.index)].name +
-               ": commanded velocity is not finite");
+           "body " + dwc->body(b.bodyId).name + ": commanded velocity is not finite");
       return false;
     }
   }
@@ -168,7 +168,8 @@ void Simulator::Impl::stepOnce() {
   // (RobWork's SDH2 hulls by 2.7 cm), as MuJoCo filters parent-child pairs.
   if (filterConnected) {
     std::erase_if(geometric, [&](const contacts::BodyContact& bc) {
-      const std::pair<int, int> key(std::min(bc.bodyA, bc.bodyB), std::max(bc.bodyA, bc.bodyB));
+      const std::pair<BodyId, BodyId> key(std::min(bc.bodyA, bc.bodyB),
+                                          std::max(bc.bodyA, bc.bodyB));
       return std::binary_search(connected.begin(), connected.end(), key);
     });
   }
@@ -260,8 +261,8 @@ void Simulator::Impl::driveMotors() {
   for (auto& dev : ode->devices()) {
     for (const SimJoint& j : dev.joints) {
       if (j.id == nullptr) continue;
-      if (j.owner >= 0) {
-        const SimJoint& o = dev.joints[static_cast<std::size_t>(j.owner)];
+      if (j.owner) {
+        const SimJoint& o = dev.joints[*j.owner];
         const double err = j.gain * ode->jointPosition(o) + j.offset - ode->jointPosition(j);
         const double v = j.gain * ode->jointVelocity(o) + err / options.timeStep;
         ode->setMotor(j, v, j.forceLimit);
@@ -313,7 +314,7 @@ void Simulator::Impl::checkBodies() {
   const auto& cells = dwc->bodies();
   for (const SimBody& b : ode->bodies()) {
     if (b.id == nullptr) continue;
-    const std::string& name = cells[static_cast<std::size_t>(b.index)].name;
+    const std::string& name = cells[b.bodyId.index()].name;
     const dReal* q = dBodyGetQuaternion(b.id);
     if (!finite3(dBodyGetPosition(b.id)) || !finite3(q) || !std::isfinite(q[3]) ||
         !finite3(dBodyGetLinearVel(b.id)) || !finite3(dBodyGetAngularVel(b.id))) {
@@ -341,13 +342,13 @@ void Simulator::Impl::updateState() {
   const auto& tree = dwc->workcell().frames();
   for (const auto& dev : ode->devices()) {
     for (const SimJoint& j : dev.joints) {
-      if (j.owner >= 0 || j.id == nullptr) continue;
+      if (j.owner || j.id == nullptr) continue;
       tree.frame(j.frame).setJointValue(state, ode->jointPosition(j));
     }
   }
-  for (const int index : movableOrder) {
-    const auto& frame = tree.frame(dwc->bodies()[static_cast<std::size_t>(index)].frame);
-    const Transform3D X_W_frame = ode->framePose(body(index));
+  for (const BodyId id : movableOrder) {
+    const auto& frame = tree.frame(dwc->body(id).frame);
+    const Transform3D X_W_frame = ode->framePose(body(id));
     const Transform3D X_W_parent =
         rw::kinematics::worldTransform(tree, state, state.parentOf(frame.id()));
     frame.setMovableTransform(state, X_W_parent.inverse() * X_W_frame);
@@ -374,8 +375,8 @@ Simulator::Simulator(const dynamics::DynamicWorkCell& dwc,
   impl_->quickStep = impl_->options.stepMethod == "WorldQuickStep";
   impl_->connected = dynamics::jointConnectedBodyPairs(dwc);
   for (const auto& pair : detector->candidatePairs()) {
-    const std::pair<int, int> key(std::min(pair.first, pair.second),
-                                  std::max(pair.first, pair.second));
+    const std::pair<BodyId, BodyId> key(std::min(pair.first, pair.second),
+                                        std::max(pair.first, pair.second));
     if (std::binary_search(impl_->connected.begin(), impl_->connected.end(), key)) {
       impl_->filterConnected = true;
     }
@@ -426,53 +427,52 @@ double Simulator::time() const { return impl_->time; }
 
 const rw::kinematics::State& Simulator::state() const { return impl_->state; }
 
-Transform3D Simulator::bodyPose(int body) const { return impl_->ode->framePose(impl_->body(body)); }
+Transform3D Simulator::bodyPose(BodyId body) const {
+  return impl_->ode->framePose(impl_->body(body));
+}
 
-Vector3D Simulator::bodyLinearVelocity(int body) const {
+Vector3D Simulator::bodyLinearVelocity(BodyId body) const {
   const SimBody& b = impl_->body(body);
   if (b.id == nullptr) return Vector3D::Zero();
   return pointVelocity(b.id, bodyPose(body).translation());
 }
 
-Vector3D Simulator::bodyAngularVelocity(int body) const {
+Vector3D Simulator::bodyAngularVelocity(BodyId body) const {
   const SimBody& b = impl_->body(body);
   if (b.id == nullptr) return Vector3D::Zero();
   return toVector(dBodyGetAngularVel(b.id));
 }
 
-void Simulator::setKinematicVelocity(int body, const Vector3D& linear, const Vector3D& angular) {
+void Simulator::setKinematicVelocity(BodyId body, const Vector3D& linear, const Vector3D& angular) {
   const SimBody& b = impl_->body(body);
   if (b.kind != BodyKind::kKinematic) {
-    throw std::invalid_argument("Simulator: body " +
-                                impl_->dwc->bodies()[static_cast<std::size_t>(body)].name +
+    throw std::invalid_argument("Simulator: body " + impl_->dwc->body(body).name +
                                 " is not kinematic");
   }
-  auto& sim = impl_->ode->bodies()[static_cast<std::size_t>(body)];
+  auto& sim = impl_->ode->bodies()[body.index()];
   sim.commandLinear = linear;
   sim.commandAngular = angular;
 }
 
-rw::math::Q Simulator::jointPositions(int device) const {
+rw::math::Q Simulator::jointPositions(DeviceId device) const {
   const auto& dev = impl_->device(device);
   rw::math::Q q(static_cast<Eigen::Index>(dev.active.size()));
   for (std::size_t i = 0; i < dev.active.size(); ++i) {
-    q[static_cast<Eigen::Index>(i)] =
-        impl_->ode->jointPosition(dev.joints[static_cast<std::size_t>(dev.active[i])]);
+    q[static_cast<Eigen::Index>(i)] = impl_->ode->jointPosition(dev.joints[dev.active[i]]);
   }
   return q;
 }
 
-rw::math::Q Simulator::jointVelocities(int device) const {
+rw::math::Q Simulator::jointVelocities(DeviceId device) const {
   const auto& dev = impl_->device(device);
   rw::math::Q v(static_cast<Eigen::Index>(dev.active.size()));
   for (std::size_t i = 0; i < dev.active.size(); ++i) {
-    v[static_cast<Eigen::Index>(i)] =
-        impl_->ode->jointVelocity(dev.joints[static_cast<std::size_t>(dev.active[i])]);
+    v[static_cast<Eigen::Index>(i)] = impl_->ode->jointVelocity(dev.joints[dev.active[i]]);
   }
   return v;
 }
 
-void Simulator::setMotorVelocityTargets(int device, const rw::math::Q& velocities) {
+void Simulator::setMotorVelocityTargets(DeviceId device, const rw::math::Q& velocities) {
   auto& dev = impl_->device(device);
   if (static_cast<std::size_t>(velocities.size()) != dev.active.size()) {
     throw std::invalid_argument("Simulator: " + std::to_string(velocities.size()) +
@@ -480,12 +480,11 @@ void Simulator::setMotorVelocityTargets(int device, const rw::math::Q& velocitie
                                 " DOF");
   }
   for (std::size_t i = 0; i < dev.active.size(); ++i) {
-    dev.joints[static_cast<std::size_t>(dev.active[i])].velocityTarget =
-        velocities[static_cast<Eigen::Index>(i)];
+    dev.joints[dev.active[i]].velocityTarget = velocities[static_cast<Eigen::Index>(i)];
   }
 }
 
-void Simulator::setMotorForceLimits(int device, const rw::math::Q& limits) {
+void Simulator::setMotorForceLimits(DeviceId device, const rw::math::Q& limits) {
   auto& dev = impl_->device(device);
   if (static_cast<std::size_t>(limits.size()) != dev.active.size()) {
     throw std::invalid_argument("Simulator: " + std::to_string(limits.size()) +
@@ -501,8 +500,8 @@ void Simulator::setMotorForceLimits(int device, const rw::math::Q& limits) {
     if (j.activeIndex >= 0) j.forceLimit = limits[j.activeIndex];
   }
   for (SimJoint& j : dev.joints) {
-    if (j.owner < 0) continue;
-    const int ownerDof = dev.joints[static_cast<std::size_t>(j.owner)].activeIndex;
+    if (!j.owner) continue;
+    const int ownerDof = dev.joints[*j.owner].activeIndex;
     if (ownerDof >= 0) j.forceLimit = limits[ownerDof];
   }
 }

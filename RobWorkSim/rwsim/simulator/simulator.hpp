@@ -55,10 +55,10 @@ struct SolvedContact {
 
 /// Contacts of one body pair after a step, with solver forces.
 struct SolvedBodyContact {
-  /// First body (index in DynamicWorkCell::bodies()).
-  int bodyA = -1;
+  /// First body.
+  dynamics::BodyId bodyA;
   /// Second body.
-  int bodyB = -1;
+  dynamics::BodyId bodyB;
   /// Points with their forces.
   std::vector<SolvedContact> points;
 };
@@ -114,23 +114,23 @@ class Simulator {
   const rw::kinematics::State& state() const;
 
   /// World pose of a body's frame.
-  rw::math::Transform3D bodyPose(int body) const;
+  rw::math::Transform3D bodyPose(dynamics::BodyId body) const;
   /// Linear velocity of a body's frame origin, m/s.
-  rw::math::Vector3D bodyLinearVelocity(int body) const;
+  rw::math::Vector3D bodyLinearVelocity(dynamics::BodyId body) const;
   /// Angular velocity, rad/s.
-  rw::math::Vector3D bodyAngularVelocity(int body) const;
+  rw::math::Vector3D bodyAngularVelocity(dynamics::BodyId body) const;
   /// Commands a kinematic body's velocity (world frame, about its frame origin) until changed.
-  void setKinematicVelocity(int body, const rw::math::Vector3D& linear,
+  void setKinematicVelocity(dynamics::BodyId body, const rw::math::Vector3D& linear,
                             const rw::math::Vector3D& angular);
 
   /// Joint positions of a rigid device's active joints (DOF order).
-  rw::math::Q jointPositions(int device) const;
+  rw::math::Q jointPositions(dynamics::DeviceId device) const;
   /// Joint velocities (DOF order).
-  rw::math::Q jointVelocities(int device) const;
+  rw::math::Q jointVelocities(dynamics::DeviceId device) const;
   /// Motor velocity targets per DOF (dependent joints follow their owners).
-  void setMotorVelocityTargets(int device, const rw::math::Q& velocities);
+  void setMotorVelocityTargets(dynamics::DeviceId device, const rw::math::Q& velocities);
   /// Motor torque/force limits per DOF (a dependent joint takes its owner's).
-  void setMotorForceLimits(int device, const rw::math::Q& limits);
+  void setMotorForceLimits(dynamics::DeviceId device, const rw::math::Q& limits);
 
   /// Contacts of the last step with their forces.
   const std::vector<SolvedBodyContact>& contacts() const;

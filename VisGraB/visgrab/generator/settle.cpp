@@ -9,11 +9,10 @@ namespace visgrab::generator {
 
 SettleResult settle(const rwsim::dynamics::DynamicWorkCell& dwc,
                     const std::vector<std::string>& objects, const SettleOptions& options) {
-  std::vector<int> bodies;
+  std::vector<rwsim::dynamics::BodyId> bodies;
   for (const std::string& name : objects) {
-    const int b = dwc.findBody(name);
-    if (b < 0 ||
-        dwc.bodies()[static_cast<std::size_t>(b)].kind != rwsim::dynamics::BodyKind::kRigid) {
+    const rwsim::dynamics::BodyId b = dwc.findBody(name);
+    if (!b.valid() || dwc.body(b).kind != rwsim::dynamics::BodyKind::kRigid) {
       throw std::invalid_argument("settle: \"" + name + "\" is not a rigid body of the scene");
     }
     bodies.push_back(b);
@@ -30,7 +29,7 @@ SettleResult settle(const rwsim::dynamics::DynamicWorkCell& dwc,
     }
     bool still = true;
     result.maxSpeed = 0.0;
-    for (const int b : bodies) {
+    for (const rwsim::dynamics::BodyId b : bodies) {
       const double v = sim.bodyLinearVelocity(b).norm();
       result.maxSpeed = std::max(result.maxSpeed, v);
       still = still && v < options.restLinearSpeed &&
@@ -57,7 +56,7 @@ SettleResult settle(const rwsim::dynamics::DynamicWorkCell& dwc,
       result.maxPenetration = std::max(result.maxPenetration, c.point.depth);
     }
   }
-  for (const int b : bodies) result.X_WO.push_back(sim.bodyPose(b));
+  for (const rwsim::dynamics::BodyId b : bodies) result.X_WO.push_back(sim.bodyPose(b));
   return result;
 }
 

@@ -61,9 +61,9 @@ std::vector<const database::SceneEntry*> selectScenes(const database::Database& 
   }
 }
 
-int objectIdOf(const rwsim::dynamics::DynamicWorkCell& dwc, int body) {
-  if (body < 0) return 0;
-  const std::string& name = dwc.bodies()[static_cast<std::size_t>(body)].name;
+int objectIdOf(const rwsim::dynamics::DynamicWorkCell& dwc, rwsim::dynamics::BodyId body) {
+  if (!body.valid()) return 0;
+  const std::string& name = dwc.body(body).name;
   return database::objectIdByName(name).value_or(0);
 }
 
@@ -175,7 +175,7 @@ std::unique_ptr<rwsim::dynamics::DynamicWorkCell> loadSceneWithHand(
     // Not a generated scene (an original or hand-written one): usable as it is when it holds
     // the hand already.
     auto dwc = rwsim::loaders::loadDynamicWorkCell(entry.dynamicWorkcell);
-    if (dwc->findDevice(hand.deviceName()) >= 0) return dwc;
+    if (dwc->findDevice(hand.deviceName()).valid()) return dwc;
     throw std::runtime_error(
         "scene " + entry.id + " has no device '" + hand.deviceName() + "' and does not include a " +
         "hand from a hands/<hand>/ folder once in " + entry.workcell.filename().string() +

@@ -159,10 +159,10 @@ visual::RgbImage graspStrip(render::GlRenderer& renderer, const WorkcellDrawing&
   // One camera for the three panels: the grasped object (all objects when none was touched)
   // at the start, the hand placed and lifted.
   Eigen::AlignedBox3d box;
-  const int object = replay.result.object;
-  const auto& bodies = session.dynamicWorkcell().bodies();
-  if (object >= 0 && static_cast<std::size_t>(object) < bodies.size()) {
-    box = drawing.bounds(placed.state, bodies[static_cast<std::size_t>(object)].geometryFrames);
+  const rwsim::dynamics::BodyId object = replay.result.object;
+  const auto& dwc = session.dynamicWorkcell();
+  if (object.valid() && object.index() < dwc.bodies().size()) {
+    box = drawing.bounds(placed.state, dwc.body(object).geometryFrames);
   }
   if (box.isEmpty()) box = objectsBox(session, drawing, placed.state);
   const auto hand = drawing.handFrames();

@@ -19,7 +19,7 @@ SceneSession::SceneSession(const database::SceneEntry& entry, const grasp::HandG
   const auto& bodies = dwc_->bodies();
   for (std::size_t b = 0; b < bodies.size(); ++b) {
     if (bodies[b].kind != rwsim::dynamics::BodyKind::kRigid) continue;
-    if (trial_->isHandBody(static_cast<int>(b))) continue;
+    if (trial_->isHandBody(rwsim::dynamics::BodyId(b))) continue;
     for (const auto frame : bodies[b].geometryFrames) objectFrames_.push_back(frame);
   }
 }

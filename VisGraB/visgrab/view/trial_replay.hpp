@@ -16,8 +16,8 @@ struct ContactForce {
   rw::math::Vector3D point = rw::math::Vector3D::Zero();
   /// Force the hand applies to the other body, world frame, N.
   rw::math::Vector3D force = rw::math::Vector3D::Zero();
-  /// Index of the other body in DynamicWorkCell::bodies().
-  int body = -1;
+  /// The other body.
+  rwsim::dynamics::BodyId body;
 };
 
 /// One recorded moment of a trial.

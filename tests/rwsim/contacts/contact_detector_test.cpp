@@ -22,6 +22,7 @@ using rw::kinematics::FrameType;
 using rw::math::Transform3D;
 using rw::math::Vector3D;
 using rwsim::dynamics::Body;
+using rwsim::dynamics::BodyId;
 using rwsim::dynamics::BodyKind;
 using rwsim::dynamics::DynamicWorkCell;
 using test::Geometry;
@@ -29,7 +30,13 @@ using test::kPen;
 using test::pose;
 
 /// Body indices of the scene below.
-enum : int { kFloor, kBox, kPusher, kWall, kDumbbell };
+enum : std::size_t { kFloor, kBox, kPusher, kWall, kDumbbell };
+
+/// The id of body `k` of the scene below.
+BodyId idOf(std::size_t k) { return BodyId(k); }
+
+/// Pairs of body ids.
+using IdPairs = std::vector<std::pair<BodyId, BodyId>>;
 
 /// A floor (fixed, a Plane), a box resting on it (rigid), a kinematic sphere pusher touching
 /// the box's +x face, a fixed wall, and a rigid "dumbbell" of two boxes on two frames resting
@@ -83,11 +90,11 @@ std::unique_ptr<DynamicWorkCell> scene() {
     }
     return dwc->addBody(std::move(b));
   };
-  EXPECT_EQ(addBody("Floor", floor, BodyKind::kFixed), kFloor);
-  EXPECT_EQ(addBody("Box", box, BodyKind::kRigid), kBox);
-  EXPECT_EQ(addBody("Pusher", pusher, BodyKind::kKinematic), kPusher);
-  EXPECT_EQ(addBody("Wall", wall, BodyKind::kFixed), kWall);
-  EXPECT_EQ(addBody("Dumbbell", bell, BodyKind::kRigid), kDumbbell);
+  EXPECT_EQ(addBody("Floor", floor, BodyKind::kFixed), idOf(kFloor));
+  EXPECT_EQ(addBody("Box", box, BodyKind::kRigid), idOf(kBox));
+  EXPECT_EQ(addBody("Pusher", pusher, BodyKind::kKinematic), idOf(kPusher));
+  EXPECT_EQ(addBody("Wall", wall, BodyKind::kFixed), idOf(kWall));
+  EXPECT_EQ(addBody("Dumbbell", bell, BodyKind::kRigid), idOf(kDumbbell));
   return dwc;
 }
 
@@ -100,9 +107,9 @@ std::vector<Transform3D> defaultPoses(const DynamicWorkCell& dwc) {
   return poses;
 }
 
-const BodyContact* find(const std::vector<BodyContact>& contacts, int a, int b) {
+const BodyContact* find(const std::vector<BodyContact>& contacts, std::size_t a, std::size_t b) {
   for (const BodyContact& c : contacts) {
-    if (c.bodyA == a && c.bodyB == b) return &c;
+    if (c.bodyA == idOf(a) && c.bodyB == idOf(b)) return &c;
   }
   return nullptr;
 }
@@ -110,17 +117,20 @@ const BodyContact* find(const std::vector<BodyContact>& contacts, int a, int b) 
 TEST(ContactDetector, ChecksPairsWithARigidBodyThatTheSetupAllows) {
   const auto dwc = scene();
   const ContactDetector detector(*dwc);
-  const std::vector<std::pair<int, int>> expected = {{kFloor, kBox},       {kFloor, kDumbbell},
-                                                     {kBox, kPusher},      {kBox, kDumbbell},
-                                                     {kPusher, kDumbbell}, {kWall, kDumbbell}};
+  const IdPairs expected = {{idOf(kFloor), idOf(kBox)},       {idOf(kFloor), idOf(kDumbbell)},
+                            {idOf(kBox), idOf(kPusher)},      {idOf(kBox), idOf(kDumbbell)},
+                            {idOf(kPusher), idOf(kDumbbell)}, {idOf(kWall), idOf(kDumbbell)}};
   EXPECT_EQ(detector.candidatePairs(), expected);
 }
 
 TEST(ContactDetector, SkipsExcludedPairsInEitherOrder) {
   const auto dwc = scene();
-  const ContactDetector detector(*dwc, ContactOptions{}, {{kDumbbell, kBox}, {kFloor, kBox}});
-  const std::vector<std::pair<int, int>> expected = {
-      {kFloor, kDumbbell}, {kBox, kPusher}, {kPusher, kDumbbell}, {kWall, kDumbbell}};
+  const ContactDetector detector(
+      *dwc, ContactOptions{}, IdPairs{{idOf(kDumbbell), idOf(kBox)}, {idOf(kFloor), idOf(kBox)}});
+  const IdPairs expected = {{idOf(kFloor), idOf(kDumbbell)},
+                            {idOf(kBox), idOf(kPusher)},
+                            {idOf(kPusher), idOf(kDumbbell)},
+                            {idOf(kWall), idOf(kDumbbell)}};
   EXPECT_EQ(detector.candidatePairs(), expected);
   std::vector<BodyContact> out;
   detector.detect(defaultPoses(*dwc), out);

@@ -17,7 +17,9 @@ using rw::kinematics::FrameSpec;
 using rw::kinematics::FrameTree;
 using rw::kinematics::FrameType;
 using rwsim::dynamics::Body;
+using rwsim::dynamics::BodyId;
 using rwsim::dynamics::BodyKind;
+using rwsim::dynamics::DeviceId;
 using rwsim::dynamics::DynamicWorkCell;
 using rwsim::dynamics::PDController;
 using rwsim::dynamics::RigidDevice;
@@ -77,11 +79,11 @@ class DynamicWorkCellTest : public ::testing::Test {
     return b;
   }
 
-  /// Adds the gripper's bodies and device; returns the device index.
-  int addGripper() {
-    const int base = dwc_->addBody(body("G.Base", base_, BodyKind::kKinematic));
-    const int l1 = dwc_->addBody(body("G.J1", j1_, BodyKind::kRigid));
-    const int l2 = dwc_->addBody(body("G.J2", j2_, BodyKind::kRigid));
+  /// Adds the gripper's bodies and device; returns the device.
+  DeviceId addGripper() {
+    const BodyId base = dwc_->addBody(body("G.Base", base_, BodyKind::kKinematic));
+    const BodyId l1 = dwc_->addBody(body("G.J1", j1_, BodyKind::kRigid));
+    const BodyId l2 = dwc_->addBody(body("G.J2", j2_, BodyKind::kRigid));
     RigidDevice device;
     device.device = dwc_->workcell().findDevice("G");
     device.baseBody = base;
@@ -110,16 +112,16 @@ TEST_F(DynamicWorkCellTest, RigidlyAttachedFramesStopAtJointsMovablesDafsAndBodi
 }
 
 TEST_F(DynamicWorkCellTest, BodiesDevicesAndControllersAreFoundByName) {
-  const int object = dwc_->addBody(body("Object", object_, BodyKind::kRigid));
+  const BodyId object = dwc_->addBody(body("Object", object_, BodyKind::kRigid));
   EXPECT_EQ(dwc_->bodies()[0].geometryFrames, (std::vector<FrameId>{object_, marker_}));
   EXPECT_EQ(dwc_->bodyOfFrame(marker_), object);
-  EXPECT_EQ(dwc_->bodyOfFrame(daf_), -1);
-  const int device = addGripper();
+  EXPECT_EQ(dwc_->bodyOfFrame(daf_), BodyId::none());
+  const DeviceId device = addGripper();
   EXPECT_EQ(dwc_->findDevice("G"), device);
-  EXPECT_EQ(dwc_->findDevice("H"), -1);
-  EXPECT_EQ(dwc_->bodies()[static_cast<std::size_t>(dwc_->findBody("G.J1"))].device, device);
+  EXPECT_EQ(dwc_->findDevice("H"), DeviceId::none());
+  EXPECT_EQ(dwc_->body(dwc_->findBody("G.J1")).device, device);
   EXPECT_EQ(dwc_->bodyOfFrame(tip_), dwc_->findBody("G.J1"));
-  EXPECT_EQ(dwc_->bodies()[static_cast<std::size_t>(dwc_->findBody("G.Base"))].device, device);
+  EXPECT_EQ(dwc_->body(dwc_->findBody("G.Base")).device, device);
   PDController pd;
   pd.name = "GraspController";
   pd.device = device;
@@ -128,7 +130,7 @@ TEST_F(DynamicWorkCellTest, BodiesDevicesAndControllersAreFoundByName) {
   dwc_->addController(pd);
   ASSERT_NE(dwc_->findController("GraspController"), nullptr);
   EXPECT_EQ(dwc_->findController("Other"), nullptr);
-  EXPECT_EQ(dwc_->findBody("Nothing"), -1);
+  EXPECT_EQ(dwc_->findBody("Nothing"), BodyId::none());
 }
 
 TEST_F(DynamicWorkCellTest, AddBodyRejectsWhatCannotBeSimulated) {
@@ -153,7 +155,7 @@ TEST_F(DynamicWorkCellTest, AddBodyRejectsWhatCannotBeSimulated) {
   EXPECT_THROW(dwc_->addBody(body("Table", table_, BodyKind::kKinematic)), std::invalid_argument);
   EXPECT_THROW(dwc_->addBody(body("Ghost", FrameId{99}, BodyKind::kFixed)), std::invalid_argument);
   b = body("Object", object_, BodyKind::kRigid);
-  b.device = 0;
+  b.device = DeviceId(0);
   EXPECT_THROW(dwc_->addBody(b), std::invalid_argument);
 
   dwc_->addBody(body("Object", object_, BodyKind::kRigid));
@@ -165,13 +167,13 @@ TEST_F(DynamicWorkCellTest, AddBodyRejectsWhatCannotBeSimulated) {
 }
 
 TEST_F(DynamicWorkCellTest, AddDeviceChecksLimitsAndLinks) {
-  const int base = dwc_->addBody(body("G.Base", base_, BodyKind::kKinematic));
-  const int l1 = dwc_->addBody(body("G.J1", j1_, BodyKind::kRigid));
-  const int object = dwc_->addBody(body("Object", object_, BodyKind::kRigid));
+  const BodyId base = dwc_->addBody(body("G.Base", base_, BodyKind::kKinematic));
+  const BodyId l1 = dwc_->addBody(body("G.J1", j1_, BodyKind::kRigid));
+  const BodyId object = dwc_->addBody(body("Object", object_, BodyKind::kRigid));
   RigidDevice d;
   d.device = dwc_->workcell().findDevice("G");
   d.baseBody = base;
-  d.linkBodies = {l1, -1};
+  d.linkBodies = {l1, BodyId::none()};
   d.forceLimits = {2.0};  // J2 (dependent) needs one too
   EXPECT_THROW(dwc_->addDevice(d), std::invalid_argument);
   d.forceLimits = {2.0, -1.0};
@@ -179,23 +181,23 @@ TEST_F(DynamicWorkCellTest, AddDeviceChecksLimitsAndLinks) {
   d.forceLimits = {2.0, 3.0};
   d.linkBodies = {l1};
   EXPECT_THROW(dwc_->addDevice(d), std::invalid_argument);
-  d.linkBodies = {object, -1};  // not on J1's frame
+  d.linkBodies = {object, BodyId::none()};  // not on J1's frame
   EXPECT_THROW(dwc_->addDevice(d), std::invalid_argument);
-  d.linkBodies = {-1, l1};
+  d.linkBodies = {BodyId::none(), l1};
   EXPECT_THROW(dwc_->addDevice(d), std::invalid_argument);
-  d.linkBodies = {l1, -1};
-  d.baseBody = 7;
+  d.linkBodies = {l1, BodyId::none()};
+  d.baseBody = BodyId(7);
   EXPECT_THROW(dwc_->addDevice(d), std::invalid_argument);
   d.baseBody = base;
   RigidDevice foreign = d;
   foreign.device = nullptr;
   EXPECT_THROW(dwc_->addDevice(foreign), std::invalid_argument);
-  EXPECT_EQ(dwc_->addDevice(d), 0);
+  EXPECT_EQ(dwc_->addDevice(d), DeviceId(0));
   EXPECT_THROW(dwc_->addDevice(d), std::invalid_argument);  // added twice
 }
 
 TEST_F(DynamicWorkCellTest, AddControllerChecksGainsAgainstTheDof) {
-  const int device = addGripper();
+  const DeviceId device = addGripper();
   PDController pd;
   pd.name = "pd";
   pd.device = device;
@@ -211,7 +213,7 @@ TEST_F(DynamicWorkCellTest, AddControllerChecksGainsAgainstTheDof) {
   pd.timeStep = 0.0;
   EXPECT_THROW(dwc_->addController(pd), std::invalid_argument);
   pd.timeStep = 0.01;
-  pd.device = 3;
+  pd.device = DeviceId(3);
   EXPECT_THROW(dwc_->addController(pd), std::invalid_argument);
   pd.device = device;
   EXPECT_NO_THROW(dwc_->addController(pd));

@@ -15,6 +15,7 @@ namespace {
 
 using rw::common::Diagnostic;
 using rwsim::dynamics::Body;
+using rwsim::dynamics::BodyId;
 using rwsim::dynamics::BodyKind;
 using rwsim::dynamics::DynamicWorkCell;
 
@@ -52,9 +53,9 @@ std::size_t repairCount(const std::vector<Diagnostic>& warnings) {
 }
 
 const Body& bodyNamed(const DynamicWorkCell& dwc, const std::string& name) {
-  const int index = dwc.findBody(name);
-  EXPECT_GE(index, 0) << "no body " << name;
-  return dwc.bodies().at(static_cast<std::size_t>(std::max(index, 0)));
+  const auto index = dwc.findBody(name);
+  EXPECT_TRUE(index.valid()) << "no body " << name;
+  return dwc.bodies().at(index.valid() ? index.index() : 0);
 }
 
 /// Expects a mass, a COG and a symmetric positive definite inertia about it.
@@ -102,16 +103,16 @@ TEST(DynamicWorkCellCompat, SdhTestSceneLoadsWithRepairedClosingTags) {
   EXPECT_EQ(materials.defaultObjectType(), "hardObj");
   EXPECT_DOUBLE_EQ(materials.restitution("softObj", "hardObj"), 0.0);
 
-  const int deviceIndex = dwc->findDevice("SchunkHand");
-  ASSERT_GE(deviceIndex, 0);
-  const auto& device = dwc->devices()[static_cast<std::size_t>(deviceIndex)];
-  const Body& base = dwc->bodies().at(static_cast<std::size_t>(device.baseBody));
+  const auto deviceIndex = dwc->findDevice("SchunkHand");
+  ASSERT_TRUE(deviceIndex.valid());
+  const auto& device = dwc->device(deviceIndex);
+  const Body& base = dwc->body(device.baseBody);
   EXPECT_EQ(base.name, "SchunkHand.Base");
   EXPECT_EQ(base.kind, BodyKind::kKinematic);
   EXPECT_EQ(base.material, "Plastic");
   ASSERT_EQ(device.linkBodies.size(), 8u);
   EXPECT_TRUE(std::none_of(device.linkBodies.begin(), device.linkBodies.end(),
-                           [](int b) { return b < 0; }));
+                           [](BodyId b) { return !b.valid(); }));
   EXPECT_EQ(device.forceLimits, (std::vector<double>{2.1, 1.4, 2.1, 2.1, 1.4, 2.1, 2.1, 1.4}));
 
   const rw::math::Vector3D proximal(-3.4639e-5, 0.0440533, 0.000589354);
@@ -143,11 +144,11 @@ TEST(DynamicWorkCellCompat, Pg70TestSceneLoads) {
   const auto dwc = loadCompat(data / "devices/PG70/test_scene.dwc.xml", &warnings);
   ASSERT_TRUE(dwc);
   EXPECT_EQ(repairLines(warnings, "PG70/PG70.dwc.xml"), (std::vector<int>{24, 29}));
-  const int deviceIndex = dwc->findDevice("PG70");
-  ASSERT_GE(deviceIndex, 0);
-  const auto& device = dwc->devices()[static_cast<std::size_t>(deviceIndex)];
+  const auto deviceIndex = dwc->findDevice("PG70");
+  ASSERT_TRUE(deviceIndex.valid());
+  const auto& device = dwc->device(deviceIndex);
   EXPECT_EQ(device.forceLimits, (std::vector<double>{40.0, 50.0}));
-  EXPECT_EQ(dwc->bodies().at(static_cast<std::size_t>(device.baseBody)).kind, BodyKind::kKinematic);
+  EXPECT_EQ(dwc->body(device.baseBody).kind, BodyKind::kKinematic);
   for (const char* link : {"PG70.RightFinger", "PG70.LeftFinger"}) {
     const Body& body = bodyNamed(*dwc, link);
     EXPECT_DOUBLE_EQ(body.mass.mass, 0.1);
@@ -176,7 +177,7 @@ TEST(DynamicWorkCellCompat, Pg70BoxSceneHasAnalyticBoxInertia) {
   EXPECT_NEAR(object.mass.inertia(0, 1), 0.0, 1e-15);
   EXPECT_NEAR(diagonal.x(), 1.1333333e-4, 1e-10);
   EXPECT_NEAR(diagonal.z(), 6.0e-5, 1e-12);
-  EXPECT_GE(dwc->findDevice("PG70"), 0);
+  EXPECT_TRUE(dwc->findDevice("PG70").valid());
   EXPECT_EQ(bodyNamed(*dwc, "PG70.Base").kind, BodyKind::kKinematic);
 }
 

@@ -42,9 +42,9 @@ class DynamicWorkCellLoader : public ::testing::Test {
   }
 
   const Body& body(const DynamicWorkCell& dwc, const std::string& name) const {
-    const int index = dwc.findBody(name);
-    EXPECT_GE(index, 0) << name;
-    return dwc.bodies().at(static_cast<std::size_t>(std::max(index, 0)));
+    const auto index = dwc.findBody(name);
+    EXPECT_TRUE(index.valid()) << name;
+    return dwc.bodies().at(index.valid() ? index.index() : 0);
   }
 
   SceneDir scene_;
@@ -88,13 +88,13 @@ TEST_F(DynamicWorkCellLoader, LoadsBodiesDevicesAndControllers) {
   EXPECT_NEAR(object.mass.inertia(1, 1), iyy, 1e-14);
   EXPECT_DOUBLE_EQ(std::get<double>(object.properties.at("LinearDamping").value), 0.1);
 
-  const int device = dwc->findDevice("SchunkHand");
-  ASSERT_GE(device, 0);
-  const auto& hand = dwc->devices()[static_cast<std::size_t>(device)];
+  const auto device = dwc->findDevice("SchunkHand");
+  ASSERT_TRUE(device.valid());
+  const auto& hand = dwc->device(device);
   EXPECT_EQ(hand.forceLimits, std::vector<double>(8, 2.0));
-  EXPECT_EQ(dwc->bodies()[static_cast<std::size_t>(hand.baseBody)].name, "SchunkHand.Base");
+  EXPECT_EQ(dwc->body(hand.baseBody).name, "SchunkHand.Base");
   for (std::size_t j = 0; j < 8; ++j) {
-    const Body& link = dwc->bodies()[static_cast<std::size_t>(hand.linkBodies[j])];
+    const Body& link = dwc->body(hand.linkBodies[j]);
     EXPECT_EQ(link.frame, hand.device->joints()[j]);
     EXPECT_EQ(link.device, device);
     EXPECT_GT(link.mass.inertia.determinant(), 0.0);
@@ -215,7 +215,7 @@ TEST_F(DynamicWorkCellLoader, IncludesAreRelativeToTheTopLevelFileWithAFallback)
   const auto dwc = load(SceneDir::dwc("<Include file=\"sub/a.xml\"/>\n"));
   ASSERT_TRUE(dwc);
   EXPECT_DOUBLE_EQ(dwc->gravity().z(), -9.8);
-  EXPECT_GE(dwc->findBody("Table"), 0);
+  EXPECT_TRUE(dwc->findBody("Table").valid());
   const auto fallback = warningsWith("relative to the including file");
   ASSERT_EQ(fallback.size(), 1u);
   EXPECT_EQ(fallback[0].line, 3);
@@ -248,7 +248,7 @@ TEST_F(DynamicWorkCellLoader, RefBaseReusesABody) {
   ASSERT_TRUE(dwc);
   const auto& hand = dwc->devices().at(0);
   EXPECT_EQ(hand.baseBody, dwc->findBody("SchunkHand.Base"));
-  EXPECT_EQ(dwc->bodies()[static_cast<std::size_t>(hand.baseBody)].material, "Rubber");
+  EXPECT_EQ(dwc->body(hand.baseBody).material, "Rubber");
 }
 
 TEST_F(DynamicWorkCellLoader, CheckReportsWithoutThrowing) {

@@ -44,17 +44,17 @@ void expectProjectMaterials(const DynamicWorkCell& dwc) {
 
 void expectHand(const DynamicWorkCell& dwc, const std::string& name,
                 const std::vector<double>& forceLimits, int dof) {
-  const int index = dwc.findDevice(name);
-  ASSERT_GE(index, 0);
-  const auto& device = dwc.devices()[static_cast<std::size_t>(index)];
+  const auto index = dwc.findDevice(name);
+  ASSERT_TRUE(index.valid());
+  const auto& device = dwc.device(index);
   EXPECT_EQ(device.forceLimits, forceLimits);
-  const auto& base = dwc.bodies()[static_cast<std::size_t>(device.baseBody)];
+  const auto& base = dwc.body(device.baseBody);
   EXPECT_EQ(base.name, name + ".Base");
   EXPECT_EQ(base.kind, BodyKind::kKinematic);
   EXPECT_EQ(base.material, "Finger");
-  for (const int link : device.linkBodies) {
-    ASSERT_GE(link, 0);
-    const auto& body = dwc.bodies()[static_cast<std::size_t>(link)];
+  for (const auto link : device.linkBodies) {
+    ASSERT_TRUE(link.valid());
+    const auto& body = dwc.body(link);
     SCOPED_TRACE(body.name);
     EXPECT_EQ(body.kind, BodyKind::kRigid);
     EXPECT_DOUBLE_EQ(body.mass.mass, 0.1);
@@ -77,7 +77,7 @@ TEST(ProjectHands, SdhDynamicsLoad) {
   expectHand(*dwc, "SchunkHand", {2.1, 1.4, 2.1, 2.1, 1.4, 2.1, 2.1, 1.4}, 7);
   EXPECT_DOUBLE_EQ(dwc->gravity().z(), -9.81);
   // The thumb's base block is rigid with the palm: it belongs to the base body.
-  const int base = dwc->findBody("SchunkHand.Base");
+  const auto base = dwc->findBody("SchunkHand.Base");
   EXPECT_EQ(dwc->bodyOfFrame(dwc->workcell().findFrame("SchunkHand.F1Base")), base);
   EXPECT_EQ(dwc->bodyOfFrame(dwc->workcell().findFrame("SchunkHand.F2Joint1Rev")),
             dwc->findBody("SchunkHand.F2Joint1"));
@@ -89,7 +89,7 @@ TEST(ProjectHands, Pg70DynamicsLoad) {
   expectProjectMaterials(*dwc);
   expectHand(*dwc, "PG70", {40.0, 50.0}, 1);
   // A jaw box 0.03 x 0.07 x 0.015 at (0, 0.035, -+0.002) in its joint frame.
-  const auto& jaw = dwc->bodies()[static_cast<std::size_t>(dwc->findBody("PG70.RightFinger"))];
+  const auto& jaw = dwc->body(dwc->findBody("PG70.RightFinger"));
   EXPECT_VECTOR_NEAR(jaw.mass.cog, rw::math::Vector3D(0, 0.035, -0.002), 1e-12);
   EXPECT_NEAR(jaw.mass.inertia(2, 2), 0.1 / 12 * (0.03 * 0.03 + 0.07 * 0.07), 1e-15);
 }
@@ -121,7 +121,7 @@ TEST(ProjectHands, ASceneInAnotherFolderIncludesTheHandDynamicsAndTheMaterials) 
   <Include file=")" + scenes + R"(/hands/pg70/pg70_dynamics.dwc.xml"/>
 </DynamicWorkcell>)"));
   ASSERT_TRUE(dwc);
-  const auto& cup = dwc->bodies()[static_cast<std::size_t>(dwc->findBody("Cup"))];
+  const auto& cup = dwc->body(dwc->findBody("Cup"));
   EXPECT_EQ(cup.material, "Object");
   EXPECT_DOUBLE_EQ(dwc->materials().mu(cup.material, "Finger"), 0.6);
   expectHand(*dwc, "PG70", {40.0, 50.0}, 1);

@@ -32,8 +32,8 @@ TEST(SimulatorCompat, RobWorkPg70BoxSceneSimulatesTwoSeconds) {
   REQUIRE_COMPAT_DATA(data);
   auto dwc = rwsim::loaders::loadDynamicWorkCell(data / "scene/grasping/pg70_box.dwc.xml");
   Simulator sim(*dwc, rwsim::simulator::optionsFromEngineProperties(*dwc));
-  const int object = dwc->findBody("object");
-  ASSERT_GE(object, 0);
+  const auto object = dwc->findBody("object");
+  ASSERT_TRUE(object.valid());
   while (sim.time() < 2.0 - 1e-9) {
     ASSERT_EQ(sim.step(), StepStatus::kOk) << "t = " << sim.time() << ": " << sim.failureDetail();
   }

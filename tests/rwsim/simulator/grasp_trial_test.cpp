@@ -101,7 +101,7 @@ TEST(GraspTrialGripper, GraspBesideTheBoxMisses) {
   const GraspTrial trial(*dwc, gripperSetup());
   const auto r = trial.run(gripperGrasp(at(0.2, 0, 0.06)), dwc->workcell().defaultState());
   EXPECT_EQ(r.outcome, GraspOutcome::kMissed) << describe(r);
-  EXPECT_EQ(r.object, -1);
+  EXPECT_FALSE(r.object.valid());
   EXPECT_NEAR(r.qGrasp[0], 0.04, 1e-3);
 }
 
@@ -209,7 +209,7 @@ TEST_F(SdhBoxTrial, CentredCylinderGraspIsStable) {
   EXPECT_GT(r.qGwsUnit, 0.0);
   // The trial's columns are gwsQualities() of its contacts (box: centre of mass at its centre,
   // r its half diagonal).
-  const auto& box = dwc_->bodies()[static_cast<std::size_t>(r.object)];
+  const auto& box = dwc_->body(r.object);
   const double radius = std::sqrt(0.03 * 0.03 * 2 + 0.05 * 0.05);
   const auto q = rwsim::simulator::gwsQualities(r.contacts, box.mass.cog, radius);
   EXPECT_NEAR(q.qGws, r.qGws, 1e-9 * r.qGws);
@@ -227,7 +227,7 @@ TEST_F(SdhBoxTrial, LazyHullGivesTheWholeHullsValuesOnRealContacts) {
         trial().run(cylinderGrasp(Vector3D(dx, 0, 0.05)), dwc_->workcell().defaultState());
     if (r.outcome != GraspOutcome::kStable && r.outcome != GraspOutcome::kSlipped) continue;
     ++held;
-    const auto& box = dwc_->bodies()[static_cast<std::size_t>(r.object)];
+    const auto& box = dwc_->body(r.object);
     const double radius = std::sqrt(0.03 * 0.03 * 2 + 0.05 * 0.05);
     const auto a = rwsim::simulator::gwsQualities(r.contacts, box.mass.cog, radius);
     const auto b = rwsim::simulator::gwsQualities(r.contacts, box.mass.cog, radius, whole);
@@ -298,7 +298,7 @@ rwsim::simulator::TrialContact pushing(const Vector3D& position, const Vector3D&
   c.normalForce = force.norm();
   c.force = force;
   c.mu = 0.5;
-  c.handBody = 3;
+  c.handBody = rwsim::dynamics::BodyId(3);
   return c;
 }
 

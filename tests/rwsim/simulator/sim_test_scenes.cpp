@@ -136,7 +136,7 @@ void SceneBuilder::addGripper(const Transform3D& X_W, double gap, double force) 
   const rw::models::Device& device = wc.addDevice(spec);
   const rw::models::Device* dev = &device;
   pending_->steps.push_back([=](DynamicWorkCell& dwc) {
-    const int b = dwc.addBody(makeBody("Gripper.Base", base, BodyKind::kKinematic, "Finger"));
+    const auto b = dwc.addBody(makeBody("Gripper.Base", base, BodyKind::kKinematic, "Finger"));
     rwsim::dynamics::RigidDevice rd;
     rd.device = dev;
     rd.baseBody = b;
@@ -148,7 +148,7 @@ void SceneBuilder::addGripper(const Transform3D& X_W, double gap, double force) 
       rd.linkBodies.push_back(dwc.addBody(link));
       rd.forceLimits.push_back(force);
     }
-    const int d = dwc.addDevice(rd);
+    const auto d = dwc.addDevice(rd);
     rwsim::dynamics::PDController pd;
     pd.name = "GraspController";
     pd.device = d;
@@ -188,7 +188,7 @@ void SceneBuilder::addFinger(const Transform3D& X_W, double lever, double torque
   spec.ends = {j};
   const rw::models::Device* dev = &wc.addDevice(spec);
   pending_->steps.push_back([=](DynamicWorkCell& dwc) {
-    const int b = dwc.addBody(makeBody("Finger.Base", base, BodyKind::kFixed, "Finger"));
+    const auto b = dwc.addBody(makeBody("Finger.Base", base, BodyKind::kFixed, "Finger"));
     Body link = makeBody("Finger.Joint", j, BodyKind::kRigid, "Finger");
     link.mass.mass = 0.1;
     link.mass.cog = Vector3D(lever / 2, 0, 0);

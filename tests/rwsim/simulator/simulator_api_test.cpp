@@ -19,6 +19,8 @@ namespace {
 
 using rw::math::Transform3D;
 using rw::math::Vector3D;
+using rwsim::dynamics::BodyId;
+using rwsim::dynamics::DeviceId;
 using rwsim::simulator::GraspOutcome;
 using rwsim::simulator::kOutcomeTable;
 using rwsim::simulator::Simulator;
@@ -72,7 +74,7 @@ TEST(SimulatorApi, NonFiniteStateIsNumericalFailure) {
   const auto dwc = scene.build();
   Simulator sim(*dwc);
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  sim.setKinematicVelocity(0, Vector3D(nan, 0, 0), Vector3D::Zero());
+  sim.setKinematicVelocity(BodyId(0), Vector3D(nan, 0, 0), Vector3D::Zero());
   EXPECT_EQ(sim.step(), StepStatus::kNumericalFailure);
   EXPECT_NE(sim.failureDetail().find("Gripper.Base"), std::string::npos) << sim.failureDetail();
   // Caught before ODE sees it (ODE's own assertions would otherwise fire inside the step); a
@@ -99,16 +101,16 @@ TEST(SimulatorApi, KinematicBodyFollowsItsVelocity) {
   scene.addGripper(at(0, 0, 1), 0.05, 10.0);
   const auto dwc = scene.build();
   Simulator sim(*dwc);
-  const int base = dwc->findBody("Gripper.Base");
+  const auto base = dwc->findBody("Gripper.Base");
   sim.setKinematicVelocity(base, Vector3D(0, 0, 0.1), Vector3D(0, 0, 0.5));
   while (sim.time() < 1.0 - 1e-9) ASSERT_EQ(sim.step(), StepStatus::kOk);
   const Transform3D X = sim.bodyPose(base);
   EXPECT_NEAR(X.translation().z(), 1.1, 1e-9);
   EXPECT_NEAR(Eigen::AngleAxisd(X.linear()).angle(), 0.5, 1e-6);
   // The jaws ride along on their motors (held at q = 0 against gravity).
-  const int left = dwc->findBody("Gripper.Left");
+  const auto left = dwc->findBody("Gripper.Left");
   EXPECT_NEAR(sim.bodyPose(left).translation().z(), 1.1, 1e-3);
-  EXPECT_LT(sim.jointPositions(0).cwiseAbs().maxCoeff(), 1e-3);
+  EXPECT_LT(sim.jointPositions(DeviceId(0)).cwiseAbs().maxCoeff(), 1e-3);
   EXPECT_THROW(sim.setKinematicVelocity(left, Vector3D::Zero(), Vector3D::Zero()),
                std::invalid_argument);
 }
@@ -118,20 +120,30 @@ TEST(SimulatorApi, MotorsTrackVelocityAndRespectLimits) {
   scene.addGripper(Transform3D::Identity(), 0.05, 10.0);
   const auto dwc = scene.build(0.0);
   Simulator sim(*dwc);
-  sim.setMotorVelocityTargets(0, Eigen::Vector2d(0.02, -0.01));
+  sim.setMotorVelocityTargets(DeviceId(0), Eigen::Vector2d(0.02, -0.01));
   while (sim.time() < 0.5 - 1e-9) ASSERT_EQ(sim.step(), StepStatus::kOk);
-  const auto q = sim.jointPositions(0);
+  const auto q = sim.jointPositions(DeviceId(0));
   EXPECT_NEAR(q[0], 0.01, 1e-4);
   EXPECT_NEAR(q[1], 0.0, 1e-3);  // the lower stop at 0 holds
-  EXPECT_NEAR(sim.jointVelocities(0)[0], 0.02, 1e-4);
-  const int left = dwc->findBody("Gripper.Left");
+  EXPECT_NEAR(sim.jointVelocities(DeviceId(0))[0], 0.02, 1e-4);
+  const auto left = dwc->findBody("Gripper.Left");
   EXPECT_NEAR(sim.bodyPose(left).translation().y(), -0.04, 1e-4);
   // The state carries the joint values.
   const auto& device = *dwc->devices()[0].device;
   EXPECT_NEAR(device.getQ(sim.state())[0], q[0], 1e-12);
-  EXPECT_THROW(sim.setMotorVelocityTargets(0, Eigen::VectorXd::Zero(3)), std::invalid_argument);
-  EXPECT_THROW(sim.setMotorForceLimits(0, Eigen::Vector2d(1.0, -1.0)), std::invalid_argument);
-  EXPECT_THROW(sim.jointPositions(5), std::out_of_range);
+  EXPECT_THROW(sim.setMotorVelocityTargets(DeviceId(0), Eigen::VectorXd::Zero(3)),
+               std::invalid_argument);
+  EXPECT_THROW(sim.setMotorForceLimits(DeviceId(0), Eigen::Vector2d(1.0, -1.0)),
+               std::invalid_argument);
+  EXPECT_THROW(sim.jointPositions(DeviceId(5)), std::out_of_range);
+  EXPECT_THROW(sim.jointPositions(DeviceId::none()), std::out_of_range);
+  EXPECT_THROW(sim.bodyPose(BodyId::none()), std::out_of_range);
+  try {
+    sim.bodyLinearVelocity(BodyId(99));
+    ADD_FAILURE() << "no exception for body 99";
+  } catch (const std::out_of_range& e) {
+    EXPECT_STREQ(e.what(), "Simulator: no body 99");
+  }
 }
 
 TEST(SimulatorApi, ForceLimitsBoundTheMotors) {
@@ -139,18 +151,18 @@ TEST(SimulatorApi, ForceLimitsBoundTheMotors) {
   scene.addGripper(Transform3D::Identity(), 0.05, 10.0);
   const auto dwc = scene.build(0.0);
   Simulator sim(*dwc);
-  sim.setMotorForceLimits(0, Eigen::Vector2d(0.01, 100.0));
-  sim.setMotorVelocityTargets(0, Eigen::Vector2d(1.0, 1.0));
+  sim.setMotorForceLimits(DeviceId(0), Eigen::Vector2d(0.01, 100.0));
+  sim.setMotorVelocityTargets(DeviceId(0), Eigen::Vector2d(1.0, 1.0));
   sim.step();
   // 0.01 N on 0.1 kg for one 5 ms step: 0.0005 m/s; 100 N could give 5 m/s, so the strong jaw
   // reaches its 1 m/s target at once (both start on their lower stops).
-  EXPECT_NEAR(sim.jointVelocities(0)[0], 0.0005, 1e-5);
-  EXPECT_NEAR(sim.jointVelocities(0)[1], 1.0, 1e-5);
-  sim.setMotorForceLimits(0, Eigen::Vector2d(10.0, 10.0));
-  sim.setMotorVelocityTargets(0, Eigen::Vector2d(0.0, 0.0));
+  EXPECT_NEAR(sim.jointVelocities(DeviceId(0))[0], 0.0005, 1e-5);
+  EXPECT_NEAR(sim.jointVelocities(DeviceId(0))[1], 1.0, 1e-5);
+  sim.setMotorForceLimits(DeviceId(0), Eigen::Vector2d(10.0, 10.0));
+  sim.setMotorVelocityTargets(DeviceId(0), Eigen::Vector2d(0.0, 0.0));
   sim.step();
-  EXPECT_NEAR(sim.jointVelocities(0)[0], 0.0, 1e-6);
-  EXPECT_NEAR(sim.jointVelocities(0)[1], 0.5, 1e-5);  // 10 N stop 0.5 m/s per step
+  EXPECT_NEAR(sim.jointVelocities(DeviceId(0))[0], 0.0, 1e-6);
+  EXPECT_NEAR(sim.jointVelocities(DeviceId(0))[1], 0.5, 1e-5);  // 10 N stop 0.5 m/s per step
 }
 
 TEST(SimulatorApi, RevoluteJointValuesDoNotWrapAtPi) {
@@ -158,9 +170,9 @@ TEST(SimulatorApi, RevoluteJointValuesDoNotWrapAtPi) {
   scene.addFinger(Transform3D::Identity(), 0.1, 10.0, false);
   const auto dwc = scene.build(0.0);
   Simulator sim(*dwc);
-  sim.setMotorVelocityTargets(0, Eigen::VectorXd::Constant(1, 2.0));
+  sim.setMotorVelocityTargets(DeviceId(0), Eigen::VectorXd::Constant(1, 2.0));
   while (sim.time() < 3.0 - 1e-9) ASSERT_EQ(sim.step(), StepStatus::kOk);
-  EXPECT_NEAR(sim.jointPositions(0)[0], 6.0, 1e-3);  // past pi and 2 pi
+  EXPECT_NEAR(sim.jointPositions(DeviceId(0))[0], 6.0, 1e-3);  // past pi and 2 pi
   EXPECT_NEAR(dwc->devices()[0].device->getQ(sim.state())[0], 6.0, 1e-3);
 }
 
@@ -176,8 +188,8 @@ std::vector<double> runSlide() {
   while (sim.time() < 1.0 - 1e-9) {
     if (sim.step() != StepStatus::kOk) break;
   }
-  for (int b = 0; b < 3; ++b) {
-    const Transform3D p = sim.bodyPose(b);
+  for (std::size_t b = 0; b < 3; ++b) {
+    const Transform3D p = sim.bodyPose(BodyId(b));
     out.insert(out.end(), p.data(), p.data() + 16);
   }
   return out;

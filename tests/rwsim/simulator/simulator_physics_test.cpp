@@ -16,6 +16,7 @@ namespace {
 
 using rw::math::Transform3D;
 using rw::math::Vector3D;
+using rwsim::dynamics::BodyId;
 using rwsim::simulator::Simulator;
 using rwsim::simulator::StepStatus;
 using visgrab::test::sim::kG;
@@ -36,7 +37,7 @@ void runUntil(Simulator& sim, double t) {
 }
 
 // Sum of the contact forces on body `b` in the last step.
-Vector3D forceOn(const Simulator& sim, int b) {
+Vector3D forceOn(const Simulator& sim, BodyId b) {
   Vector3D f = Vector3D::Zero();
   for (const auto& bc : sim.contacts()) {
     for (const auto& p : bc.points) {
@@ -53,7 +54,7 @@ TEST(SimulatorPhysics, BoxRestsOnTable) {
   scene.addBox("Box", at(0, 0, 0.05), Vector3D(0.1, 0.1, 0.1), 1.0);
   const auto dwc = scene.build();
   Simulator sim(*dwc);
-  const int box = dwc->findBody("Box");
+  const auto box = dwc->findBody("Box");
   runUntil(sim, 1.0);
   EXPECT_NEAR(sim.bodyPose(box).translation().z(), 0.05, 1e-3);
   EXPECT_NEAR(sim.bodyPose(box).translation().x(), 0.0, 1e-3);
@@ -63,8 +64,7 @@ TEST(SimulatorPhysics, BoxRestsOnTable) {
   EXPECT_NEAR(f.z(), 1.0 * kG, 0.02 * kG);
   EXPECT_NEAR(f.head<2>().norm(), 0.0, 0.01);
   // The state follows the bodies.
-  const auto& frame =
-      dwc->workcell().frames().frame(dwc->bodies()[static_cast<std::size_t>(box)].frame);
+  const auto& frame = dwc->workcell().frames().frame(dwc->body(box).frame);
   EXPECT_TRANSFORM_NEAR(frame.movableTransform(sim.state()), sim.bodyPose(box), 1e-12);
 }
 
@@ -82,14 +82,14 @@ Slope slope(double angle) {
 }
 
 // Distance slid down the slope (along the slope's -x... the downhill direction).
-double slid(const Simulator& sim, const Slope& s, int block) {
+double slid(const Simulator& sim, const Slope& s, BodyId block) {
   const Vector3D p = s.X_W_slope.inverse() * sim.bodyPose(block).translation();
   return p.x();  // Ry(+angle) tilts +x downwards
 }
 
 // The acceleration down the slope from the distances slid at 0.2 s and 0.8 s (s = a t^2 / 2
 // from rest), running `sim` to 0.8 s.
-double slideAcceleration(Simulator& sim, const Slope& s, int body) {
+double slideAcceleration(Simulator& sim, const Slope& s, BodyId body) {
   runUntil(sim, 0.2);
   const double s1 = slid(sim, s, body);
   runUntil(sim, 0.8);
@@ -100,7 +100,7 @@ double slideAcceleration(Simulator& sim, const Slope& s, int body) {
 // Expects `body` to stay put on the slope for 1 s: less than 1 mm slid, slower than 1 mm/s.
 void expectStaysPut(const Slope& s, const std::string& body) {
   Simulator sim(*s.dwc);
-  const int b = s.dwc->findBody(body);
+  const auto b = s.dwc->findBody(body);
   runUntil(sim, 1.0);
   EXPECT_LT(std::abs(slid(sim, s, b)), 1e-3);
   EXPECT_LT(sim.bodyLinearVelocity(b).norm(), 1e-3);
@@ -112,7 +112,7 @@ TEST(SimulatorPhysics, BlockSlidesOnA25DegreeSlope) {
   const double angle = 25 * kDeg;
   const Slope s = slope(angle);
   Simulator sim(*s.dwc);
-  const int block = s.dwc->findBody("Block");
+  const auto block = s.dwc->findBody("Block");
   const double expected = kG * (std::sin(angle) - 0.4 * std::cos(angle));
   const double a = slideAcceleration(sim, s, block);
   EXPECT_NEAR(a, expected, 0.1 * expected);
@@ -148,7 +148,7 @@ Roller lyingCylinder(double r, double h, double x, double axial, double perp) {
 /// Acceleration down the slope from the distances at 0.2 s and 1 s (s = a t^2 / 2 from rest).
 double rollingAcceleration(const Slope& s, double* drift = nullptr) {
   Simulator sim(*s.dwc);
-  const int body = s.dwc->findBody("Roller");
+  const auto body = s.dwc->findBody("Roller");
   const Vector3D start = s.X_W_slope.inverse() * sim.bodyPose(body).translation();
   runUntil(sim, 0.2);
   const double s1 = slid(sim, s, body) - start.x();
@@ -230,7 +230,7 @@ TEST(SimulatorPhysics, StandingCylinderSlidesAboveTheFrictionAngle) {
   const double angle = 25 * kDeg;
   const Slope s = standingCylinder(angle);
   Simulator sim(*s.dwc);
-  const int body = s.dwc->findBody("Roller");
+  const auto body = s.dwc->findBody("Roller");
   const double expected = kG * (std::sin(angle) - 0.4 * std::cos(angle));
   const double a = slideAcceleration(sim, s, body);
   EXPECT_NEAR(a, expected, 0.1 * expected);
@@ -245,7 +245,7 @@ TEST(SimulatorPhysics, FreeFallFollowsGravity) {
   scene.addBox("Box", at(0, 0, 2.0), Vector3D(0.1, 0.1, 0.1), 1.0);
   const auto dwc = scene.build();
   Simulator sim(*dwc);
-  const int box = dwc->findBody("Box");
+  const auto box = dwc->findBody("Box");
   // Semi-implicit Euler falls (1 + dt/t) times too far: within 1% from t = 100 dt on.
   for (const double t : {0.55, 0.6, 0.8}) {
     runUntil(sim, t);
@@ -262,7 +262,7 @@ TEST(SimulatorPhysics, DroppedBoxDoesNotRebound) {
   scene.addBox("Box", at(0, 0, z0), Vector3D(0.1, 0.1, 0.1), 1.0);
   const auto dwc = scene.build();
   Simulator sim(*dwc);
-  const int box = dwc->findBody("Box");
+  const auto box = dwc->findBody("Box");
   double highestAfterImpact = 0.0;
   bool impacted = false;
   while (sim.time() < 1.5) {
@@ -286,8 +286,8 @@ std::vector<double> pinchDrops(double force, const std::vector<double>& times) {
   scene.addGripper(at(0, 0, 0), 0.04, force);  // jaw faces touch the box
   const auto dwc = scene.build();
   Simulator sim(*dwc);
-  const int box = dwc->findBody("Box");
-  sim.setMotorVelocityTargets(0, Eigen::Vector2d(0.05, 0.05));
+  const auto box = dwc->findBody("Box");
+  sim.setMotorVelocityTargets(rwsim::dynamics::DeviceId(0), Eigen::Vector2d(0.05, 0.05));
   std::vector<double> drops;
   for (const double t : times) {
     runUntil(sim, t);
@@ -323,9 +323,9 @@ TEST(SimulatorPhysics, FingerAtItsTorqueLimitPressesWithTauOverLever) {
   scene.addTable("Plate", at(lever + 0.01, 0, -0.002 - 0.01), Vector3D(0.03, 0.05, 0.02));
   const auto dwc = scene.build(0.0);  // no gravity: only the motor loads the plate
   Simulator sim(*dwc);
-  sim.setMotorVelocityTargets(0, Eigen::VectorXd::Constant(1, 1.0));
+  sim.setMotorVelocityTargets(rwsim::dynamics::DeviceId(0), Eigen::VectorXd::Constant(1, 1.0));
   runUntil(sim, 0.5);
-  const int plate = dwc->findBody("Plate");
+  const auto plate = dwc->findBody("Plate");
   const Vector3D f = forceOn(sim, plate);
   double arm = 0.0;
   for (const auto& bc : sim.contacts()) {
@@ -333,7 +333,7 @@ TEST(SimulatorPhysics, FingerAtItsTorqueLimitPressesWithTauOverLever) {
   }
   EXPECT_NEAR(arm, lever, 0.005);
   EXPECT_NEAR(-f.z(), torque / lever, 0.1 * torque / lever);
-  EXPECT_LT(std::abs(sim.jointVelocities(0)[0]), 1e-3);
+  EXPECT_LT(std::abs(sim.jointVelocities(rwsim::dynamics::DeviceId(0))[0]), 1e-3);
 }
 
 }  // namespace

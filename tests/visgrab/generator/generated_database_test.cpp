@@ -66,10 +66,10 @@ TEST(GeneratedDatabase, SettledObjectsAreAtRestAndDoNotPenetrate) {
     rwsim::simulator::Simulator sim(*dwc);
     sim.reset(dwc->workcell().defaultState());
     const auto& truth = database.groundTruth(entry.id);
-    std::vector<int> bodies;
+    std::vector<rwsim::dynamics::BodyId> bodies;
     for (const auto& pose : truth) {
-      const int body = dwc->findBody(db::objectName(pose.object));
-      ASSERT_GE(body, 0);
+      const auto body = dwc->findBody(db::objectName(pose.object));
+      ASSERT_TRUE(body.valid());
       // The scene file puts the object where the index says.
       EXPECT_TRANSFORM_NEAR(sim.bodyPose(body), pose.X_WO, 1e-6);
       bodies.push_back(body);

@@ -147,7 +147,7 @@ TEST_F(WrittenObjects, ExampleFilesLoad) {
       ASSERT_TRUE(wc);
       const auto dwc = rwsim::loaders::loadDynamicWorkCell(files_[i].dynamics, &warnings);
       ASSERT_TRUE(dwc);
-      EXPECT_GE(dwc->findBody(projectModels()[i].name), 0);
+      EXPECT_TRUE(dwc->findBody(projectModels()[i].name).valid());
     } catch (const rw::common::LoadError& e) {
       FAIL() << e.what();
     }
@@ -204,9 +204,9 @@ TEST_F(WrittenObjects, SceneWithEachObjectLoadsInBothLoaders) {
         }
       }
       const auto dwc = rwsim::loaders::loadDynamicWorkCell(dwcFile, &warnings);
-      const int index = dwc->findBody(model.name);
-      ASSERT_GE(index, 0) << model.name;
-      const auto& body = dwc->bodies()[static_cast<std::size_t>(index)];
+      const auto index = dwc->findBody(model.name);
+      ASSERT_TRUE(index.valid()) << model.name;
+      const auto& body = dwc->body(index);
       EXPECT_EQ(body.kind, rwsim::dynamics::BodyKind::kRigid);
       EXPECT_EQ(body.material, "Object");
       EXPECT_EQ(body.mass.mass, model.mass.mass);
@@ -217,7 +217,7 @@ TEST_F(WrittenObjects, SceneWithEachObjectLoadsInBothLoaders) {
           dwcText.find("<COG>"), dwcText.find("</Inertia>") + 10 - dwcText.find("<COG>"),
           "<EstimateInertia/>");
       const auto dwc2 = rwsim::loaders::loadDynamicWorkCellFromString(estimated, dwcFile);
-      const auto& body2 = dwc2->bodies()[static_cast<std::size_t>(dwc2->findBody(model.name))];
+      const auto& body2 = dwc2->body(dwc2->findBody(model.name));
       EXPECT_LT((body2.mass.cog - model.mass.cog).norm(), 1e-6) << model.name;
       EXPECT_LT((body2.mass.inertia - model.mass.inertia).norm(), 1e-5 * model.mass.inertia.norm())
           << model.name;

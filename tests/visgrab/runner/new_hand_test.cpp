@@ -190,7 +190,7 @@ TEST(NewHand, ASceneHoldingItsHandDirectlyIsUsedAsItIs) {
   entry.dynamicWorkcell = tmp.path() / "scene.dwc.xml";
   const auto jaws = visgrab::grasp::loadHandGraspSetup(gripper);
   const auto dwc = visgrab::runner::loadSceneWithHand(entry, *jaws);
-  EXPECT_GE(dwc->findDevice("Jaws"), 0);
+  EXPECT_TRUE(dwc->findDevice("Jaws").valid());
   const auto sdh =
       visgrab::grasp::loadHandGraspSetup(visgrab::test::sourceDir() / "scenes/hands/sdh");
   try {

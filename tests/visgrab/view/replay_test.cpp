@@ -95,9 +95,9 @@ TEST(TrialReplay, RecordsTheBenchmarksTrialAndItsThreeMoments) {
   EXPECT_LT((X_W_tcp.linear() - grasp.X_W_tcp.linear()).norm(), 1e-9);
 
   // After the lift the can is 10 cm up and hangs on the fingers: their forces carry its weight.
-  const int can = replay.result.object;
-  ASSERT_GE(can, 0);
-  const auto& body = session().dynamicWorkcell().bodies()[static_cast<std::size_t>(can)];
+  const auto can = replay.result.object;
+  ASSERT_TRUE(can.valid());
+  const auto& body = session().dynamicWorkcell().body(can);
   const double z0 =
       rw::kinematics::worldTransform(tree, replay.frames[0].state, body.frame).translation().z();
   const double z1 =

@@ -19,7 +19,9 @@ using rw::kinematics::FrameId;
 using rw::kinematics::FrameType;
 using rw::models::Device;
 using rwsim::dynamics::Body;
+using rwsim::dynamics::BodyId;
 using rwsim::dynamics::BodyKind;
+using rwsim::dynamics::DeviceId;
 using rwsim::dynamics::DynamicWorkCell;
 
 const char* frameTypeName(FrameType type) {
@@ -349,11 +351,14 @@ void Builder::addDevice(const PlannedDevice& d) {
   rwsim::dynamics::RigidDevice device;
   device.device = d.device;
   device.forceLimits = d.forceLimits;
-  device.linkBodies.assign(d.device->joints().size(), -1);
+  device.linkBodies.assign(d.device->joints().size(), BodyId::none());
   if (d.base->desc->tag == "RefBase") {
     device.baseBody = dwc_->findBody(d.base->desc->frame);
-    if (device.baseBody < 0) device.baseBody = dwc_->findBody(d.base->prefix + d.base->desc->frame);
-    if (device.baseBody < 0) error(*d.base->desc, "unknown body \"" + d.base->desc->frame + "\"");
+    if (!device.baseBody.valid()) {
+      device.baseBody = dwc_->findBody(d.base->prefix + d.base->desc->frame);
+    }
+    if (!device.baseBody.valid())
+      error(*d.base->desc, "unknown body \"" + d.base->desc->frame + "\"");
   } else {
     addBody(*d.base);
     device.baseBody = dwc_->findBody(tree().frame(d.base->frame).name());
@@ -365,7 +370,7 @@ void Builder::addDevice(const PlannedDevice& d) {
                                             joints.begin());
     device.linkBodies[j] = dwc_->findBody(tree().frame(link.frame).name());
   }
-  if (sink_.errorCount() != errorsBefore || device.baseBody < 0) {
+  if (sink_.errorCount() != errorsBefore || !device.baseBody.valid()) {
     failedDevices_.push_back(desc.name);
     return;
   }
@@ -381,8 +386,8 @@ void Builder::addController(const ControllerDesc& c) {
   if (std::find(failedDevices_.begin(), failedDevices_.end(), c.device) != failedDevices_.end()) {
     return;  // the device's own error says enough
   }
-  const int index = dwc_->findDevice(c.device);
-  if (index < 0) {
+  const DeviceId index = dwc_->findDevice(c.device);
+  if (!index.valid()) {
     const bool inWorkCell = dwc_->workcell().findDevice(c.device) != nullptr;
     sink_.error(c.location, c.element + ": " +
                                 (inWorkCell ? "device \"" + c.device + "\" has no <RigidDevice>"
@@ -390,7 +395,7 @@ void Builder::addController(const ControllerDesc& c) {
     return;
   }
   if (!c.gains) return;  // reported by the parser
-  const Device& device = *dwc_->devices()[static_cast<std::size_t>(index)].device;
+  const Device& device = *dwc_->device(index).device;
   const auto dof = static_cast<std::size_t>(device.dof());
   if (c.gains->size() != 2 * dof) {
     sink_.error(c.gainsLocation, "<PDParams>: expected " + std::to_string(2 * dof) +

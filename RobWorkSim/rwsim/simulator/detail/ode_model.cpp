@@ -73,7 +73,6 @@ void setDamping(dBodyID id, const dynamics::Body& body) {
   if (angular >= 0.0) dBodySetAngularDamping(id, angular);
 }
 
-// The body whose frame is the nearest proper ancestor of `frame`, or -1 (the static world).
 // Stop of a hinge measured from q0: ODE stops work within (-pi, pi); beyond that, no stop.
 double hingeStop(double limit, double q0, bool lower) {
   const double s = limit - q0;
@@ -112,7 +111,7 @@ SimJoint describeJoint(const rw::kinematics::FrameTree& tree, const dynamics::Ri
       throw std::invalid_argument("joint " + frame.name() + " depends on a joint outside " +
                                   rd.device->name());
     }
-    sj.owner = static_cast<int>(owner - joints.begin());
+    sj.owner = static_cast<std::size_t>(owner - joints.begin());
   } else {
     const auto& limits = frame.limits();
     sj.loStop =
@@ -177,7 +176,7 @@ void OdeWorld::createBodies(const dynamics::DynamicWorkCell& dwc,
   for (std::size_t i = 0; i < dwc.bodies().size(); ++i) {
     const dynamics::Body& body = dwc.bodies()[i];
     SimBody& sim = bodies_[i];
-    sim.index = static_cast<int>(i);
+    sim.bodyId = dynamics::BodyId(i);
     sim.kind = body.kind;
     sim.movableFrame = tree.frame(body.frame).type() == FrameType::kMovable;
     const Transform3D& X_W_frame = fk.worldTransform(body.frame);
@@ -216,29 +215,28 @@ void OdeWorld::createDevices(const dynamics::DynamicWorkCell& dwc,
                                   ": link bodies or force limits do not match its joints");
     }
     SimDevice& sim = devices_[d];
-    sim.active.assign(static_cast<std::size_t>(rd.device->dof()), -1);
+    sim.active.assign(static_cast<std::size_t>(rd.device->dof()), 0);
     for (std::size_t j = 0; j < joints.size(); ++j) {
       sim.joints.push_back(describeJoint(tree, rd, j, state));
       const SimJoint& sj = sim.joints.back();
-      if (sj.activeIndex >= 0)
-        sim.active[static_cast<std::size_t>(sj.activeIndex)] = static_cast<int>(j);
-      const int link = rd.linkBodies[j];
-      if (link < 0) continue;  // no link body: the joint is held at its current value
-      if (bodies_[static_cast<std::size_t>(link)].kind != dynamics::BodyKind::kRigid) {
+      if (sj.activeIndex >= 0) sim.active[static_cast<std::size_t>(sj.activeIndex)] = j;
+      const dynamics::BodyId link = rd.linkBodies[j];
+      if (!link.valid()) continue;  // no link body: the joint is held at its current value
+      if (bodies_[link.index()].kind != dynamics::BodyKind::kRigid) {
         throw std::invalid_argument("joint " + tree.frame(joints[j]).name() +
                                     ": its link body must be rigid");
       }
-      const int parent = dwc.bodyAbove(joints[j]);
+      const dynamics::BodyId parent = dwc.bodyAbove(joints[j]);
       attachJoint(sim.joints.back(), link, parent, fk.worldTransform(joints[j]),
                   tree.frame(joints[j]).isPassive());
     }
   }
 }
 
-void OdeWorld::attachJoint(SimJoint& sj, int link, int parent, const Transform3D& X_W_joint,
-                           bool passive) {
-  const dBodyID linkId = bodies_[static_cast<std::size_t>(link)].id;
-  const dBodyID parentId = parent >= 0 ? bodies_[static_cast<std::size_t>(parent)].id : nullptr;
+void OdeWorld::attachJoint(SimJoint& sj, dynamics::BodyId link, dynamics::BodyId parent,
+                           const Transform3D& X_W_joint, bool passive) {
+  const dBodyID linkId = bodies_[link.index()].id;
+  const dBodyID parentId = parent.valid() ? bodies_[parent.index()].id : nullptr;
   const Vector3D p = X_W_joint.translation();
   const Vector3D z = X_W_joint.linear().col(2);
   if (sj.revolute) {

@@ -2,6 +2,8 @@
 
 #include <ode/ode.h>
 
+#include <cstddef>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -15,8 +17,8 @@ namespace rwsim::simulator::detail {
 
 /// One body of the dynamic workcell as simulated.
 struct SimBody {
-  /// Index in DynamicWorkCell::bodies().
-  int index = -1;
+  /// The body in DynamicWorkCell::bodies().
+  dynamics::BodyId bodyId;
   /// How it moves.
   dynamics::BodyKind kind = dynamics::BodyKind::kFixed;
   /// The ODE body, placed at the centre of mass; null for fixed bodies.
@@ -57,8 +59,8 @@ struct SimJoint {
   double lastRelative = 0.0;
   /// DOF index of an active joint; -1 for dependent and passive joints.
   int activeIndex = -1;
-  /// For a dependent joint, the index of its owner in SimDevice::joints; else -1.
-  int owner = -1;
+  /// For a dependent joint, the index of its owner in SimDevice::joints.
+  std::optional<std::size_t> owner;
   /// Coupling gain of a dependent joint.
   double gain = 1.0;
   /// Coupling offset of a dependent joint.
@@ -74,7 +76,7 @@ struct SimDevice {
   /// Joints in Device::joints() order.
   std::vector<SimJoint> joints;
   /// DOF index -> index into joints.
-  std::vector<int> active;
+  std::vector<std::size_t> active;
 };
 
 /// An ODE world holding every body, joint and motor of a dynamic workcell in one State.
@@ -122,8 +124,8 @@ class OdeWorld {
   void createBodies(const dynamics::DynamicWorkCell& dwc, const rw::kinematics::State& state);
   void createDevices(const dynamics::DynamicWorkCell& dwc, const rw::kinematics::State& state);
   void destroy();
-  void attachJoint(SimJoint& joint, int link, int parent, const rw::math::Transform3D& X_W_joint,
-                   bool passive);
+  void attachJoint(SimJoint& joint, dynamics::BodyId link, dynamics::BodyId parent,
+                   const rw::math::Transform3D& X_W_joint, bool passive);
 
   dWorldID world_ = nullptr;
   dThreadingImplementationID threading_ = nullptr;

@@ -9,9 +9,8 @@ namespace rwsim::simulator::detail {
 
 namespace {
 
-bool isHand(const std::vector<bool>& isHandBody, int body) {
-  return body >= 0 && static_cast<std::size_t>(body) < isHandBody.size() &&
-         isHandBody[static_cast<std::size_t>(body)];
+bool isHand(const std::vector<bool>& isHandBody, dynamics::BodyId body) {
+  return body.valid() && body.index() < isHandBody.size() && isHandBody[body.index()];
 }
 
 // The load of a solved point on `object`: its normal force, the normal pointing into the object
@@ -37,10 +36,10 @@ std::vector<int> handContactCounts(const std::vector<SolvedBodyContact>& contact
     const bool handA = isHand(isHandBody, bc.bodyA);
     const bool handB = isHand(isHandBody, bc.bodyB);
     if (handA == handB) continue;
-    const int other = handA ? bc.bodyB : bc.bodyA;
+    const dynamics::BodyId other = handA ? bc.bodyB : bc.bodyA;
     for (const auto& p : bc.points) {
       if (loadOn(p, handA).normalForce > threshold) {
-        ++counts[static_cast<std::size_t>(other)];
+        ++counts[other.index()];
       }
     }
   }
@@ -49,7 +48,8 @@ std::vector<int> handContactCounts(const std::vector<SolvedBodyContact>& contact
 
 std::vector<TrialContact> objectContacts(const dynamics::DynamicWorkCell& dwc,
                                          const std::vector<SolvedBodyContact>& contacts,
-                                         const std::vector<bool>& isHandBody, int object,
+                                         const std::vector<bool>& isHandBody,
+                                         dynamics::BodyId object,
                                          const rw::math::Transform3D& X_W_object,
                                          double threshold) {
   std::vector<TrialContact> out;
@@ -57,10 +57,9 @@ std::vector<TrialContact> objectContacts(const dynamics::DynamicWorkCell& dwc,
   for (const auto& bc : contacts) {
     const bool objectIsB = bc.bodyB == object;
     if (!(objectIsB || bc.bodyA == object)) continue;
-    const int other = objectIsB ? bc.bodyA : bc.bodyB;
+    const dynamics::BodyId other = objectIsB ? bc.bodyA : bc.bodyB;
     if (!isHand(isHandBody, other)) continue;
-    const double mu = dwc.materials().mu(dwc.bodies()[static_cast<std::size_t>(object)].material,
-                                         dwc.bodies()[static_cast<std::size_t>(other)].material);
+    const double mu = dwc.materials().mu(dwc.body(object).material, dwc.body(other).material);
     for (const auto& p : bc.points) {
       const Load load = loadOn(p, objectIsB);
       if (load.normalForce <= threshold) continue;
@@ -77,8 +76,8 @@ std::vector<TrialContact> objectContacts(const dynamics::DynamicWorkCell& dwc,
   return out;
 }
 
-double maxRadiusFromCog(const dynamics::DynamicWorkCell& dwc, int body) {
-  const auto& b = dwc.bodies()[static_cast<std::size_t>(body)];
+double maxRadiusFromCog(const dynamics::DynamicWorkCell& dwc, dynamics::BodyId body) {
+  const auto& b = dwc.body(body);
   const auto& wc = dwc.workcell();
   const rw::kinematics::State state = wc.defaultState();
   double r = 0.0;

@@ -19,11 +19,12 @@ std::vector<int> handContactCounts(const std::vector<SolvedBodyContact>& contact
 /// object's pose), normals pointing into the object, mu from the pair's materials.
 std::vector<TrialContact> objectContacts(const dynamics::DynamicWorkCell& dwc,
                                          const std::vector<SolvedBodyContact>& contacts,
-                                         const std::vector<bool>& isHandBody, int object,
+                                         const std::vector<bool>& isHandBody,
+                                         dynamics::BodyId object,
                                          const rw::math::Transform3D& X_W_object, double threshold);
 
 /// Largest distance from a body's centre of mass to a vertex of its collision geometry, m
 /// (0 without geometry).
-double maxRadiusFromCog(const dynamics::DynamicWorkCell& dwc, int body);
+double maxRadiusFromCog(const dynamics::DynamicWorkCell& dwc, dynamics::BodyId body);
 
 }  // namespace rwsim::simulator::detail
