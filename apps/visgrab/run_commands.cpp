@@ -46,9 +46,16 @@ void printProgress(const runner::RunProgress& p) {
   std::fflush(stderr);
 }
 
-// Runs the benchmark with SIGINT and SIGTERM as a stop request (see docs/benchmark.md, "Stopping
-// and resuming"): the running trials finish and are written, then the run stops. Returns nullopt
-// when it stopped (the message printed); the caller exits with stopExitCode.
+// What a command stopped by SIGINT/SIGTERM prints; returns its exit code (128 + the signal).
+int stoppedBySignal(const rw::common::StopRequested& e, const std::string& command) {
+  std::cerr << "\nvisgrab " << command << ": " << rw::common::signalName(rw::common::stopSignal())
+            << ": " << e.what() << "\n";
+  return rw::common::stopExitCode(rw::common::stopSignal());
+}
+
+// Runs the benchmark with SIGINT and SIGTERM as a stop request (docs/report.md, "Stopping,
+// failures and resuming"): the running trials finish and are written, then the run stops.
+// Returns nullopt when it stopped (the message printed); the caller exits with stopExitCode.
 std::optional<runner::RunSummary> runStoppable(runner::RunOptions& options, bool quiet,
                                                const std::string& command) {
   rw::common::catchStopSignals();
@@ -57,8 +64,7 @@ std::optional<runner::RunSummary> runStoppable(runner::RunOptions& options, bool
     return runner::runBenchmark(
         options, quiet ? std::function<void(const runner::RunProgress&)>{} : printProgress);
   } catch (const rw::common::StopRequested& e) {
-    std::cerr << "\nvisgrab " << command << ": " << rw::common::signalName(rw::common::stopSignal())
-              << ": " << e.what() << "\n";
+    stoppedBySignal(e, command);
     return std::nullopt;
   }
 }
@@ -169,6 +175,8 @@ void ensureDatabase(const fs::path& dir, const std::string& filter, int threads,
   options.handFolder = data / "hands" / "sdh";
   options.materials = data / "materials.xml";
   options.threads = threads;
+  rw::common::catchStopSignals();
+  options.stop = &rw::common::stopSignalFlag();
   const auto report = generator::generateDatabase(
       scenes, options,
       quiet ? std::function<void(const generator::GenerationProgress&)>{}
@@ -189,7 +197,11 @@ int runBenchmarkCommand(const std::vector<std::string>& args) {
   const int threads = threadsOption(a);
   const bool quiet = a.flag("quiet");
   const std::string scenes = a.option("scenes").value_or("");
-  ensureDatabase(db, scenes, threads, data, quiet);
+  try {
+    ensureDatabase(db, scenes, threads, data, quiet);
+  } catch (const rw::common::StopRequested& e) {
+    return stoppedBySignal(e, "benchmark");
+  }
   std::vector<fs::path> graspSources;
   for (const auto& g : a.values("grasps")) graspSources.emplace_back(g);
   if (graspSources.empty()) {

@@ -32,6 +32,9 @@ void catchStopSignals() {
   sigemptyset(&action.sa_mask);
   action.sa_flags = SA_RESTART | SA_RESETHAND;
   for (const int signal : {SIGINT, SIGTERM}) {
+    // A signal ignored from the start (a background job's SIGINT, nohup) stays ignored.
+    struct sigaction current {};
+    if (::sigaction(signal, nullptr, &current) == 0 && current.sa_handler == SIG_IGN) continue;
     if (::sigaction(signal, &action, nullptr) != 0) {
       throw std::runtime_error("cannot handle " + signalName(signal) + ": " + std::strerror(errno));
     }

@@ -17,7 +17,8 @@ class StopRequested : public std::runtime_error {
 };
 
 /// Installs handlers for SIGINT and SIGTERM that set stopSignalFlag() and record the signal;
-/// each handler resets itself to the default on its first use. Clears the flag.
+/// each handler resets itself to the default on its first use. A signal the process ignores
+/// (a background job's SIGINT, nohup) stays ignored. Clears the flag.
 /// @throws std::runtime_error if the handlers cannot be installed.
 void catchStopSignals();
 
