@@ -1,6 +1,7 @@
 #include "visgrab/runner/benchmark_runner.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <exception>
 #include <memory>
@@ -343,47 +344,74 @@ void checkHandFits(const PendingWork& pending, const grasp::HandGraspSetup& hand
   }
 }
 
-/// Runs the pending scenes on options.threads workers (a scene per task), appending each trial
-/// to `writer` as it finishes and counting rejections into `plan`. Between trials a set
-/// options.stop ends the scene early. A file the scene needs that cannot be read
-/// (rw::common::LoadError) or a failed write ends the run: the running scenes finish their
-/// current trial, then the first error is thrown.
+/// What a scene reports per grasp done: the grasp, and its rejection if it was rejected as input.
+using TrialDone = std::function<void(const grasp::GraspRequest&, const std::optional<Diagnostic>&)>;
+
+/// Runs one scene's trials that are not in `writer` yet, appending each as it finishes;
+/// `trialDone` gets each grasp done and its rejection if it was rejected as input (nullopt for
+/// a trial). Returns false early, between trials, once `stopping` says so. A scene file that
+/// cannot be read throws rw::common::LoadError; a scene the hand cannot be put in rejects its
+/// grasps.
+bool runScene(const SceneWork& w, const grasp::HandGraspSetup& hand, results::ResultsWriter& writer,
+              const std::function<bool()>& stopping, const TrialDone& trialDone) {
+  std::unique_ptr<SceneRunner> runner;
+  std::string failure;
+  try {
+    runner = std::make_unique<SceneRunner>(w, hand);
+  } catch (const rw::common::LoadError&) {
+    throw;  // an unreadable or broken scene file: the run stops (and resumes once it is mended)
+  } catch (const std::exception& e) {
+    failure = e.what();
+  }
+  for (const Job& job : w.jobs) {
+    if (stopping()) return false;
+    const auto& r = *job.request;
+    if (writer.contains(w.entry->id, r.method, r.id)) continue;
+    Diagnostic rejected;
+    std::optional<results::TrialRecord> record;
+    if (runner) {
+      record = runner->run(job, rejected);
+    } else {
+      rejected = rejection(r, "scene " + w.entry->id + " cannot be simulated: " + failure);
+    }
+    if (record) writer.append(*record);
+    trialDone(r, record ? std::nullopt : std::optional<Diagnostic>(rejected));
+  }
+  return true;
+}
+
+/// Runs the pending scenes on options.threads workers (a scene per task), counting rejections
+/// into `plan`. A set options.stop, or an error in any scene (a scene file that cannot be read,
+/// a failed write), ends every scene after its current trial; no new scene starts; the first
+/// error is thrown.
 void runScenes(const RunOptions& options, const grasp::HandGraspSetup& hand, PendingWork& pending,
                RunPlan& plan, results::ResultsWriter& writer, const std::function<void()>& report) {
   std::mutex mutex;
+  std::atomic<bool> failing{false};
+  const auto stopping = [&] {
+    return failing.load() || (options.stop != nullptr && options.stop->load());
+  };
+  const auto trialDone = [&](const grasp::GraspRequest& r,
+                             const std::optional<Diagnostic>& rejected) {
+    const std::lock_guard lock(mutex);
+    if (rejected) {
+      plan.rejected.push_back(*rejected);
+      ++plan.rejectedPerMethod[r.method];
+    }
+    ++pending.progress.trialsDone;
+    report();
+  };
   const rw::common::TaskPool pool(
       std::min<int>(options.threads, static_cast<int>(pending.scenes.size())), options.stop);
   pool.run(pending.scenes.size(), [&](std::size_t i, int /*worker*/) {
-    const SceneWork& w = *pending.scenes[i];
-    std::unique_ptr<SceneRunner> runner;
-    std::string failure;
+    bool complete = false;
     try {
-      runner = std::make_unique<SceneRunner>(w, hand);
-    } catch (const rw::common::LoadError&) {
-      throw;  // an unreadable or broken scene file: the run stops (and resumes once it is mended)
-    } catch (const std::exception& e) {
-      failure = e.what();
+      complete = runScene(*pending.scenes[i], hand, writer, stopping, trialDone);
+    } catch (...) {
+      failing = true;
+      throw;
     }
-    for (const Job& job : w.jobs) {
-      if (options.stop != nullptr && options.stop->load()) return;
-      const auto& r = *job.request;
-      if (writer.contains(w.entry->id, r.method, r.id)) continue;
-      Diagnostic rejected;
-      std::optional<results::TrialRecord> record;
-      if (runner) {
-        record = runner->run(job, rejected);
-      } else {
-        rejected = rejection(r, "scene " + w.entry->id + " cannot be simulated: " + failure);
-      }
-      if (record) writer.append(*record);
-      const std::lock_guard lock(mutex);
-      if (!record) {
-        plan.rejected.push_back(rejected);
-        ++plan.rejectedPerMethod[r.method];
-      }
-      ++pending.progress.trialsDone;
-      report();
-    }
+    if (!complete) return;
     const std::lock_guard lock(mutex);
     ++pending.progress.scenesDone;
     report();

@@ -1,7 +1,8 @@
 // `visgrab run` stopped mid-run by a full disk (a small tmpfs as root; a file-size limit for any
-// user), a deleted result folder and SIGTERM: it exits with its documented code and a message
-// naming the file and the system's reason, trials.csv ends in a complete line, and --resume
-// then gives the same trials.csv and run.csv, byte for byte, as an uninterrupted run.
+// user), a deleted result folder, an unreadable scene file and SIGTERM: it exits with its
+// documented code and a message naming the file and the system's reason, trials.csv ends in a
+// complete line, and --resume then gives the same trials.csv and run.csv, byte for byte, as an
+// uninterrupted run.
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
@@ -320,6 +321,43 @@ TEST_F(InterruptedRun, SigtermStopsTheRunCleanlyWithCode143AndResumeCompletesIt)
   EXPECT_NE(run.output.find("SIGTERM"), std::string::npos) << run.output;
   EXPECT_NE(run.output.find("--resume"), std::string::npos) << run.output;
   expectResumesToTheWholeRun(out);
+}
+
+// A scene file that cannot be read when the run reaches its scene stops the run (exit 1, the file
+// named); once it is back, --resume completes the run. The run uses a copy of the test database
+// (its run.csv then names the copy: compared with the database line set aside).
+TEST_F(InterruptedRun, AnUnreadableSceneFileStopsTheRunAndResumeCompletesIt) {
+  visgrab::test::TempDir tmp;
+  const fs::path copy = tmp.path() / "db";
+  fs::copy(visgrab::test::testDatabase().root(), copy, fs::copy_options::recursive);
+  // The last of the run's scenes in database order; the first one is loaded before the run.
+  const fs::path missing = copy / "scenes/textured/single/peachcan/02/scene.dwc.xml";
+  ASSERT_TRUE(fs::exists(missing));
+  fs::rename(missing, tmp.path() / "saved.dwc.xml");
+  const fs::path out = tmp.path() / "results";
+  const std::string args = "run --db " + visgrab::test::shellQuoted(copy) + " --grasps " +
+                           visgrab::test::shellQuoted(shared_->path() / "grasps.txt") + " --hand " +
+                           visgrab::test::shellQuoted(handFile()) + " --quiet --out " +
+                           visgrab::test::shellQuoted(out);
+  const auto run = visgrab::test::runProgram(VISGRAB_BINARY, args + " --threads 2");
+  EXPECT_EQ(run.exitCode, 1) << run.output;
+  EXPECT_NE(run.output.find("cannot read " + missing.string() + ": no such file"),
+            std::string::npos)
+      << run.output;
+  EXPECT_GE(lineCount(out / "trials.csv"), 2u + 6u) << "the scenes before it did not run";
+  EXPECT_LT(lineCount(out / "trials.csv"), lineCount(wholeDir() / "trials.csv"));
+  fs::rename(tmp.path() / "saved.dwc.xml", missing);
+  const auto resumed = visgrab::test::runProgram(VISGRAB_BINARY, args + " --threads 1 --resume");
+  ASSERT_EQ(resumed.exitCode, 0) << resumed.output;
+  EXPECT_EQ(fileBytes(out / "trials.csv"), fileBytes(wholeDir() / "trials.csv"));
+  auto withoutDatabase = [](std::string text) {
+    const std::size_t at = text.find("\ndatabase,");
+    if (at != std::string::npos) text.erase(at, text.find('\n', at + 1) - at);
+    return text;
+  };
+  const std::string resumedRun = fileBytes(out / "run.csv");
+  EXPECT_NE(resumedRun.find("\ndatabase," + copy.string() + ","), std::string::npos) << resumedRun;
+  EXPECT_EQ(withoutDatabase(resumedRun), withoutDatabase(fileBytes(wholeDir() / "run.csv")));
 }
 
 }  // namespace
