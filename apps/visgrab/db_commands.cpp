@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "rw/common/diagnostic.hpp"
+#include "rw/common/stop_signals.hpp"
 #include "visgrab/database/database.hpp"
 #include "visgrab/database/scene_filter.hpp"
 #include "visgrab/database/scene_set.hpp"
@@ -76,9 +77,20 @@ int runGenerate(const std::vector<std::string>& args) {
   std::cerr << "visgrab db generate: " << scenes.size() << " scenes into " << *out << " with "
             << options.threads << " thread(s), seed " << options.seed << "\n";
   const bool quiet = a.flag("quiet");
-  const auto report = generator::generateDatabase(
-      scenes, options,
-      quiet ? std::function<void(const generator::GenerationProgress&)>{} : printProgress);
+  // SIGINT/SIGTERM: the scenes being made are finished and indexed, then it stops (exit 130/143);
+  // running it again continues.
+  rw::common::catchStopSignals();
+  options.stop = &rw::common::stopSignalFlag();
+  generator::GenerationReport report;
+  try {
+    report = generator::generateDatabase(
+        scenes, options,
+        quiet ? std::function<void(const generator::GenerationProgress&)>{} : printProgress);
+  } catch (const rw::common::StopRequested& e) {
+    std::cerr << "\nvisgrab db generate: " << rw::common::signalName(rw::common::stopSignal())
+              << ": " << e.what() << "\n";
+    return rw::common::stopExitCode(rw::common::stopSignal());
+  }
   std::cout << report.generated << " scenes generated, " << report.skipped << " already complete, "
             << report.failures.size() << " failed\n";
   for (const auto& f : report.failures) std::cerr << "failed: " << f << "\n";

@@ -5,11 +5,13 @@
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <thread>
 
 #include "baseline_commands.hpp"
 #include "rw/common/diagnostic.hpp"
+#include "rw/common/stop_signals.hpp"
 #include "visgrab/analysis/report.hpp"
 #include "visgrab/database/scene_filter.hpp"
 #include "visgrab/database/scene_set.hpp"
@@ -44,6 +46,29 @@ void printProgress(const runner::RunProgress& p) {
   std::fflush(stderr);
 }
 
+// What a command stopped by SIGINT/SIGTERM prints; returns its exit code (128 + the signal).
+int stoppedBySignal(const rw::common::StopRequested& e, const std::string& command) {
+  std::cerr << "\nvisgrab " << command << ": " << rw::common::signalName(rw::common::stopSignal())
+            << ": " << e.what() << "\n";
+  return rw::common::stopExitCode(rw::common::stopSignal());
+}
+
+// Runs the benchmark with SIGINT and SIGTERM as a stop request (docs/report.md, "Stopping,
+// failures and resuming"): the running trials finish and are written, then the run stops.
+// Returns nullopt when it stopped (the message printed); the caller exits with stopExitCode.
+std::optional<runner::RunSummary> runStoppable(runner::RunOptions& options, bool quiet,
+                                               const std::string& command) {
+  rw::common::catchStopSignals();
+  options.stop = &rw::common::stopSignalFlag();
+  try {
+    return runner::runBenchmark(
+        options, quiet ? std::function<void(const runner::RunProgress&)>{} : printProgress);
+  } catch (const rw::common::StopRequested& e) {
+    stoppedBySignal(e, command);
+    return std::nullopt;
+  }
+}
+
 int runRun(const std::vector<std::string>& args) {
   Arguments a(args, {"resume", "quiet"});
   a.rejectUnknown({"db", "grasps", "out", "threads", "resume", "hand", "scenes", "data", "quiet"});
@@ -63,8 +88,9 @@ int runRun(const std::vector<std::string>& args) {
   options.threads = threadsOption(a);
   options.resume = a.flag("resume");
   const bool quiet = a.flag("quiet");
-  const auto summary = runner::runBenchmark(
-      options, quiet ? std::function<void(const runner::RunProgress&)>{} : printProgress);
+  const auto done = runStoppable(options, quiet, "run");
+  if (!done) return rw::common::stopExitCode(rw::common::stopSignal());
+  const runner::RunSummary& summary = *done;
   for (const auto& d : summary.rejected) std::cerr << d.format() << "\n";
   std::cout << summary.trials << " trials run, " << summary.resumed << " resumed, "
             << summary.rejected.size() << " grasps rejected; " << summary.scenes << " scenes, "
@@ -149,6 +175,8 @@ void ensureDatabase(const fs::path& dir, const std::string& filter, int threads,
   options.handFolder = data / "hands" / "sdh";
   options.materials = data / "materials.xml";
   options.threads = threads;
+  rw::common::catchStopSignals();
+  options.stop = &rw::common::stopSignalFlag();
   const auto report = generator::generateDatabase(
       scenes, options,
       quiet ? std::function<void(const generator::GenerationProgress&)>{}
@@ -169,7 +197,11 @@ int runBenchmarkCommand(const std::vector<std::string>& args) {
   const int threads = threadsOption(a);
   const bool quiet = a.flag("quiet");
   const std::string scenes = a.option("scenes").value_or("");
-  ensureDatabase(db, scenes, threads, data, quiet);
+  try {
+    ensureDatabase(db, scenes, threads, data, quiet);
+  } catch (const rw::common::StopRequested& e) {
+    return stoppedBySignal(e, "benchmark");
+  }
   std::vector<fs::path> graspSources;
   for (const auto& g : a.values("grasps")) graspSources.emplace_back(g);
   if (graspSources.empty()) {
@@ -191,8 +223,9 @@ int runBenchmarkCommand(const std::vector<std::string>& args) {
   options.scenes = scenes;
   options.threads = threads;
   options.resume = a.flag("resume");
-  const auto summary = runner::runBenchmark(
-      options, quiet ? std::function<void(const runner::RunProgress&)>{} : printProgress);
+  const auto done = runStoppable(options, quiet, "benchmark");
+  if (!done) return rw::common::stopExitCode(rw::common::stopSignal());
+  const runner::RunSummary& summary = *done;
   for (const auto& d : summary.rejected) std::cerr << d.format() << "\n";
   std::cout << summary.trials << " trials run, " << summary.resumed << " resumed, "
             << summary.rejected.size() << " grasps rejected\n";

@@ -2,6 +2,8 @@
 
 #include "rw/common/diagnostic.hpp"
 
+#include <cerrno>
+#include <cstring>
 #include <fstream>
 #include <system_error>
 
@@ -13,8 +15,12 @@ std::string readTextFile(const fs::path& file, std::string& text) {
   std::error_code ec;
   if (fs::is_directory(file, ec)) return "it is a folder, not a file";
   if (!fs::exists(file, ec)) return "no such file";
+  errno = 0;
   std::ifstream in(file, std::ios::binary);
-  if (!in) return "it cannot be opened (permissions?)";
+  if (!in) {
+    return std::string("it cannot be opened: ") +
+           (errno != 0 ? std::strerror(errno) : "reason unknown");
+  }
   text.clear();
   char buffer[1 << 16];
   while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {

@@ -5,13 +5,14 @@
 
 #include <atomic>
 #include <cerrno>
-#include <cstring>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <stdexcept>
 #include <string>
 #include <system_error>
 #include <vector>
+
+#include "rw/common/write_error.hpp"
 
 namespace visgrab::database {
 
@@ -25,33 +26,42 @@ std::atomic<unsigned> temporaryCounter{0};
   throw std::runtime_error("cannot write " + file.string() + ": " + why);
 }
 
+[[noreturn]] void fail(const fs::path& file, std::error_code why) {
+  throw rw::common::WriteError(file, why);
+}
+
+std::error_code lastError() { return {errno, std::generic_category()}; }
+
 }  // namespace
 
 void writeFileAtomically(const fs::path& file, std::string_view bytes) {
   std::error_code ec;
   if (file.has_parent_path()) {
     fs::create_directories(file.parent_path(), ec);
-    if (ec) fail(file, "cannot create its folder: " + ec.message());
+    if (ec) fail(file.parent_path(), ec);
   }
   const fs::path temporary =
       file.parent_path() / ("." + file.filename().string() + ".tmp" + std::to_string(::getpid()) +
                             "-" + std::to_string(temporaryCounter++));
   const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) fail(file, std::strerror(errno));
+  if (fd < 0) fail(file, lastError());
   std::size_t written = 0;
   while (written < bytes.size()) {
     const ssize_t n = ::write(fd, bytes.data() + written, bytes.size() - written);
     if (n < 0) {
       if (errno == EINTR) continue;
-      const std::string why = std::strerror(errno);
+      const std::error_code why = lastError();
       ::close(fd);
       fs::remove(temporary, ec);
       fail(file, why);
     }
     written += static_cast<std::size_t>(n);
   }
-  if (::fsync(fd) != 0 || ::close(fd) != 0) {
-    const std::string why = std::strerror(errno);
+  // Close even when the sync failed (the descriptor must not leak); the first failure counts.
+  std::error_code why;
+  if (::fsync(fd) != 0) why = lastError();
+  if (::close(fd) != 0 && !why) why = lastError();
+  if (why) {
     fs::remove(temporary, ec);
     fail(file, why);
   }
@@ -59,7 +69,7 @@ void writeFileAtomically(const fs::path& file, std::string_view bytes) {
   if (ec) {
     std::error_code ignored;
     fs::remove(temporary, ignored);
-    fail(file, ec.message());
+    fail(file, ec);
   }
 }
 

@@ -11,7 +11,8 @@ namespace visgrab::database {
 
 /// Writes `bytes` to `file` atomically: into a temporary file in the same folder, flushed to
 /// disk, then renamed over `file`. Readers see the old or the new content, never a part.
-/// Creates missing parent folders. @throws std::runtime_error naming the file on failure.
+/// Creates missing parent folders. @throws rw::common::WriteError (the file and the system's
+/// reason) if it cannot be written, std::runtime_error naming the file otherwise.
 void writeFileAtomically(const std::filesystem::path& file, std::string_view bytes);
 
 /// Encodes `image` in the format given by `file`'s extension (.png, ...) and writes it with

@@ -1,6 +1,5 @@
 #include "visgrab/generator/generator.hpp"
 
-#include <atomic>
 #include <chrono>
 #include <exception>
 #include <map>
@@ -9,8 +8,10 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
-#include <thread>
 
+#include "rw/common/stop_signals.hpp"
+#include "rw/common/task_pool.hpp"
+#include "rw/common/write_error.hpp"
 #include "rwsim/loaders/dynamic_workcell_loader.hpp"
 #include "visgrab/database/atomic_file.hpp"
 #include "visgrab/database/database_writer.hpp"
@@ -264,48 +265,46 @@ GenerationReport generateDatabase(const std::vector<database::SceneConditions>& 
   const Assets assets = prepareAssets(todo, options, layout);
 
   std::mutex mutex;
-  std::atomic<std::size_t> next{0};
-  std::exception_ptr fatal;
   GenerationProgress state;
   state.total = static_cast<int>(todo.size());
   state.skipped = report.skipped;
-  auto work = [&]() {
-    std::unique_ptr<SceneRenderer> renderer;
-    try {
-      renderer = std::make_unique<SceneRenderer>(assets);
-    } catch (...) {
-      const std::lock_guard lock(mutex);
-      if (!fatal) fatal = std::current_exception();
-      return;
-    }
-    for (std::size_t i = next++; i < todo.size(); i = next++) {
-      std::string failure;
-      database::SceneRecord record;
-      try {
-        record = makeScene(todo[i], assets, options, layout, writer, *renderer);
-        writer.addScene(record);
-      } catch (const std::exception& e) {
-        failure = database::sceneIdOf(todo[i]) + ": " + e.what();
-      }
-      const std::lock_guard lock(mutex);
-      if (failure.empty()) {
-        ++report.generated;
-      } else {
-        report.failures.push_back(failure);
-      }
-      ++state.done;
-      state.lastId = database::sceneIdOf(todo[i]);
-      state.elapsed =
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      if (progress) progress(state);
-    }
-  };
-  const int threads = std::max(1, std::min<int>(options.threads, static_cast<int>(todo.size())));
-  std::vector<std::thread> workers;
-  for (int t = 1; t < threads; ++t) workers.emplace_back(work);
-  work();
-  for (auto& w : workers) w.join();
-  if (fatal) std::rethrow_exception(fatal);
+  const rw::common::TaskPool pool(std::min<int>(options.threads, static_cast<int>(todo.size())),
+                                  options.stop);
+  // One renderer per worker, made by its first scene (no OpenGL is fatal: the task throws).
+  std::vector<std::unique_ptr<SceneRenderer>> renderers(static_cast<std::size_t>(pool.threads()));
+  const std::size_t finished = pool.run(
+      todo.size(),
+      [&](std::size_t i, int worker) {
+        auto& renderer = renderers[static_cast<std::size_t>(worker)];
+        if (!renderer) renderer = std::make_unique<SceneRenderer>(assets);
+        std::string failure;
+        try {
+          database::SceneRecord record =
+              makeScene(todo[i], assets, options, layout, writer, *renderer);
+          writer.addScene(record);
+        } catch (const rw::common::WriteError&) {
+          throw;  // disk full, folder gone: the other scenes would fail the same way
+        } catch (const std::exception& e) {
+          failure = database::sceneIdOf(todo[i]) + ": " + e.what();
+        }
+        const std::lock_guard lock(mutex);
+        if (failure.empty()) {
+          ++report.generated;
+        } else {
+          report.failures.push_back(failure);
+        }
+        ++state.done;
+        state.lastId = database::sceneIdOf(todo[i]);
+        state.elapsed =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        if (progress) progress(state);
+      },
+      [&](int worker) { renderers[static_cast<std::size_t>(worker)].reset(); });
+  if (finished < todo.size()) {
+    throw rw::common::StopRequested("generation stopped after " + std::to_string(finished) +
+                                    " of " + std::to_string(todo.size()) +
+                                    " scenes; running it again continues it");
+  }
   std::sort(report.failures.begin(), report.failures.end());
   return report;
 }

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -27,6 +28,10 @@ struct GeneratorOptions {
   std::uint64_t seed = 1;
   /// Worker threads (each with its own simulator and offscreen renderer).
   int threads = 1;
+  /// Set (by a signal handler, say) to stop early: the scenes being made are finished and
+  /// indexed, no new one starts, and generateDatabase throws rw::common::StopRequested. Null:
+  /// never. Must outlive the call.
+  const std::atomic<bool>* stop = nullptr;
   /// Camera rig.
   StereoRigSpec rig;
   /// Placements.
@@ -77,9 +82,12 @@ struct GenerationReport {
 /// penetrates less than maxPenetration), the scene files with the settled poses, the rendered
 /// rectified stereo pair with sensor effects and the calibration; each finished scene is added
 /// to the index at once, so an interrupted run loses nothing and resumes. The same seed gives
-/// byte-identical files whatever the thread count. A scene that fails is reported, not fatal.
+/// byte-identical files whatever the thread count. A scene that fails is reported, not fatal;
+/// a file that cannot be written (rw::common::WriteError: disk full, folder deleted) is: the
+/// scenes already being made finish, then it is thrown.
 /// @throws std::runtime_error (or rw::common::LoadError) for unusable inputs: the object spec,
-/// the hand folder, an index with another seed, no OpenGL.
+/// the hand folder, an index with another seed, no OpenGL; rw::common::WriteError;
+/// rw::common::StopRequested when options.stop ended it early.
 GenerationReport generateDatabase(
     const std::vector<database::SceneConditions>& scenes, const GeneratorOptions& options,
     const std::function<void(const GenerationProgress&)>& progress = {});

@@ -1,17 +1,20 @@
 #include "visgrab/objects/object_writer.hpp"
 
 #include <array>
+#include <cerrno>
 #include <charconv>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
 #include <stdexcept>
+#include <string_view>
 #include <system_error>
 
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "rw/common/write_error.hpp"
 #include "rw/math/rpy.hpp"
 
 namespace visgrab::objects {
@@ -41,11 +44,13 @@ std::string numbers(const Vector& v) {
   return text;
 }
 
-void writeText(const fs::path& file, const std::string& text) {
+void writeText(const fs::path& file, std::string_view text) {
+  errno = 0;
   std::ofstream out(file, std::ios::binary);
-  out << text;
+  out.write(text.data(), static_cast<std::streamsize>(text.size()));
   out.close();
-  if (!out) throw std::runtime_error("cannot write " + file.string());
+  // The stream keeps no reason; errno holds the failed system call's (EIO if none set it).
+  if (!out) throw rw::common::WriteError(file, {errno != 0 ? errno : EIO, std::generic_category()});
 }
 
 void createFolder(const fs::path& folder) {
@@ -208,13 +213,15 @@ void writePng(const visual::RgbImage& image, const fs::path& file) {
   cv::Mat bgr;
   cv::cvtColor(rgb, bgr, cv::COLOR_RGB2BGR);
   const std::vector<int> params{cv::IMWRITE_PNG_COMPRESSION, kPngCompression};
+  std::vector<uchar> encoded;
   bool ok = false;
   try {
-    ok = cv::imwrite(file.string(), bgr, params);
+    ok = cv::imencode(".png", bgr, encoded, params);
   } catch (const cv::Exception& e) {
     throw std::runtime_error("cannot write " + file.string() + ": " + e.what());
   }
-  if (!ok) throw std::runtime_error("cannot write " + file.string());
+  if (!ok) throw std::runtime_error("cannot write " + file.string() + ": cannot encode the PNG");
+  writeText(file, std::string_view(reinterpret_cast<const char*>(encoded.data()), encoded.size()));
 }
 
 ObjectFiles writeObjectFiles(const ObjectModel& model, const fs::path& dir) {

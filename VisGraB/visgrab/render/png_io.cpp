@@ -5,12 +5,15 @@
 #include <opencv2/imgproc.hpp>
 
 #include <array>
+#include <cerrno>
 #include <cstring>
 #include <fstream>
 #include <iterator>
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include "rw/common/write_error.hpp"
 
 namespace visgrab::render {
 
@@ -62,11 +65,13 @@ void writePng(const std::filesystem::path& path, const visual::RgbImage& image, 
   if (!cv::imencode(".png", bgr, bytes, params)) {
     throw std::runtime_error(path.string() + ": cannot encode the PNG");
   }
+  errno = 0;
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
   out.write(reinterpret_cast<const char*>(bytes.data()),
             static_cast<std::streamsize>(bytes.size()));
   out.close();
-  if (!out) throw std::runtime_error(path.string() + ": cannot write the file");
+  // The stream keeps no reason; errno holds the failed system call's (EIO if none set it).
+  if (!out) throw rw::common::WriteError(path, {errno != 0 ? errno : EIO, std::generic_category()});
 }
 
 visual::RgbImage readPng(const std::filesystem::path& path) {

@@ -8,7 +8,7 @@ namespace visgrab::render {
 
 /// Writes an 8-bit RGB PNG with zlib compression level `compression` (0 = none .. 9 = smallest).
 /// @throws std::invalid_argument for an empty or inconsistent image or a level outside 0..9;
-///   std::runtime_error naming the path when the file cannot be written.
+///   rw::common::WriteError (the path and the reason) when the file cannot be written.
 void writePng(const std::filesystem::path& path, const visual::RgbImage& image,
               int compression = 3);
 

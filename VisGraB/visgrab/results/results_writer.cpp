@@ -1,6 +1,7 @@
 #include "visgrab/results/results_writer.hpp"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -10,6 +11,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "rw/common/write_error.hpp"
 #include "visgrab/database/atomic_file.hpp"
 #include "visgrab/results/results_file.hpp"
 
@@ -35,7 +37,7 @@ ResultsWriter::ResultsWriter(fs::path dir, Options options)
     : dir_(std::move(dir)), options_(options) {
   std::error_code ec;
   fs::create_directories(dir_, ec);
-  if (ec) throw std::runtime_error("cannot create " + dir_.string() + ": " + ec.message());
+  if (ec) throw rw::common::WriteError(dir_, ec);
   const fs::path runPath = dir_ / kRunFileName;
   if (fs::exists(runPath)) {
     RunResults run = parseRunFile(readFile(runPath), runPath.string());
@@ -63,17 +65,16 @@ ResultsWriter::ResultsWriter(fs::path dir, Options options)
     }
   }
   fd_ = ::open(trialsPath.c_str(), O_WRONLY | O_CREAT | O_CLOEXEC, 0644);
-  if (fd_ < 0) {
-    throw std::runtime_error("cannot open " + trialsPath.string() + ": " + std::strerror(errno));
-  }
+  if (fd_ < 0) rw::common::throwWriteError(trialsPath);
   // Cut off a torn last line (or a torn header) so that appended lines start on a fresh line.
   if (::ftruncate(fd_, static_cast<off_t>(keep)) != 0 ||
       ::lseek(fd_, static_cast<off_t>(keep), SEEK_SET) < 0) {
-    const std::string why = std::strerror(errno);
+    const int why = errno;
     ::close(fd_);
     fd_ = -1;
-    throw std::runtime_error("cannot truncate " + trialsPath.string() + ": " + why);
+    throw rw::common::WriteError(trialsPath, std::error_code(why, std::generic_category()));
   }
+  size_ = keep;
   if (keep == 0) writeAll(trialsHeader());
 }
 
@@ -93,20 +94,34 @@ std::vector<TrialRecord> ResultsWriter::trials() const {
 }
 
 void ResultsWriter::writeAll(std::string_view bytes) {
+  const fs::path file = dir_ / kTrialsFileName;
+  if (failure_) throw rw::common::WriteError(file, failure_);
   std::size_t written = 0;
+  int why = 0;
   while (written < bytes.size()) {
     const ssize_t n = ::write(fd_, bytes.data() + written, bytes.size() - written);
     if (n < 0) {
       if (errno == EINTR) continue;
-      throw std::runtime_error("cannot write " + (dir_ / kTrialsFileName).string() + ": " +
-                               std::strerror(errno));
+      why = errno;
+      break;
     }
     written += static_cast<std::size_t>(n);
   }
-  if (options_.syncEachTrial && ::fdatasync(fd_) != 0) {
-    throw std::runtime_error("cannot sync " + (dir_ / kTrialsFileName).string() + ": " +
-                             std::strerror(errno));
+  if (why == 0 && options_.syncEachTrial && ::fdatasync(fd_) != 0) why = errno;
+  // A trials.csv whose folder was deleted takes every write and keeps nothing: stop at once.
+  struct stat status {};
+  if (why == 0 && ::fstat(fd_, &status) == 0 && status.st_nlink == 0) why = ENOENT;
+  if (why != 0) {
+    // Take back a part of the line (disk full in mid-line), so that the file ends in a complete
+    // line; a resumed run finds a torn line anyway if even that fails. Nothing is appended after
+    // a failure: a later line must never follow a torn one.
+    if (written > 0 && ::ftruncate(fd_, static_cast<off_t>(size_)) == 0) {
+      ::lseek(fd_, static_cast<off_t>(size_), SEEK_SET);
+    }
+    failure_ = std::error_code(why, std::generic_category());
+    throw rw::common::WriteError(file, failure_);
   }
+  size_ += bytes.size();
 }
 
 void ResultsWriter::append(const TrialRecord& trial) {

@@ -6,6 +6,7 @@
 #include <set>
 #include <string>
 #include <string_view>
+#include <system_error>
 #include <tuple>
 #include <vector>
 
@@ -15,10 +16,13 @@ namespace visgrab::results {
 
 /// Writes a run's result folder as the run goes (see results_file.hpp for the formats): every
 /// finished trial is appended to trials.csv as one line and handed to the operating system at
-/// once, so a killed run loses nothing but the trial being written. Opening a folder that has a
-/// trials.csv reads it back for resume (contains()); a torn last line is dropped and cut off. A
-/// trials.csv of an older format version is rewritten in the current one first (atomically);
-/// its trials keep the values they had (version 1: q_gws not computed, see parseTrials).
+/// once (one write() per line, no buffer in the process), so a killed run loses nothing but the
+/// trial being written. A failed write (disk full, the folder deleted) takes back the part of
+/// the line it wrote, if it can, and ends appending: the file never holds a line after a torn
+/// one. Opening a folder that has a trials.csv reads it back for resume (contains()); a torn
+/// last line is dropped and cut off. A trials.csv of an older format version is rewritten in the
+/// current one first (atomically); its trials keep the values they had (version 1: q_gws not
+/// computed, see parseTrials).
 /// append(), contains(), trials() and writeRun() may be called from several threads.
 class ResultsWriter {
  public:
@@ -30,7 +34,7 @@ class ResultsWriter {
 
   /// Opens (creating) `dir` and its trials.csv; reads back existing trials and run.csv.
   /// @throws rw::common::LoadError (file:line) if an existing file is corrupt,
-  /// std::runtime_error if the folder or file cannot be created or written.
+  /// rw::common::WriteError if the folder or file cannot be created or written.
   explicit ResultsWriter(std::filesystem::path dir);
   /// See ResultsWriter(dir).
   ResultsWriter(std::filesystem::path dir, Options options);
@@ -50,16 +54,17 @@ class ResultsWriter {
   std::vector<TrialRecord> trials() const;
   /// Appends one finished trial and hands it to the OS (fdatasync too if syncEachTrial).
   /// @throws std::logic_error if the trial is already there or after finalize(),
-  /// std::runtime_error if the write fails.
+  /// rw::common::WriteError (file and reason) if the write fails, or failed before, or the file
+  /// was deleted.
   void append(const TrialRecord& trial);
   /// Writes run.csv atomically (temporary file, then rename) with the run's scenes (database
   /// order), methods and rejected counts; `run.trials` is ignored. Also the order finalize() uses.
-  /// @throws std::runtime_error if it cannot be written.
+  /// @throws rw::common::WriteError if it cannot be written.
   void writeRun(const RunResults& run);
   /// Rewrites trials.csv atomically in the canonical order (sortTrials with the scenes and
   /// methods of the last writeRun(), or of run.csv when opened), so that the bytes do not depend
   /// on the order trials finished in. Closes the writer: append() throws afterwards.
-  /// @throws std::runtime_error if it cannot be written.
+  /// @throws rw::common::WriteError if it cannot be written.
   void finalize();
 
  private:
@@ -70,6 +75,10 @@ class ResultsWriter {
   Options options_;
   mutable std::mutex mutex_;
   int fd_ = -1;
+  /// Bytes of trials.csv up to its last complete line.
+  std::size_t size_ = 0;
+  /// Why the last write failed (appends throw from then on).
+  std::error_code failure_;
   std::size_t resumed_ = 0;
   bool droppedTorn_ = false;
   std::set<Key, std::less<>> keys_;

@@ -9,9 +9,10 @@
 #include <optional>
 #include <stdexcept>
 #include <string_view>
-#include <thread>
 
+#include "rw/common/stop_signals.hpp"
 #include "rw/common/strings.hpp"
+#include "rw/common/task_pool.hpp"
 #include "rw/common/text_file.hpp"
 #include "rwsim/loaders/dynamic_workcell_loader.hpp"
 #include "rwsim/simulator/grasp_trial.hpp"
@@ -213,158 +214,257 @@ rwsim::simulator::GraspTrialSetup trialSetup(const grasp::HandGraspSetup& hand,
   return setup;
 }
 
-RunSummary runBenchmark(const RunOptions& options,
-                        const std::function<void(const RunProgress&)>& progress) {
-  const auto start = std::chrono::steady_clock::now();
-  const database::Database db = database::Database::openAny(options.database);
-  const auto selected = selectScenes(db, options.scenes);
-  const auto hand = grasp::loadHandGraspSetup(options.hand);
-  const taskio::GraspFileContents grasps = taskio::readGraspSources(options.grasps);
+namespace {
+
+/// What a run reads before it starts.
+struct RunInputs {
+  database::Database db;
+  std::vector<const database::SceneEntry*> selected;
+  std::unique_ptr<grasp::HandGraspSetup> hand;
+  taskio::GraspFileContents grasps;
+};
+
+/// The run's work: its scenes and methods (run.csv), the grasps per scene in benchmark order and
+/// the grasps rejected so far.
+struct RunPlan {
+  results::RunResults run;
+  std::vector<SceneWork> work;
+  std::vector<Diagnostic> rejected;
+  /// Rejected grasps per method (per file for grasps the reader could not parse).
+  std::map<std::string, int> rejectedPerMethod;
+};
+
+/// The scenes with trials left to run, and the progress counters of the run.
+struct PendingWork {
+  std::vector<const SceneWork*> scenes;
+  RunProgress progress;
+};
+
+/// Opens the database, the hand and the grasp files; refuses a result folder that holds
+/// results unless resuming.
+RunInputs openInputs(const RunOptions& options) {
+  RunInputs in{database::Database::openAny(options.database), {}, {}, {}};
+  in.selected = selectScenes(in.db, options.scenes);
+  in.hand = grasp::loadHandGraspSetup(options.hand);
+  in.grasps = taskio::readGraspSources(options.grasps);
   if (!options.resume && fs::exists(options.out / results::kTrialsFileName)) {
     throw std::runtime_error(options.out.string() +
                              " already holds results; resume them (--resume) or choose another "
                              "folder");
   }
+  return in;
+}
 
-  RunSummary summary;
-  summary.rejected = grasps.rejected;
-  std::map<std::string, int> rejectedPerMethod;
+/// Groups the grasps by selected scene (database order), ranks them per (scene, method) in file
+/// order and orders each scene's by (method first seen, rank); rejects grasps of unknown scenes.
+RunPlan planRun(const RunOptions& options, const RunInputs& in) {
+  RunPlan plan;
+  plan.rejected = in.grasps.rejected;
   // Grasps the reader could not parse have no reliable method: they count under their file.
-  for (const auto& d : grasps.rejected) ++rejectedPerMethod[fs::path(d.file).filename().string()];
-  results::RunResults run;
+  for (const auto& d : in.grasps.rejected) {
+    ++plan.rejectedPerMethod[fs::path(d.file).filename().string()];
+  }
+  results::RunResults& run = plan.run;
   run.sources.database = fs::absolute(options.database).lexically_normal();
   for (const auto& g : options.grasps) {
     run.sources.grasps.push_back(fs::absolute(g).lexically_normal());
   }
   run.sources.hand = fs::absolute(options.hand).lexically_normal();
   std::map<std::string, std::size_t> sceneOrder;
-  for (const auto* s : selected) {
+  for (const auto* s : in.selected) {
     sceneOrder.emplace(s->id, run.scenes.size());
     run.scenes.push_back({s->id, s->conditions});
   }
-  // Group the grasps by scene; rank them per (scene, method) in file order.
-  std::vector<SceneWork> work(run.scenes.size());
+  plan.work.resize(run.scenes.size());
   std::map<std::pair<std::string, std::string>, int> ranks;
-  for (const auto& r : grasps.requests) {
-    if (!db.contains(r.sceneId)) {
-      const auto close = db.closestIds(r.sceneId);
+  for (const auto& r : in.grasps.requests) {
+    if (!in.db.contains(r.sceneId)) {
+      const auto close = in.db.closestIds(r.sceneId);
       std::string hint = close.empty() ? "" : " (did you mean " + close.front() + "?)";
-      summary.rejected.push_back(rejection(r, "unknown scene \"" + r.sceneId + "\"" + hint));
-      ++rejectedPerMethod[r.method];
+      plan.rejected.push_back(rejection(r, "unknown scene \"" + r.sceneId + "\"" + hint));
+      ++plan.rejectedPerMethod[r.method];
       continue;
     }
-    const auto& entry = db.scene(r.sceneId);
+    const auto& entry = in.db.scene(r.sceneId);
     const auto it = sceneOrder.find(entry.id);
     if (it == sceneOrder.end()) continue;  // filtered out
     if (std::find(run.methods.begin(), run.methods.end(), r.method) == run.methods.end()) {
       run.methods.push_back(r.method);
     }
-    SceneWork& w = work[it->second];
+    SceneWork& w = plan.work[it->second];
     w.entry = &entry;
     w.jobs.push_back({&r, ranks[{entry.id, r.method}]++});
   }
   // Within a scene: methods in the order first seen, then rank.
-  for (auto& w : work) {
+  for (auto& w : plan.work) {
     std::stable_sort(w.jobs.begin(), w.jobs.end(), [&](const Job& a, const Job& b) {
       const auto ia = std::find(run.methods.begin(), run.methods.end(), a.request->method);
       const auto ib = std::find(run.methods.begin(), run.methods.end(), b.request->method);
       return ia < ib;
     });
   }
+  return plan;
+}
 
-  results::ResultsWriter writer(options.out);
-  summary.resumed = static_cast<int>(writer.resumedCount());
-  std::vector<const SceneWork*> pending;
-  RunProgress state;
+/// The scenes with trials not yet in `writer` (resume) and how many trials they hold.
+PendingWork pendingScenes(const std::vector<SceneWork>& work,
+                          const results::ResultsWriter& writer) {
+  PendingWork pending;
   for (const auto& w : work) {
     const auto left = std::count_if(w.jobs.begin(), w.jobs.end(), [&](const Job& j) {
       return !writer.contains(w.entry->id, j.request->method, j.request->id);
     });
     if (left == 0) continue;
-    pending.push_back(&w);
-    state.trialsTotal += static_cast<int>(left);
+    pending.scenes.push_back(&w);
+    pending.progress.trialsTotal += static_cast<int>(left);
   }
-  state.scenesTotal = static_cast<int>(pending.size());
-  for (const auto& [method, n] : rejectedPerMethod) run.rejected.emplace_back(method, n);
-  writer.writeRun(run);
+  pending.progress.scenesTotal = static_cast<int>(pending.scenes.size());
+  return pending;
+}
 
-  // A hand that does not fit (a missing dynamics file, a device or controller the scene's
-  // dynamics lack) fails every scene: report it once, as the run's error, not per grasp.
-  if (!pending.empty()) {
-    try {
-      SceneRunner probe(*pending.front(), *hand);
-    } catch (const rw::common::LoadError&) {
-      throw;
-    } catch (const std::exception& e) {
-      throw std::runtime_error("the hand " + options.hand.string() + " cannot run in scene " +
-                               pending.front()->entry->id + ": " + e.what());
+/// Writes run.csv with the plan's scenes, methods and rejected counts so far.
+void writeRunFile(RunPlan& plan, results::ResultsWriter& writer) {
+  plan.run.rejected.clear();
+  for (const auto& [method, n] : plan.rejectedPerMethod) plan.run.rejected.emplace_back(method, n);
+  writer.writeRun(plan.run);
+}
+
+/// A hand that does not fit (a missing dynamics file, a device or controller the scene's
+/// dynamics lack) fails every scene: reported once, as the run's error, not per grasp.
+void checkHandFits(const PendingWork& pending, const grasp::HandGraspSetup& hand,
+                   const fs::path& handFile) {
+  if (pending.scenes.empty()) return;
+  try {
+    const SceneRunner probe(*pending.scenes.front(), hand);
+  } catch (const rw::common::LoadError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw std::runtime_error("the hand " + handFile.string() + " cannot run in scene " +
+                             pending.scenes.front()->entry->id + ": " + e.what());
+  }
+}
+
+/// What a scene reports per grasp done: the grasp, and its rejection if it was rejected as input.
+using TrialDone = std::function<void(const grasp::GraspRequest&, const std::optional<Diagnostic>&)>;
+
+/// Runs one scene's trials that are not in `writer` yet, appending each as it finishes;
+/// `trialDone` gets each grasp done and its rejection if it was rejected as input (nullopt for
+/// a trial). Returns false early, between trials, once `stopping` says so. A scene file that
+/// cannot be read throws rw::common::LoadError; a scene the hand cannot be put in rejects its
+/// grasps.
+bool runScene(const SceneWork& w, const grasp::HandGraspSetup& hand, results::ResultsWriter& writer,
+              const std::function<bool()>& stopping, const TrialDone& trialDone) {
+  std::unique_ptr<SceneRunner> runner;
+  std::string failure;
+  try {
+    runner = std::make_unique<SceneRunner>(w, hand);
+  } catch (const rw::common::LoadError&) {
+    throw;  // an unreadable or broken scene file: the run stops (and resumes once it is mended)
+  } catch (const std::exception& e) {
+    failure = e.what();
+  }
+  for (const Job& job : w.jobs) {
+    if (stopping()) return false;
+    const auto& r = *job.request;
+    if (writer.contains(w.entry->id, r.method, r.id)) continue;
+    Diagnostic rejected;
+    std::optional<results::TrialRecord> record;
+    if (runner) {
+      record = runner->run(job, rejected);
+    } else {
+      rejected = rejection(r, "scene " + w.entry->id + " cannot be simulated: " + failure);
     }
+    if (record) writer.append(*record);
+    trialDone(r, record ? std::nullopt : std::optional<Diagnostic>(rejected));
   }
+  return true;
+}
 
+/// Runs the pending scenes on options.threads workers (a scene per task), counting rejections
+/// into `plan`. A set options.stop, or an error in any scene (a scene file that cannot be read,
+/// a failed write), ends every scene after its current trial; no new scene starts; the first
+/// error is thrown.
+void runScenes(const RunOptions& options, const grasp::HandGraspSetup& hand, PendingWork& pending,
+               RunPlan& plan, results::ResultsWriter& writer, const std::function<void()>& report) {
   std::mutex mutex;
-  std::atomic<std::size_t> next{0};
-  auto report = [&]() {
-    state.elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (progress) progress(state);
+  std::atomic<bool> failing{false};
+  const auto stopping = [&] {
+    return failing.load() || (options.stop != nullptr && options.stop->load());
   };
-  auto worker = [&]() {
-    for (std::size_t i = next++; i < pending.size(); i = next++) {
-      const SceneWork& w = *pending[i];
-      std::unique_ptr<SceneRunner> runner;
-      std::string failure;
-      try {
-        runner = std::make_unique<SceneRunner>(w, *hand);
-      } catch (const std::exception& e) {
-        failure = e.what();
-      }
-      for (const Job& job : w.jobs) {
-        const auto& r = *job.request;
-        if (writer.contains(w.entry->id, r.method, r.id)) continue;
-        Diagnostic rejected;
-        std::optional<results::TrialRecord> record;
-        if (runner) {
-          record = runner->run(job, rejected);
-        } else {
-          rejected = rejection(r, "scene " + w.entry->id + " cannot be simulated: " + failure);
-        }
-        if (record) writer.append(*record);
-        const std::lock_guard lock(mutex);
-        if (!record) {
-          summary.rejected.push_back(rejected);
-          ++rejectedPerMethod[r.method];
-        }
-        ++state.trialsDone;
-        report();
-      }
-      const std::lock_guard lock(mutex);
-      ++state.scenesDone;
-      report();
+  const auto trialDone = [&](const grasp::GraspRequest& r,
+                             const std::optional<Diagnostic>& rejected) {
+    const std::lock_guard lock(mutex);
+    if (rejected) {
+      plan.rejected.push_back(*rejected);
+      ++plan.rejectedPerMethod[r.method];
     }
+    ++pending.progress.trialsDone;
+    report();
   };
-  const int threads = std::max(
-      1,
-      std::min<int>(options.threads, static_cast<int>(std::max<std::size_t>(1, pending.size()))));
-  std::vector<std::thread> pool;
-  for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
-  worker();
-  for (auto& t : pool) t.join();
+  const rw::common::TaskPool pool(
+      std::min<int>(options.threads, static_cast<int>(pending.scenes.size())), options.stop);
+  pool.run(pending.scenes.size(), [&](std::size_t i, int /*worker*/) {
+    bool complete = false;
+    try {
+      complete = runScene(*pending.scenes[i], hand, writer, stopping, trialDone);
+    } catch (...) {
+      failing = true;
+      throw;
+    }
+    if (!complete) return;
+    const std::lock_guard lock(mutex);
+    ++pending.progress.scenesDone;
+    report();
+  });
+}
 
-  run.rejected.clear();
-  for (const auto& [method, n] : rejectedPerMethod) run.rejected.emplace_back(method, n);
-  writer.writeRun(run);
+/// Rewrites run.csv with the final rejected counts, puts trials.csv in canonical order and sums
+/// the run up.
+RunSummary finishRun(RunPlan& plan, results::ResultsWriter& writer) {
+  writeRunFile(plan, writer);
   writer.finalize();
+  RunSummary summary;
+  summary.resumed = static_cast<int>(writer.resumedCount());
   for (const auto& t : writer.trials()) {
     ++summary.outcomes[std::string(rwsim::simulator::outcomeName(t.outcome))];
     ++summary.trials;
   }
   summary.trials -= summary.resumed;
-  summary.scenes = static_cast<int>(run.scenes.size());
-  summary.methods = static_cast<int>(run.methods.size());
+  summary.scenes = static_cast<int>(plan.run.scenes.size());
+  summary.methods = static_cast<int>(plan.run.methods.size());
+  summary.rejected = std::move(plan.rejected);
   std::stable_sort(summary.rejected.begin(), summary.rejected.end(),
                    [](const Diagnostic& a, const Diagnostic& b) {
                      return std::tie(a.file, a.line) < std::tie(b.file, b.line);
                    });
   return summary;
+}
+
+}  // namespace
+
+RunSummary runBenchmark(const RunOptions& options,
+                        const std::function<void(const RunProgress&)>& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  const RunInputs in = openInputs(options);
+  RunPlan plan = planRun(options, in);
+  results::ResultsWriter writer(options.out);
+  PendingWork pending = pendingScenes(plan.work, writer);
+  writeRunFile(plan, writer);
+  checkHandFits(pending, *in.hand, options.hand);
+  runScenes(options, *in.hand, pending, plan, writer, [&] {
+    pending.progress.elapsed =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (progress) progress(pending.progress);
+  });
+  if (pending.progress.trialsDone < pending.progress.trialsTotal) {
+    // Only a stop request leaves trials undone (errors throw): trials.csv keeps the finished
+    // ones in the order they finished; --resume runs the rest and puts them in order.
+    throw rw::common::StopRequested(
+        "stopped after " + std::to_string(pending.progress.trialsDone) + " of " +
+        std::to_string(pending.progress.trialsTotal) + " trials; the finished ones are in " +
+        (options.out / results::kTrialsFileName).string() + "; --resume continues the run");
+  }
+  return finishRun(plan, writer);
 }
 
 }  // namespace visgrab::runner

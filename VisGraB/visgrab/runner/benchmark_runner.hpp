@@ -1,5 +1,6 @@
 #pragma once
 
+#include <atomic>
 #include <filesystem>
 #include <functional>
 #include <map>
@@ -52,6 +53,11 @@ struct RunOptions {
   int threads = 1;
   /// Continue an interrupted run in `out` (without it, an existing trials.csv is an error).
   bool resume = false;
+  /// Set (by a SIGINT/SIGTERM handler, say: rw::common::catchStopSignals) to stop early: the
+  /// running trials finish and are written, no new one starts, and runBenchmark throws
+  /// rw::common::StopRequested; `resume` completes the run later. Null: never. Must outlive the
+  /// call.
+  const std::atomic<bool>* stop = nullptr;
 };
 
 /// Progress after each finished trial.
@@ -85,13 +91,19 @@ struct RunSummary {
 };
 
 /// Runs every grasp of `options.grasps` on its scene of the database, in `threads` worker
-/// threads, writing each finished trial to out/trials.csv at once (so a killed run loses
-/// nothing and `resume` continues it), then out/run.csv and the trials in canonical order.
+/// threads (rw::common::TaskPool, a scene per task), writing each finished trial to
+/// out/trials.csv at once (so a killed run loses nothing and `resume` continues it), then
+/// out/run.csv and the trials in canonical order. A failed write (disk full, the folder
+/// deleted) or a scene file that cannot be read stops the run: the other workers finish their
+/// current trial (written), no new one starts, and the first error is thrown; `resume` then
+/// gives the same files as an uninterrupted run.
 /// Per-grasp problems (bad input, unknown scene, unknown pre-shape) are rejected with a
 /// diagnostic and counted in run.csv (per method; grasps the reader could not parse under their
 /// file's name); the other grasps run. Deterministic whatever the thread count.
-/// @throws rw::common::LoadError for an unreadable database, grasp file or hand description,
-/// std::runtime_error for an existing result folder without `resume` or a failed write.
+/// @throws rw::common::LoadError for an unreadable database, grasp file, hand description or
+/// scene file, rw::common::WriteError (file and reason) for a failed write,
+/// rw::common::StopRequested when options.stop ended the run early, std::runtime_error for an
+/// existing result folder without `resume`.
 RunSummary runBenchmark(const RunOptions& options,
                         const std::function<void(const RunProgress&)>& progress = {});
 

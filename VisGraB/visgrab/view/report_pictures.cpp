@@ -1,16 +1,16 @@
 #include "visgrab/view/report_pictures.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <exception>
 #include <map>
 #include <memory>
 #include <mutex>
 #include <optional>
 #include <string>
-#include <thread>
 #include <tuple>
 
+#include "rw/common/task_pool.hpp"
+#include "rw/common/write_error.hpp"
 #include "visgrab/database/database.hpp"
 #include "visgrab/grasp/hand_grasp_setup.hpp"
 #include "visgrab/render/offscreen_renderer.hpp"
@@ -58,6 +58,82 @@ std::string fileName(const analysis::Showcase& s) {
   return name;
 }
 
+/// What one picture worker keeps between its showcases: its OpenGL context and the scene it
+/// has loaded (jobs come in (run, scene) order, so a worker often keeps its scene).
+struct PictureWorker {
+  bool started = false;
+  std::unique_ptr<render::OffscreenRenderer> offscreen;
+  std::string contextProblem;
+  std::string loadedScene;
+  std::size_t loadedRun = 0;
+  std::unique_ptr<SceneSession> session;
+  std::unique_ptr<WorkcellDrawing> drawing;
+
+  /// Drops the drawing, the session and the context, in that order, on the worker's thread.
+  void release() {
+    drawing.reset();
+    session.reset();
+    offscreen.reset();
+  }
+};
+
+/// Draws showcase `s` into reportDir/images (sets its image and note) with worker `w`.
+/// @throws std::exception whose message becomes the note when it cannot be drawn.
+void drawShowcase(analysis::Showcase& s, std::size_t runCount, const std::vector<RunInputs>& inputs,
+                  const fs::path& reportDir, const ReportPictureOptions& options,
+                  PictureWorker& w) {
+  if (!w.started) {
+    w.started = true;
+    w.loadedRun = runCount;
+    try {
+      w.offscreen = std::make_unique<render::OffscreenRenderer>();
+    } catch (const std::exception& e) {
+      w.contextProblem = std::string("no OpenGL context: ") + e.what();
+    }
+  }
+  const std::size_t r = s.run;
+  if (r >= inputs.size()) throw std::runtime_error("the showcase's run is not given");
+  const RunInputs& in = inputs[r];
+  if (!w.contextProblem.empty()) throw std::runtime_error(w.contextProblem);
+  if (!in.problem.empty()) throw std::runtime_error(in.problem);
+  const database::SceneEntry& entry = in.db->scene(s.trial.sceneId);
+  if (entry.id != w.loadedScene || r != w.loadedRun) {
+    w.loadedScene.clear();
+    w.drawing.reset();
+    w.session.reset();
+    // A fresh renderer per scene: GlRenderer keeps every mesh it was given. The old one goes
+    // first: its destructor leaves no context current.
+    w.offscreen.reset();
+    w.offscreen = std::make_unique<render::OffscreenRenderer>();
+    w.session = std::make_unique<SceneSession>(entry, *in.hand);
+    w.drawing = std::make_unique<WorkcellDrawing>(w.session->workcell(), w.offscreen->renderer(),
+                                                  in.hand->deviceName());
+    w.loadedScene = entry.id;
+    w.loadedRun = r;
+  }
+  // The showcase's request, with the showcase's own trial as its record.
+  std::optional<SceneGrasp> grasp;
+  for (const auto& q : in.grasps.requests) {
+    if (q.method == s.trial.method && q.id == s.trial.graspId && in.db->contains(q.sceneId) &&
+        in.db->scene(q.sceneId).id == entry.id) {
+      grasp = SceneGrasp{q, s.trial};
+      break;
+    }
+  }
+  if (!grasp) {
+    throw std::runtime_error("grasp " + s.trial.graspId + " is not in the run's grasp files");
+  }
+  PictureOptions picture;
+  picture.width = options.width;
+  picture.height = options.height;
+  const TrialPicture strip =
+      trialStrip(w.offscreen->renderer(), *w.drawing, *w.session, *grasp, picture);
+  const std::string name = fileName(s);
+  render::writePng(reportDir / "images" / name, strip.image);
+  s.image = "images/" + name;
+  s.note = strip.note;
+}
+
 }  // namespace
 
 void drawShowcases(std::vector<analysis::Showcase>& showcases,
@@ -76,83 +152,27 @@ void drawShowcases(std::vector<analysis::Showcase>& showcases,
   });
   fs::create_directories(reportDir / "images");
   std::mutex mutex;
-  std::atomic<std::size_t> next{0};
   int done = 0;
   const int total = static_cast<int>(jobs.size());
-  auto finished = [&] {
-    const std::lock_guard lock(mutex);
-    ++done;
-    if (options.progress) options.progress(done, total);
-  };
-  auto worker = [&] {
-    std::unique_ptr<render::OffscreenRenderer> offscreen;
-    std::string contextProblem;
-    try {
-      offscreen = std::make_unique<render::OffscreenRenderer>();
-    } catch (const std::exception& e) {
-      contextProblem = std::string("no OpenGL context: ") + e.what();
-    }
-    std::string loadedScene;
-    std::size_t loadedRun = runs.size();
-    std::unique_ptr<SceneSession> session;
-    std::unique_ptr<WorkcellDrawing> drawing;
-    for (std::size_t k = next++; k < jobs.size(); k = next++) {
-      analysis::Showcase& s = showcases[jobs[k]];
-      const std::size_t r = s.run;
-      try {
-        if (r >= inputs.size()) throw std::runtime_error("the showcase's run is not given");
-        const RunInputs& in = inputs[r];
-        if (!contextProblem.empty()) throw std::runtime_error(contextProblem);
-        if (!in.problem.empty()) throw std::runtime_error(in.problem);
-        const database::SceneEntry& entry = in.db->scene(s.trial.sceneId);
-        if (entry.id != loadedScene || r != loadedRun) {
-          loadedScene.clear();
-          drawing.reset();
-          session.reset();
-          // A fresh renderer per scene: GlRenderer keeps every mesh it was given. The old one
-          // goes first: its destructor leaves no context current.
-          offscreen.reset();
-          offscreen = std::make_unique<render::OffscreenRenderer>();
-          session = std::make_unique<SceneSession>(entry, *in.hand);
-          drawing = std::make_unique<WorkcellDrawing>(session->workcell(), offscreen->renderer(),
-                                                      in.hand->deviceName());
-          loadedScene = entry.id;
-          loadedRun = r;
+  const rw::common::TaskPool pool(std::min(options.threads, std::max(1, total)));
+  std::vector<PictureWorker> workers(static_cast<std::size_t>(pool.threads()));
+  pool.run(
+      jobs.size(),
+      [&](std::size_t k, int id) {
+        PictureWorker& w = workers[static_cast<std::size_t>(id)];
+        analysis::Showcase& s = showcases[jobs[k]];
+        try {
+          drawShowcase(s, runs.size(), inputs, reportDir, options, w);
+        } catch (const rw::common::WriteError&) {
+          throw;  // disk full, folder gone: the report cannot be written either
+        } catch (const std::exception& e) {
+          s.note = e.what();
         }
-        // The showcase's request, with the showcase's own trial as its record.
-        std::optional<SceneGrasp> grasp;
-        for (const auto& q : in.grasps.requests) {
-          if (q.method == s.trial.method && q.id == s.trial.graspId && in.db->contains(q.sceneId) &&
-              in.db->scene(q.sceneId).id == entry.id) {
-            grasp = SceneGrasp{q, s.trial};
-            break;
-          }
-        }
-        if (!grasp) {
-          throw std::runtime_error("grasp " + s.trial.graspId + " is not in the run's grasp files");
-        }
-        PictureOptions picture;
-        picture.width = options.width;
-        picture.height = options.height;
-        const TrialPicture strip =
-            trialStrip(offscreen->renderer(), *drawing, *session, *grasp, picture);
-        const std::string name = fileName(s);
-        render::writePng(reportDir / "images" / name, strip.image);
-        s.image = "images/" + name;
-        s.note = strip.note;
-      } catch (const std::exception& e) {
-        s.note = e.what();
-      }
-      finished();
-    }
-    drawing.reset();
-    session.reset();
-  };
-  const int threads = std::clamp(options.threads, 1, std::max(1, total));
-  std::vector<std::thread> pool;
-  for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
-  worker();
-  for (auto& t : pool) t.join();
+        const std::lock_guard lock(mutex);
+        ++done;
+        if (options.progress) options.progress(done, total);
+      },
+      [&](int id) { workers[static_cast<std::size_t>(id)].release(); });
 }
 
 analysis::ShowcaseDrawer showcaseDrawer(ReportPictureOptions options) {

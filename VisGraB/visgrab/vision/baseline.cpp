@@ -1,13 +1,13 @@
 #include "visgrab/vision/baseline.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <exception>
 #include <mutex>
 #include <opencv2/imgproc.hpp>
-#include <thread>
+
+#include "rw/common/task_pool.hpp"
 
 namespace visgrab::vision {
 namespace {
@@ -55,22 +55,16 @@ std::vector<SceneGrasps> baselineGrasps(
     const database::Database& db, const std::vector<const database::SceneEntry*>& scenes,
     const BaselineOptions& options, const std::function<void(const BaselineProgress&)>& progress) {
   std::vector<SceneGrasps> results(scenes.size());
-  std::atomic<std::size_t> next{0};
   std::mutex progressMutex;
   int done = 0;
-  auto work = [&] {
-    for (std::size_t i = next++; i < scenes.size(); i = next++) {
-      results[i] = graspsOf(db, *scenes[i], options);
-      if (!progress) continue;
-      std::lock_guard lock(progressMutex);
-      progress({++done, static_cast<int>(scenes.size()), scenes[i]->id});
-    }
-  };
-  const int threads = std::clamp(options.threads, 1, std::max(1, static_cast<int>(scenes.size())));
-  std::vector<std::thread> pool;
-  for (int t = 1; t < threads; ++t) pool.emplace_back(work);
-  work();
-  for (auto& t : pool) t.join();
+  const rw::common::TaskPool pool(
+      std::min(options.threads, std::max(1, static_cast<int>(scenes.size()))));
+  pool.run(scenes.size(), [&](std::size_t i, int /*worker*/) {
+    results[i] = graspsOf(db, *scenes[i], options);
+    if (!progress) return;
+    std::lock_guard lock(progressMutex);
+    progress({++done, static_cast<int>(scenes.size()), scenes[i]->id});
+  });
   return results;
 }
 

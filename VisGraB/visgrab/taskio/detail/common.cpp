@@ -2,6 +2,7 @@
 
 #include <Eigen/SVD>
 #include <array>
+#include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <fstream>
@@ -9,6 +10,7 @@
 
 #include "rw/common/strings.hpp"
 #include "rw/common/text_file.hpp"
+#include "rw/common/write_error.hpp"
 #include "rw/common/xml_reader.hpp"
 
 namespace visgrab::taskio::detail {
@@ -117,10 +119,12 @@ std::string readFileOrThrow(const std::filesystem::path& file, std::string_view 
 }
 
 void writeFileOrThrow(const std::filesystem::path& file, const std::string& text) {
+  errno = 0;
   std::ofstream out(file, std::ios::binary | std::ios::trunc);
   out << text;
   out.close();
-  if (!out) throw std::runtime_error("cannot write " + file.string());
+  // The stream keeps no reason; errno holds the failed system call's (EIO if none set it).
+  if (!out) throw rw::common::WriteError(file, {errno != 0 ? errno : EIO, std::generic_category()});
 }
 
 }  // namespace visgrab::taskio::detail
