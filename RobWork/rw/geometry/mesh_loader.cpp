@@ -100,6 +100,47 @@ bool startsWithSolid(std::string_view bytes) {
   return start != std::string_view::npos && bytes.substr(start, 5) == "solid";
 }
 
+/// Reads the next whitespace-separated word of `text` from `pos` on (empty at the end).
+std::string_view nextWord(std::string_view text, std::size_t& pos) {
+  const std::size_t start = text.find_first_not_of(" \t\r\n\f\v", pos);
+  if (start == std::string_view::npos) {
+    pos = text.size();
+    return {};
+  }
+  pos = std::min(text.find_first_of(" \t\r\n\f\v", start), text.size());
+  return text.substr(start, pos - start);
+}
+
+/// Checks that every facet of an ASCII STL has three vertices of three numbers each: assimp
+/// throws for other counts and leaks the mesh it was building (found by fuzzing).
+std::optional<std::string> asciiStlFacetProblem(std::string_view bytes) {
+  std::size_t pos = 0;
+  std::size_t facet = 0;
+  int vertices = -1;  // -1: outside an outer loop
+  for (std::string_view word = nextWord(bytes, pos); !word.empty(); word = nextWord(bytes, pos)) {
+    if (word == "loop") {
+      vertices = 0;
+    } else if (word == "vertex" && vertices >= 0) {
+      ++vertices;
+      for (int k = 0; k < 3; ++k) {
+        const std::string_view number = nextWord(bytes, pos);
+        if (number.empty() || number == "endloop" || number == "vertex") {
+          return "ASCII STL facet " + std::to_string(facet) + ": vertex " +
+                 std::to_string(vertices) + " has fewer than 3 coordinates";
+        }
+      }
+    } else if (word == "endloop" && vertices >= 0) {
+      if (vertices != 3) {
+        return "ASCII STL facet " + std::to_string(facet) + " has " + std::to_string(vertices) +
+               " vertices, expected 3";
+      }
+      vertices = -1;
+      ++facet;
+    }
+  }
+  return std::nullopt;
+}
+
 /// Decides binary versus ASCII STL ourselves (binary iff the size is 84 + 50 * count, so a binary
 /// header starting with "solid" is fine) and returns what is wrong, if anything.
 std::optional<std::string> stlProblem(std::string_view bytes) {
@@ -116,7 +157,7 @@ std::optional<std::string> stlProblem(std::string_view bytes) {
              std::to_string(size) + " bytes";
     }
   }
-  if (startsWithSolid(bytes) && looksLikeText(head)) return std::nullopt;
+  if (startsWithSolid(bytes) && looksLikeText(head)) return asciiStlFacetProblem(bytes);
   return std::string(
       "not an STL file: it neither starts with \"solid\" (ASCII STL) nor has the "
       "size of a binary STL (84 bytes plus 50 per triangle)");
@@ -148,17 +189,6 @@ int plyTypeSize(std::string_view type) {
     if (type == t) return 4;
   }
   return type == "double" || type == "float64" ? 8 : 0;
-}
-
-/// Reads the next whitespace-separated word of `text` from `pos` on (empty at the end).
-std::string_view nextWord(std::string_view text, std::size_t& pos) {
-  const std::size_t start = text.find_first_not_of(" \t\r\n\f\v", pos);
-  if (start == std::string_view::npos) {
-    pos = text.size();
-    return {};
-  }
-  pos = std::min(text.find_first_of(" \t\r\n\f\v", start), text.size());
-  return text.substr(start, pos - start);
 }
 
 /// The value of the unsigned `size`-byte integer at `bytes`, in the file's byte order.

@@ -320,6 +320,23 @@ TEST(MeshLoaderTest, BinaryGarbageIsAnErrorNotACrash) {
   expectLoadError(writeFile(dir.path() / "solid-garbage.stl", "solid " + garbage), "");
 }
 
+// Found by fuzzing (fuzz/regressions/mesh): assimp throws for these facets and leaks the mesh it
+// was building, so the loader rejects them first.
+TEST(MeshLoaderTest, AsciiStlFacetsNeedThreeVerticesOfThreeCoordinates) {
+  TempDir dir;
+  std::string twoVertices = asciiStl();
+  const std::size_t second = twoVertices.find("vertex", twoVertices.find("vertex") + 1);
+  twoVertices.erase(second, twoVertices.find('\n', second) + 1 - second);
+  expectLoadError(writeFile(dir.path() / "two.stl", twoVertices),
+                  "ASCII STL facet 0 has 2 vertices, expected 3");
+  std::string shortVertex = asciiStl();
+  const std::size_t first = shortVertex.find("vertex");
+  const std::size_t lineEnd = shortVertex.find('\n', first);
+  shortVertex.replace(first, lineEnd - first, "vertex 0 0");
+  expectLoadError(writeFile(dir.path() / "short.stl", shortVertex),
+                  "ASCII STL facet 0: vertex 1 has fewer than 3 coordinates");
+}
+
 TEST(MeshLoaderTest, NonFiniteCoordinatesAreAnError) {
   TempDir dir;
   for (const std::string bad : {"nan", "inf", "1e999"}) {
