@@ -111,33 +111,50 @@ std::string_view nextWord(std::string_view text, std::size_t& pos) {
   return text.substr(start, pos - start);
 }
 
-/// Checks that every facet of an ASCII STL has three vertices of three numbers each: assimp
-/// throws for other counts and leaks the mesh it was building (found by fuzzing).
+/// Checks the structure of an ASCII STL after its "solid" line: every facet holds one outer loop
+/// of three vertices of three coordinates each and is closed by endfacet, and there is at least
+/// one facet. assimp throws for other
+/// shapes and leaks the mesh it was building (found by fuzzing).
 std::optional<std::string> asciiStlFacetProblem(std::string_view bytes) {
-  std::size_t pos = 0;
+  std::size_t pos = std::min(bytes.find_first_of("\r\n"), bytes.size());
   std::size_t facet = 0;
+  bool inFacet = false;
+  bool loopDone = false;
   int vertices = -1;  // -1: outside an outer loop
+  const auto problem = [&facet](const std::string& what) {
+    return "ASCII STL facet " + std::to_string(facet) + ": " + what;
+  };
   for (std::string_view word = nextWord(bytes, pos); !word.empty(); word = nextWord(bytes, pos)) {
-    if (word == "loop") {
+    if (word == "facet") {
+      if (inFacet) return problem("not closed by endfacet before the next facet");
+      inFacet = true;
+      loopDone = false;
+    } else if (word == "loop") {
+      if (!inFacet || loopDone || vertices >= 0) return problem("outer loop out of place");
       vertices = 0;
-    } else if (word == "vertex" && vertices >= 0) {
+    } else if (word == "vertex") {
+      if (vertices < 0) return problem("vertex outside an outer loop");
       ++vertices;
       for (int k = 0; k < 3; ++k) {
         const std::string_view number = nextWord(bytes, pos);
         if (number.empty() || number == "endloop" || number == "vertex") {
-          return "ASCII STL facet " + std::to_string(facet) + ": vertex " +
-                 std::to_string(vertices) + " has fewer than 3 coordinates";
+          return problem("vertex " + std::to_string(vertices) + " has fewer than 3 coordinates");
         }
       }
-    } else if (word == "endloop" && vertices >= 0) {
+    } else if (word == "endloop") {
       if (vertices != 3) {
-        return "ASCII STL facet " + std::to_string(facet) + " has " + std::to_string(vertices) +
-               " vertices, expected 3";
+        return problem("has " + std::to_string(std::max(vertices, 0)) + " vertices, expected 3");
       }
       vertices = -1;
+      loopDone = true;
+    } else if (word == "endfacet") {
+      if (!inFacet || !loopDone) return problem("endfacet without an outer loop of 3 vertices");
+      inFacet = false;
       ++facet;
     }
   }
+  if (inFacet) return problem("not closed by endfacet at the end of the file");
+  if (facet == 0) return "ASCII STL without a facet";
   return std::nullopt;
 }
 

@@ -328,13 +328,19 @@ TEST(MeshLoaderTest, AsciiStlFacetsNeedThreeVerticesOfThreeCoordinates) {
   const std::size_t second = twoVertices.find("vertex", twoVertices.find("vertex") + 1);
   twoVertices.erase(second, twoVertices.find('\n', second) + 1 - second);
   expectLoadError(writeFile(dir.path() / "two.stl", twoVertices),
-                  "ASCII STL facet 0 has 2 vertices, expected 3");
+                  "ASCII STL facet 0: has 2 vertices, expected 3");
   std::string shortVertex = asciiStl();
   const std::size_t first = shortVertex.find("vertex");
   const std::size_t lineEnd = shortVertex.find('\n', first);
   shortVertex.replace(first, lineEnd - first, "vertex 0 0");
   expectLoadError(writeFile(dir.path() / "short.stl", shortVertex),
                   "ASCII STL facet 0: vertex 1 has fewer than 3 coordinates");
+  expectLoadError(writeFile(dir.path() / "loose.stl", "solid a\nvertex 0 0 0\nendsolid a\n"),
+                  "ASCII STL facet 0: vertex outside an outer loop");
+  expectLoadError(writeFile(dir.path() / "open.stl", "solid a\nfacet normal 0 0 1\nouter loop\n"),
+                  "ASCII STL facet 0: not closed by endfacet at the end of the file");
+  expectLoadError(writeFile(dir.path() / "empty.stl", "solid a\nendsolid a\n"),
+                  "ASCII STL without a facet");
 }
 
 TEST(MeshLoaderTest, NonFiniteCoordinatesAreAnError) {
