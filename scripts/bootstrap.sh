@@ -5,7 +5,9 @@
 #   scripts/bootstrap.sh run     install, build and run the main job: `visgrab benchmark` with the
 #                                baseline method (database if absent, grasps, trials, report)
 #   scripts/bootstrap.sh test    install, build (warnings as errors) and run every test, plus the
-#                                malformed-input suites again under AddressSanitizer+UBSan
+#                                malformed-input suites again under AddressSanitizer+UBSan, then
+#                                the fuzz stage (scripts/fuzz.sh: every libFuzzer harness for a
+#                                bounded time, clang build in build-fuzz; docs/fuzzing.md)
 #
 # The test builds keep CI fast (docs/performance.md, "CI time"): unity batches and the tests'
 # precompiled header (both on by default), line-table debug info only (-g1), and in the
@@ -32,7 +34,8 @@ packages=(build-essential cmake ninja-build pkg-config
   libode-dev libeigen3-dev libxerces-c-dev libassimp-dev libopencv-dev
   qtbase5-dev libqhull-dev libgtest-dev libbenchmark-dev
   libegl-dev libegl-mesa0 libgl1-mesa-dri libgl-dev
-  xvfb xauth clang-format python3)
+  xvfb xauth clang-format python3
+  clang libclang-rt-14-dev)  # the fuzz stage: clang 14 with libFuzzer and the sanitizer runtimes
 
 install_packages() {
   local missing=()
@@ -86,3 +89,6 @@ cmake -S . -B "$asan" -G Ninja -DCMAKE_BUILD_TYPE=Debug -DVISGRAB_SANITIZE=ON -D
 cmake --build "$asan" --parallel "$jobs" --target sanitize_tests
 (cd "$asan" && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
   ctest --output-on-failure --parallel "$jobs" -L sanitize)
+
+echo "== fuzz stage: libFuzzer harnesses (docs/fuzzing.md)"
+BUILD_DIR="$build" JOBS="$jobs" scripts/fuzz.sh

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
+#include <charconv>
 #include <cstdint>
 #include <fstream>
 #include <iterator>
@@ -99,6 +100,64 @@ bool startsWithSolid(std::string_view bytes) {
   return start != std::string_view::npos && bytes.substr(start, 5) == "solid";
 }
 
+/// Reads the next whitespace-separated word of `text` from `pos` on (empty at the end).
+std::string_view nextWord(std::string_view text, std::size_t& pos) {
+  const std::size_t start = text.find_first_not_of(" \t\r\n\f\v", pos);
+  if (start == std::string_view::npos) {
+    pos = text.size();
+    return {};
+  }
+  pos = std::min(text.find_first_of(" \t\r\n\f\v", start), text.size());
+  return text.substr(start, pos - start);
+}
+
+/// Checks the structure of an ASCII STL after its "solid" line: every facet holds one outer loop
+/// of three vertices of three coordinates each and is closed by endfacet, and there is at least
+/// one facet. assimp throws for other
+/// shapes and leaks the mesh it was building (found by fuzzing).
+std::optional<std::string> asciiStlFacetProblem(std::string_view bytes) {
+  std::size_t pos = std::min(bytes.find_first_of("\r\n"), bytes.size());
+  std::size_t facet = 0;
+  bool inFacet = false;
+  bool loopDone = false;
+  int vertices = -1;  // -1: outside an outer loop
+  const auto problem = [&facet](const std::string& what) {
+    return "ASCII STL facet " + std::to_string(facet) + ": " + what;
+  };
+  for (std::string_view word = nextWord(bytes, pos); !word.empty(); word = nextWord(bytes, pos)) {
+    if (word == "facet") {
+      if (inFacet) return problem("not closed by endfacet before the next facet");
+      inFacet = true;
+      loopDone = false;
+    } else if (word == "loop") {
+      if (!inFacet || loopDone || vertices >= 0) return problem("outer loop out of place");
+      vertices = 0;
+    } else if (word == "vertex") {
+      if (vertices < 0) return problem("vertex outside an outer loop");
+      ++vertices;
+      for (int k = 0; k < 3; ++k) {
+        const std::string_view number = nextWord(bytes, pos);
+        if (number.empty() || number == "endloop" || number == "vertex") {
+          return problem("vertex " + std::to_string(vertices) + " has fewer than 3 coordinates");
+        }
+      }
+    } else if (word == "endloop") {
+      if (vertices != 3) {
+        return problem("has " + std::to_string(std::max(vertices, 0)) + " vertices, expected 3");
+      }
+      vertices = -1;
+      loopDone = true;
+    } else if (word == "endfacet") {
+      if (!inFacet || !loopDone) return problem("endfacet without an outer loop of 3 vertices");
+      inFacet = false;
+      ++facet;
+    }
+  }
+  if (inFacet) return problem("not closed by endfacet at the end of the file");
+  if (facet == 0) return "ASCII STL without a facet";
+  return std::nullopt;
+}
+
 /// Decides binary versus ASCII STL ourselves (binary iff the size is 84 + 50 * count, so a binary
 /// header starting with "solid" is fine) and returns what is wrong, if anything.
 std::optional<std::string> stlProblem(std::string_view bytes) {
@@ -115,10 +174,140 @@ std::optional<std::string> stlProblem(std::string_view bytes) {
              std::to_string(size) + " bytes";
     }
   }
-  if (startsWithSolid(bytes) && looksLikeText(head)) return std::nullopt;
+  if (startsWithSolid(bytes) && looksLikeText(head)) return asciiStlFacetProblem(bytes);
   return std::string(
       "not an STL file: it neither starts with \"solid\" (ASCII STL) nor has the "
       "size of a binary STL (84 bytes plus 50 per triangle)");
+}
+
+/// One property of a PLY element: for a list, the sizes of its count and of each item; for a
+/// scalar, its size (in bytes, as stored in a binary file; 0 for a type PLY does not have).
+struct PlyProperty {
+  bool list = false;
+  int countSize = 0;
+  int size = 0;
+};
+
+/// One element of a PLY header: its name, number of entries and properties.
+struct PlyElement {
+  std::string name;
+  std::uint64_t count = 0;
+  std::vector<PlyProperty> properties;
+};
+
+int plyTypeSize(std::string_view type) {
+  for (std::string_view t : {"char", "uchar", "int8", "uint8"}) {
+    if (type == t) return 1;
+  }
+  for (std::string_view t : {"short", "ushort", "int16", "uint16"}) {
+    if (type == t) return 2;
+  }
+  for (std::string_view t : {"int", "uint", "float", "int32", "uint32", "float32"}) {
+    if (type == t) return 4;
+  }
+  return type == "double" || type == "float64" ? 8 : 0;
+}
+
+/// The value of the unsigned `size`-byte integer at `bytes`, in the file's byte order.
+std::uint64_t plyCount(std::string_view bytes, int size, bool bigEndian) {
+  std::uint64_t value = 0;
+  for (int i = 0; i < size; ++i) {
+    const int at = bigEndian ? i : size - 1 - i;
+    value = (value << 8U) | static_cast<unsigned char>(bytes[static_cast<std::size_t>(at)]);
+  }
+  return value;
+}
+
+/// Checks that the element and list sizes a PLY header and body announce fit in the file, before
+/// assimp allocates for them (a count of 4e9 would otherwise allocate tens of gigabytes). Header
+/// syntax it does not understand is left to assimp.
+std::optional<std::string> plyProblem(std::string_view bytes) {
+  const std::size_t end = bytes.find("end_header");
+  if (bytes.substr(0, 3) != "ply" || end == std::string_view::npos) return std::nullopt;
+  const std::size_t bodyStart = bytes.find('\n', end);
+  const std::string_view body =
+      bodyStart == std::string_view::npos ? std::string_view() : bytes.substr(bodyStart + 1);
+  std::vector<PlyElement> elements;
+  bool ascii = true;
+  bool bigEndian = false;
+  std::size_t pos = 3;
+  while (pos < end) {
+    const std::size_t lineEnd = std::min(bytes.find('\n', pos), end);
+    const std::string_view line = bytes.substr(pos, lineEnd - pos);
+    pos = lineEnd + 1;
+    std::size_t at = 0;
+    const std::string_view keyword = nextWord(line, at);
+    if (keyword == "format") {
+      const std::string_view format = nextWord(line, at);
+      ascii = format == "ascii";
+      bigEndian = format == "binary_big_endian";
+    } else if (keyword == "element") {
+      PlyElement element;
+      element.name = nextWord(line, at);
+      const std::string_view count = nextWord(line, at);
+      const auto [ptr, ec] =
+          std::from_chars(count.data(), count.data() + count.size(), element.count);
+      if (ec != std::errc() || ptr != count.data() + count.size()) return std::nullopt;
+      if (element.count > body.size()) {
+        return "PLY element \"" + element.name + "\" announces " + std::to_string(element.count) +
+               " entries but only " + std::to_string(body.size()) + " bytes follow the header";
+      }
+      elements.push_back(std::move(element));
+    } else if (keyword == "property" && !elements.empty()) {
+      PlyProperty property;
+      const std::string_view type = nextWord(line, at);
+      property.list = type == "list";
+      if (property.list) {
+        property.countSize = plyTypeSize(nextWord(line, at));
+        property.size = plyTypeSize(nextWord(line, at));
+      } else {
+        property.size = plyTypeSize(type);
+      }
+      if (property.size == 0 || (property.list && property.countSize == 0)) return std::nullopt;
+      elements.back().properties.push_back(property);
+    }
+  }
+  // Walk the body: every list must fit in what is left of the file.
+  std::size_t at = 0;
+  for (const PlyElement& element : elements) {
+    for (std::uint64_t i = 0; i < element.count; ++i) {
+      if (element.properties.empty() || at >= body.size()) break;
+      for (const PlyProperty& property : element.properties) {
+        std::uint64_t items = 1;
+        if (ascii) {
+          if (property.list) {
+            const std::string_view word = nextWord(body, at);
+            double n = 0;
+            const auto [ptr, ec] = std::from_chars(word.data(), word.data() + word.size(), n);
+            if (ec != std::errc() || !(n >= 0)) return std::nullopt;
+            if (n > static_cast<double>(body.size() - at)) {
+              return "PLY element \"" + element.name + "\" entry " + std::to_string(i) +
+                     ": a list of " + std::string(word.substr(0, 20)) +
+                     " items is longer than the rest of the file";
+            }
+            items = static_cast<std::uint64_t>(n);
+          }
+          for (std::uint64_t k = 0; k < items; ++k) nextWord(body, at);
+        } else {
+          if (property.list) {
+            if (body.size() - at < static_cast<std::size_t>(property.countSize))
+              return std::nullopt;
+            items = plyCount(body.substr(at), property.countSize, bigEndian);
+            at += static_cast<std::size_t>(property.countSize);
+          }
+          const std::uint64_t size = items * static_cast<std::uint64_t>(property.size);
+          if (items > body.size() || size > body.size() - at) {
+            if (!property.list) return std::nullopt;  // truncated: assimp reports it
+            return "PLY element \"" + element.name + "\" entry " + std::to_string(i) +
+                   ": a list of " + std::to_string(items) +
+                   " items is longer than the rest of the file";
+          }
+          at += static_cast<std::size_t>(size);
+        }
+      }
+    }
+  }
+  return std::nullopt;
 }
 
 Eigen::Affine3d toEigen(const aiMatrix4x4& m) {
@@ -201,6 +390,11 @@ const aiScene* import(Assimp::Importer& importer, const fs::path& file) {
                                   aiComponent_COLORS | aiComponent_TEXCOORDS);
   const unsigned flags = aiProcess_ValidateDataStructure | aiProcess_RemoveComponent |
                          aiProcess_Triangulate | aiProcess_JoinIdenticalVertices;
+  if (lowerCase(file.extension().string()) == ".ply") {
+    const std::string bytes = readBytes(file);
+    if (const auto problem = plyProblem(bytes)) fail(file, *problem);
+    return importer.ReadFileFromMemory(bytes.data(), bytes.size(), flags, "ply");
+  }
   if (!isStlName(file)) return importer.ReadFile(file.string(), flags);
   const std::string bytes = readBytes(file);
   if (const auto problem = stlProblem(bytes)) fail(file, *problem);

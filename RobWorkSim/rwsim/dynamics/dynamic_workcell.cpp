@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <ranges>
 #include <stdexcept>
 #include <utility>
 
@@ -59,7 +58,11 @@ std::vector<FrameId> rigidlyAttachedFrames(const FrameTree& tree, FrameId frame,
     const FrameId id = pending.back();
     pending.pop_back();
     result.push_back(id);
-    for (const FrameId c : std::views::reverse(tree.children(id))) {
+    // Reverse iterators, not std::views::reverse: clang 14 (the fuzz build) cannot compile
+    // libstdc++ 12's views.
+    const std::vector<FrameId>& children = tree.children(id);
+    for (auto it = children.rbegin(); it != children.rend(); ++it) {
+      const FrameId c = *it;
       const rw::kinematics::Frame& child = tree.frame(c);
       if (child.type() != FrameType::kFixed || child.isDaf() || contains(stopAt, c)) continue;
       pending.push_back(c);

@@ -1,6 +1,8 @@
 #include "visgrab/database/database.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cstdint>
 #include <fstream>
 #include <iomanip>
 #include <iterator>
@@ -37,6 +39,24 @@ cv::Mat readImage(const fs::path& file, const std::string& what, const std::stri
   std::vector<uchar> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (!in.good() && !in.eof()) throw DatabaseError(prefix + "cannot read the file");
   if (bytes.empty()) throw DatabaseError(prefix + "the file is empty");
+  // OpenCV allocates the whole image from a PNG's header before it reads the pixels (found by
+  // fuzzing: 57 bytes announcing 30000 x 30000 pixels took 2.7 GB), so the size is checked first.
+  static constexpr std::array<uchar, 16> kPngStart = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n',
+                                                      0,    0,   0,   13,  'I',  'H',  'D',  'R'};
+  static constexpr std::uint64_t kMaxPixels = std::uint64_t{1} << 26U;
+  if (bytes.size() >= 24 && std::equal(kPngStart.begin(), kPngStart.end(), bytes.begin())) {
+    std::uint64_t width = 0;
+    std::uint64_t height = 0;
+    for (std::size_t i = 0; i < 4; ++i) {
+      width = (width << 8U) | bytes[16 + i];
+      height = (height << 8U) | bytes[20 + i];
+    }
+    if (width > kMaxPixels || height > kMaxPixels || width * height > kMaxPixels) {
+      throw DatabaseError(prefix + "the PNG announces " + std::to_string(width) + " x " +
+                          std::to_string(height) + " pixels, more than the " +
+                          std::to_string(kMaxPixels) + " this reader accepts");
+    }
+  }
   cv::Mat image;
   try {
     image = cv::imdecode(bytes, flags);

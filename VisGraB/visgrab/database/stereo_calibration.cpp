@@ -261,8 +261,15 @@ StereoCalibration parseCalibration(std::string_view yaml, const std::string& dis
     std::string text(yaml);
     if (text.rfind("%YAML", 0) != 0) text = "%YAML:1.0\n" + text;
     fs.open(text, cv::FileStorage::READ | cv::FileStorage::MEMORY | cv::FileStorage::FORMAT_YAML);
+  } catch (const CalibrationError&) {
+    throw;
   } catch (const cv::Exception& e) {
     fail(displayPath, "not a valid OpenCV YAML file: " + e.err);
+  } catch (const std::exception& e) {
+    // OpenCV's parser lets standard exceptions through for some malformed input (found by
+    // fuzzing: " o:3\n :" gives std::length_error).
+    fail(displayPath,
+         std::string("not a valid OpenCV YAML file (the parser failed: ") + e.what() + ")");
   }
   if (!fs.isOpened()) fail(displayPath, "not a valid OpenCV YAML file");
   StereoCalibration c;
@@ -293,8 +300,13 @@ StereoCalibration parseCalibration(std::string_view yaml, const std::string& dis
       fail(displayPath, "node \"X_table_left\": the last row must be 0 0 0 1");
     }
     c.X_TL.matrix() = X;
+  } catch (const CalibrationError&) {
+    throw;
   } catch (const cv::Exception& e) {
     fail(displayPath, "not a valid OpenCV YAML file: " + e.err);
+  } catch (const std::exception& e) {
+    fail(displayPath,
+         std::string("not a valid OpenCV YAML file (the parser failed: ") + e.what() + ")");
   }
   const std::string why = c.check();
   if (!why.empty()) {

@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cerrno>
+#include <cstdint>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -25,7 +26,36 @@ std::vector<std::uint8_t> readBytes(const std::filesystem::path& path) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
+constexpr std::array<std::uint8_t, 8> kPngSignature = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+
+/// Largest image we decode, in pixels (the rendered pictures and textures are far below it):
+/// OpenCV allocates the whole image from the size in the header before it reads the pixels,
+/// so a 60-byte file announcing 30000 x 30000 pixels would take 2.7 GB.
+constexpr std::uint64_t kMaxPixels = std::uint64_t{1} << 26U;
+
+std::uint64_t bigEndian32(const std::vector<std::uint8_t>& bytes, std::size_t at) {
+  std::uint64_t value = 0;
+  for (std::size_t i = 0; i < 4; ++i) value = (value << 8U) | bytes[at + i];
+  return value;
+}
+
+/// Rejects a PNG whose header (IHDR) announces more than kMaxPixels pixels.
+void checkPngSize(const std::filesystem::path& path, const std::vector<std::uint8_t>& bytes) {
+  if (bytes.size() < 24 || std::memcmp(bytes.data(), kPngSignature.data(), 8) != 0 ||
+      std::memcmp(bytes.data() + 12, "IHDR", 4) != 0) {
+    return;  // not a PNG with a header: the decoder says what is wrong
+  }
+  const std::uint64_t width = bigEndian32(bytes, 16);
+  const std::uint64_t height = bigEndian32(bytes, 20);
+  if (width > kMaxPixels || height > kMaxPixels || width * height > kMaxPixels) {
+    throw std::runtime_error(path.string() + ": the PNG announces " + std::to_string(width) +
+                             " x " + std::to_string(height) + " pixels, more than the " +
+                             std::to_string(kMaxPixels) + " this reader accepts");
+  }
+}
+
 visual::RgbImage decode(const std::filesystem::path& path, const std::vector<std::uint8_t>& bytes) {
+  checkPngSize(path, bytes);
   cv::Mat bgr;
   try {
     bgr = cv::imdecode(bytes, cv::IMREAD_COLOR);
@@ -76,10 +106,8 @@ void writePng(const std::filesystem::path& path, const visual::RgbImage& image, 
 
 visual::RgbImage readPng(const std::filesystem::path& path) {
   const std::vector<std::uint8_t> bytes = readBytes(path);
-  static constexpr std::array<std::uint8_t, 8> kSignature = {0x89, 'P',  'N',  'G',
-                                                             '\r', '\n', 0x1a, '\n'};
-  if (bytes.size() < kSignature.size() ||
-      std::memcmp(bytes.data(), kSignature.data(), kSignature.size()) != 0) {
+  if (bytes.size() < kPngSignature.size() ||
+      std::memcmp(bytes.data(), kPngSignature.data(), kPngSignature.size()) != 0) {
     throw std::runtime_error(path.string() + ": not a PNG file");
   }
   return decode(path, bytes);

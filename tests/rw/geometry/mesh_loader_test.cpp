@@ -320,6 +320,29 @@ TEST(MeshLoaderTest, BinaryGarbageIsAnErrorNotACrash) {
   expectLoadError(writeFile(dir.path() / "solid-garbage.stl", "solid " + garbage), "");
 }
 
+// Found by fuzzing (fuzz/regressions/mesh): assimp throws for these facets and leaks the mesh it
+// was building, so the loader rejects them first.
+TEST(MeshLoaderTest, AsciiStlFacetsNeedThreeVerticesOfThreeCoordinates) {
+  TempDir dir;
+  std::string twoVertices = asciiStl();
+  const std::size_t second = twoVertices.find("vertex", twoVertices.find("vertex") + 1);
+  twoVertices.erase(second, twoVertices.find('\n', second) + 1 - second);
+  expectLoadError(writeFile(dir.path() / "two.stl", twoVertices),
+                  "ASCII STL facet 0: has 2 vertices, expected 3");
+  std::string shortVertex = asciiStl();
+  const std::size_t first = shortVertex.find("vertex");
+  const std::size_t lineEnd = shortVertex.find('\n', first);
+  shortVertex.replace(first, lineEnd - first, "vertex 0 0");
+  expectLoadError(writeFile(dir.path() / "short.stl", shortVertex),
+                  "ASCII STL facet 0: vertex 1 has fewer than 3 coordinates");
+  expectLoadError(writeFile(dir.path() / "loose.stl", "solid a\nvertex 0 0 0\nendsolid a\n"),
+                  "ASCII STL facet 0: vertex outside an outer loop");
+  expectLoadError(writeFile(dir.path() / "open.stl", "solid a\nfacet normal 0 0 1\nouter loop\n"),
+                  "ASCII STL facet 0: not closed by endfacet at the end of the file");
+  expectLoadError(writeFile(dir.path() / "empty.stl", "solid a\nendsolid a\n"),
+                  "ASCII STL without a facet");
+}
+
 TEST(MeshLoaderTest, NonFiniteCoordinatesAreAnError) {
   TempDir dir;
   for (const std::string bad : {"nan", "inf", "1e999"}) {
@@ -333,6 +356,61 @@ TEST(MeshLoaderTest, FileWithoutTrianglesIsAnError) {
   TempDir dir;
   expectLoadError(writeFile(dir.path() / "lines.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 2 3\n"),
                   "no triangles");
+}
+
+/// A tetrahedron as binary little-endian PLY (float vertices, uchar-counted int face lists).
+std::string binaryPly() {
+  std::string bytes =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 4\nproperty float x\n"
+      "property float y\nproperty float z\nelement face 4\n"
+      "property list uchar int vertex_indices\nend_header\n";
+  const auto append = [&bytes](const auto value) {
+    char raw[sizeof(value)];
+    std::memcpy(raw, &value, sizeof(value));
+    bytes.append(raw, sizeof(value));
+  };
+  for (const std::array<float, 3>& v :
+       {std::array<float, 3>{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}) {
+    for (const float c : v) append(c);
+  }
+  for (const std::array<std::int32_t, 3>& f :
+       {std::array<std::int32_t, 3>{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}}) {
+    append(std::uint8_t{3});
+    for (const std::int32_t i : f) append(i);
+  }
+  return bytes;
+}
+
+TEST(MeshLoaderTest, LoadsBinaryPly) {
+  TempDir dir;
+  const auto mesh = loadMesh(writeFile(dir.path() / "tetra.ply", binaryPly()));
+  EXPECT_EQ(mesh->vertices.size(), 4U);
+  EXPECT_EQ(mesh->triangles.size(), 4U);
+}
+
+// Found by fuzzing (fuzz/regressions/mesh): counts that cannot fit in the file made assimp
+// allocate tens of gigabytes before it noticed.
+TEST(MeshLoaderTest, PlyCountsLargerThanTheFileAreAnError) {
+  TempDir dir;
+  const std::string vertexHeader =
+      "ply\nformat ascii 1.0\nelement vertex 4000000000\nproperty float x\nproperty float y\n"
+      "property float z\nend_header\n0 0 0\n";
+  expectLoadError(writeFile(dir.path() / "count.ply", vertexHeader),
+                  "PLY element \"vertex\" announces 4000000000 entries but only 6 bytes follow");
+  std::string binary = binaryPly();
+  binary.replace(binary.find("face 4"), 6, "face 300000000");
+  expectLoadError(writeFile(dir.path() / "faces.ply", binary),
+                  "PLY element \"face\" announces 300000000 entries");
+  const std::string list =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty list uint float x\nend_header\n"
+      "4000000000 1 2\n";
+  expectLoadError(writeFile(dir.path() / "list.ply", list),
+                  "PLY element \"vertex\" entry 0: a list of 4000000000 items is longer than the "
+                  "rest of the file");
+  std::string binaryList = binaryPly();
+  binaryList[binaryList.size() - 13] = static_cast<char>(200);  // last face: 200 indices
+  expectLoadError(writeFile(dir.path() / "binary-list.ply", binaryList),
+                  "PLY element \"face\" entry 3: a list of 200 items is longer than the rest");
 }
 
 TEST(MeshLoaderTest, LoadsFromSeveralThreadsAtOnce) {

@@ -144,6 +144,21 @@ TEST_F(DatabaseTest, MissingAndCorruptImagesNameTheFile) {
   }
   writeFileAtomically(right, "not a png");
   EXPECT_THROW(db.rightImage("textured/single/cocacola/03"), DatabaseError);
+  // Found by fuzzing (fuzz/regressions/png): a header announcing 30000 x 30000 pixels made
+  // OpenCV allocate 2.7 GB; it is refused before decoding.
+  const std::string size30000 = {'\0', '\0', static_cast<char>(0x75), static_cast<char>(0x30)};
+  bytes.replace(16, 4, size30000);
+  bytes.replace(20, 4, size30000);
+  writeFileAtomically(right, bytes);
+  try {
+    db.rightImage("textured/single/cocacola/03");
+    FAIL();
+  } catch (const DatabaseError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              right.string() +
+                  ": error: right image of scene textured/single/cocacola/03: the PNG announces "
+                  "30000 x 30000 pixels, more than the 67108864 this reader accepts");
+  }
 }
 
 TEST_F(DatabaseTest, MissingOrCorruptIndex) {

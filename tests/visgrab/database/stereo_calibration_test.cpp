@@ -164,6 +164,19 @@ TEST(StereoCalibrationTest, MalformedFilesNameFileAndNode) {
             "scene/calibration.yml: error: node \"image_size\": expected [ width, height ]");
 }
 
+// Found by fuzzing (fuzz/regressions/calibration): OpenCV's YAML parser throws
+// std::length_error for these bytes, which escaped readCalibration and ended the program.
+TEST(StereoCalibrationTest, ParserFailureOtherThanCvExceptionIsACalibrationError) {
+  for (const std::string yaml : {" o:3\n :", " r:3\n :"}) {
+    const std::string error = errorOf(yaml);
+    EXPECT_EQ(error.rfind("scene/calibration.yml: error: not a valid OpenCV YAML file (the parser "
+                          "failed: ",
+                          0),
+              0U)
+        << error;
+  }
+}
+
 TEST(StereoCalibrationTest, MissingFileNamesIt) {
   try {
     readCalibration("/nonexistent/calibration.yml");

@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 
 #include "render_test_util.hpp"
@@ -64,6 +65,31 @@ TEST(PngTest, TruncatedPngThrowsNamingThePath) {
   const auto size = std::filesystem::file_size(path);
   std::filesystem::resize_file(path, size / 2);
   expectErrorMentioning([&] { readPng(path); }, {path.string()});
+}
+
+// Found by fuzzing (fuzz/regressions/png): OpenCV allocated 2.7 GB for a 57-byte PNG whose
+// header announced 30000 x 30000 pixels, before it found the pixel data missing.
+TEST(PngTest, HugeAnnouncedSizeThrowsBeforeDecoding) {
+  TempDir dir;
+  visual::RgbImage image;
+  image.width = 2;
+  image.height = 2;
+  image.pixels.assign(12, 200);
+  const auto path = dir.path() / "huge.png";
+  writePng(path, image, 0);
+  std::string bytes;
+  {
+    std::ifstream in(path, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  ASSERT_EQ(bytes.substr(12, 4), "IHDR");
+  const std::string size30000 = {'\0', '\0', static_cast<char>(0x75), static_cast<char>(0x30)};
+  bytes.replace(16, 4, size30000);  // width
+  bytes.replace(20, 4, size30000);  // height
+  writeFile(path, bytes);
+  expectErrorMentioning([&] { readPng(path); },
+                        {path.string(), "announces 30000 x 30000 pixels", "67108864"});
+  expectErrorMentioning([&] { readImage(path); }, {path.string(), "announces 30000 x 30000"});
 }
 
 TEST(PngTest, MissingAndNonPngFilesThrowNamingThePath) {
