@@ -15,6 +15,9 @@
 #include "visgrab/grasp/hand_grasp_setup.hpp"
 #include "visgrab/render/offscreen_renderer.hpp"
 #include "visgrab/render/png_io.hpp"
+#include "visgrab/session/grasp_order.hpp"
+#include "visgrab/session/scene_loader.hpp"
+#include "visgrab/session/scene_session.hpp"
 #include "visgrab/taskio/grasp_file.hpp"
 #include "visgrab/view/grasp_pictures.hpp"
 
@@ -29,6 +32,8 @@ struct RunInputs {
   std::optional<database::Database> db;
   taskio::GraspFileContents grasps;
   std::unique_ptr<grasp::HandGraspSetup> hand;
+  /// The run's scenes with its hand (set once `db` has its place).
+  std::unique_ptr<session::SceneLoader> loader;
   /// Why the run's trials cannot be drawn (empty if they can).
   std::string problem;
 };
@@ -67,6 +72,14 @@ void drawShowcases(std::vector<analysis::Showcase>& showcases,
   std::vector<RunInputs> inputs;
   inputs.reserve(runs.size());
   for (const auto& run : runs) inputs.push_back(openInputs(run));
+  for (auto& in : inputs) {
+    if (!in.problem.empty()) continue;
+    try {
+      in.loader = std::make_unique<session::SceneLoader>(*in.db, *in.hand);
+    } catch (const std::exception& e) {
+      in.problem = std::string("cannot open the run's input: ") + e.what();
+    }
+  }
   // Jobs in (run, scene) order, so that a worker often keeps its scene loaded.
   std::vector<std::size_t> jobs(showcases.size());
   for (std::size_t i = 0; i < jobs.size(); ++i) jobs[i] = i;
@@ -94,7 +107,7 @@ void drawShowcases(std::vector<analysis::Showcase>& showcases,
     }
     std::string loadedScene;
     std::size_t loadedRun = runs.size();
-    std::unique_ptr<SceneSession> session;
+    std::unique_ptr<session::SceneSession> scene;
     std::unique_ptr<WorkcellDrawing> drawing;
     for (std::size_t k = next++; k < jobs.size(); k = next++) {
       analysis::Showcase& s = showcases[jobs[k]];
@@ -108,23 +121,23 @@ void drawShowcases(std::vector<analysis::Showcase>& showcases,
         if (entry.id != loadedScene || r != loadedRun) {
           loadedScene.clear();
           drawing.reset();
-          session.reset();
+          scene.reset();
           // A fresh renderer per scene: GlRenderer keeps every mesh it was given. The old one
           // goes first: its destructor leaves no context current.
           offscreen.reset();
           offscreen = std::make_unique<render::OffscreenRenderer>();
-          session = std::make_unique<SceneSession>(entry, *in.hand);
-          drawing = std::make_unique<WorkcellDrawing>(session->workcell(), offscreen->renderer(),
+          scene = std::make_unique<session::SceneSession>(*in.loader, entry);
+          drawing = std::make_unique<WorkcellDrawing>(scene->workcell(), offscreen->renderer(),
                                                       in.hand->deviceName());
           loadedScene = entry.id;
           loadedRun = r;
         }
         // The showcase's request, with the showcase's own trial as its record.
-        std::optional<SceneGrasp> grasp;
+        std::optional<session::SceneGrasp> grasp;
         for (const auto& q : in.grasps.requests) {
           if (q.method == s.trial.method && q.id == s.trial.graspId && in.db->contains(q.sceneId) &&
               in.db->scene(q.sceneId).id == entry.id) {
-            grasp = SceneGrasp{q, s.trial};
+            grasp = session::SceneGrasp{q, s.trial.rank, s.trial};
             break;
           }
         }
@@ -135,7 +148,7 @@ void drawShowcases(std::vector<analysis::Showcase>& showcases,
         picture.width = options.width;
         picture.height = options.height;
         const TrialPicture strip =
-            trialStrip(offscreen->renderer(), *drawing, *session, *grasp, picture);
+            trialStrip(offscreen->renderer(), *drawing, *scene, *grasp, picture);
         const std::string name = fileName(s);
         render::writePng(reportDir / "images" / name, strip.image);
         s.image = "images/" + name;
@@ -146,7 +159,7 @@ void drawShowcases(std::vector<analysis::Showcase>& showcases,
       finished();
     }
     drawing.reset();
-    session.reset();
+    scene.reset();
   };
   const int threads = std::clamp(options.threads, 1, std::max(1, total));
   std::vector<std::thread> pool;

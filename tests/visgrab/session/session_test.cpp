@@ -89,7 +89,8 @@ TEST(GraspOrder, TheScenesGraspsComeInTheOrderOfTrialsCsv) {
 
   const auto contents = visgrab::taskio::readGraspSources(options.grasps);
   const auto& entry = database().scene(kSecondScene);
-  for (const visgrab::results::RunResults* given : {&results, static_cast<decltype(&results)>(nullptr)}) {
+  for (const visgrab::results::RunResults* given :
+       {&results, static_cast<decltype(&results)>(nullptr)}) {
     SCOPED_TRACE(given ? "with the results" : "without results");
     const auto grasps = visgrab::session::sceneGrasps(database(), entry, contents, given);
     EXPECT_EQ(idsOf(grasps), rows);
@@ -142,8 +143,7 @@ TEST(SceneLoader, RedirectsTheDatabasesHandFilesToTheGivenHand) {
   // The database was generated with the project's SDH: its scenes load as they are.
   EXPECT_TRUE(visgrab::session::handRedirects(visgrab::test::testDatabasePath(), *sdh).empty());
   const auto pg70 = visgrab::grasp::loadHandGraspSetup(handsFolder() / "pg70");
-  const auto redirects =
-      visgrab::session::handRedirects(visgrab::test::testDatabasePath(), *pg70);
+  const auto redirects = visgrab::session::handRedirects(visgrab::test::testDatabasePath(), *pg70);
   const fs::path dbHand = visgrab::test::testDatabasePath() / "hands/sdh";
   ASSERT_EQ(redirects.size(), 2u);
   EXPECT_EQ(redirects.at((dbHand / "sdh.wc.xml").lexically_normal()), pg70->workcellFile());
