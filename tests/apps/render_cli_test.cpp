@@ -190,8 +190,8 @@ TEST_F(RenderCli, GraspNIsTheScenesNthRowOfTrialsCsv) {
   ASSERT_EQ(rows.size(), 2u);
   ASSERT_EQ(rows[0].graspId, "good");
   ASSERT_NE(rows[0].outcome, rows[1].outcome);
-  for (const std::string inputs : {" --db " + db() + " --grasps " + shellQuoted(path("mixed.csv")),
-                                   " --results " + shellQuoted(path("mixed"))}) {
+  for (const std::string& inputs : {" --db " + db() + " --grasps " + shellQuoted(path("mixed.csv")),
+                                    " --results " + shellQuoted(path("mixed"))}) {
     for (std::size_t n = 1; n <= rows.size(); ++n) {
       SCOPED_TRACE(inputs + " --grasp " + std::to_string(n));
       r = visgrab("render" + inputs + " --scene " + kScene + " --grasp " + std::to_string(n) +
