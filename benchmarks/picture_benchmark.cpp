@@ -21,8 +21,9 @@ struct Fixture {
   visgrab::bench::BenchDatabase database{{kScene}};
   std::unique_ptr<visgrab::grasp::HandGraspSetup> hand = visgrab::grasp::loadHandGraspSetup(
       std::filesystem::path(VISGRAB_SOURCE_DIR) / "scenes/hands/sdh/sdh.grasp.xml");
-  visgrab::view::SceneSession session{database.db().scene(kScene), *hand};
-  visgrab::view::SceneGrasp grasp;
+  visgrab::session::SceneSession session{visgrab::session::SceneLoader(database.db(), *hand),
+                                         database.db().scene(kScene)};
+  visgrab::session::SceneGrasp grasp;
 
   Fixture() {
     // SDH_CYL pointing down, its TCP 6 cm above the can's base (a stable grasp).

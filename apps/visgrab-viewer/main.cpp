@@ -17,7 +17,7 @@
 #include "scene_view.hpp"
 #include "viewer_options.hpp"
 #include "viewer_window.hpp"
-#include "visgrab/view/scene_session.hpp"
+#include "visgrab/session/grasp_order.hpp"
 
 namespace {
 
@@ -45,10 +45,10 @@ void checkStartSelection(const visgrab::viewer::ViewerData& data, const ViewerOp
   if (!options.scene) return;
   const visgrab::database::SceneEntry& entry = data.database->scene(*options.scene);
   if (!options.grasp) return;
-  const auto grasps = visgrab::view::sceneGrasps(*data.database, entry, data.grasps,
-                                                 data.results ? &*data.results : nullptr);
+  const auto grasps = visgrab::session::sceneGrasps(*data.database, entry, data.grasps,
+                                                    data.results ? &*data.results : nullptr);
   try {
-    visgrab::view::selectGrasp(grasps, *options.grasp, options.method);
+    visgrab::session::selectGrasp(grasps, *options.grasp, options.method);
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument("--grasp " + *options.grasp + ": " + e.what());
   }

@@ -58,7 +58,7 @@ void SceneView::setPreferredSize(QSize size) {
 
 QSize SceneView::sizeHint() const { return preferredSize_; }
 
-void SceneView::setSession(const view::SceneSession* session) {
+void SceneView::setSession(const session::SceneSession* session) {
   session_ = session;
   state_ = session != nullptr ? session->initialState() : rw::kinematics::State();
   contacts_.clear();

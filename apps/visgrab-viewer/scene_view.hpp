@@ -11,8 +11,8 @@
 
 #include "rw/kinematics/state.hpp"
 #include "visgrab/render/gl_renderer.hpp"
+#include "visgrab/session/scene_session.hpp"
 #include "visgrab/view/cameras.hpp"
-#include "visgrab/view/scene_session.hpp"
 #include "visgrab/view/trial_replay.hpp"
 #include "visgrab/view/workcell_drawing.hpp"
 
@@ -43,7 +43,7 @@ class SceneView : public QOpenGLWidget {
 
   /// Draws `session`'s workcell from now on (nullptr: nothing); shows its initial state. The
   /// session must outlive the view or be replaced first.
-  void setSession(const view::SceneSession* session);
+  void setSession(const session::SceneSession* session);
   /// The state drawn, the contact forces drawn as arrows and what to draw.
   void showState(const rw::kinematics::State& state, std::vector<view::ContactForce> contacts,
                  const view::DrawStyle& style);
@@ -95,7 +95,7 @@ class SceneView : public QOpenGLWidget {
   int pixelHeight() const;
 
   QSize preferredSize_{960, 720};
-  const view::SceneSession* session_ = nullptr;
+  const session::SceneSession* session_ = nullptr;
   std::unique_ptr<render::GlRenderer> renderer_;
   std::unique_ptr<view::WorkcellDrawing> drawing_;
   rw::kinematics::State state_;

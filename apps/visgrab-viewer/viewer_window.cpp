@@ -282,12 +282,13 @@ void ViewerWindow::openScene(const std::string& id) {
   setWindowTitle("VisGraB viewer");
   {
     BusyCursor busy;
-    session_ = std::make_unique<view::SceneSession>(entry, *data_.hand);
+    if (!loader_) loader_ = std::make_unique<session::SceneLoader>(*data_.database, *data_.hand);
+    session_ = std::make_unique<session::SceneSession>(*loader_, entry);
   }
   view_->setSession(session_.get());
   if (data_.haveGraspFiles) {
-    grasps_ = view::sceneGrasps(*data_.database, entry, data_.grasps,
-                                data_.results ? &*data_.results : nullptr);
+    grasps_ = session::sceneGrasps(*data_.database, entry, data_.grasps,
+                                   data_.results ? &*data_.results : nullptr);
   }
   fillGraspTable();
   info_->setText(!data_.haveGraspFiles ? QString("no grasp files (give --grasps or --results)")
@@ -322,7 +323,7 @@ void ViewerWindow::fillGraspTable() {
   graspTable_->clearContents();
   graspTable_->setRowCount(static_cast<int>(grasps_.size()));
   for (std::size_t i = 0; i < grasps_.size(); ++i) {
-    const view::SceneGrasp& g = grasps_[i];
+    const session::SceneGrasp& g = grasps_[i];
     const int row = static_cast<int>(i);
     const auto cell = [&](int column, const QString& text) {
       auto* item = new QTableWidgetItem(text);
@@ -375,7 +376,7 @@ void ViewerWindow::graspSelected() {
 }
 
 QString ViewerWindow::openGrasp(const std::string& spec, const std::string& method) {
-  const view::SceneGrasp& grasp = view::selectGrasp(grasps_, spec, method);
+  const session::SceneGrasp& grasp = session::selectGrasp(grasps_, spec, method);
   const auto index = static_cast<std::size_t>(&grasp - grasps_.data());
   {
     const QSignalBlocker block(graspTable_);
@@ -387,7 +388,7 @@ QString ViewerWindow::openGrasp(const std::string& spec, const std::string& meth
 QString ViewerWindow::replayGrasp(std::size_t index) {
   setPlaying(false);
   clearReplay();
-  const view::SceneGrasp& grasp = grasps_.at(index);
+  const session::SceneGrasp& grasp = grasps_.at(index);
   const QString name = qs(grasp.request.method + " " + grasp.request.id);
   const view::DrawStyle noHand{false, true, std::nullopt};
   const grasp::ResolvedGrasp resolved = session_->resolve(grasp.request);

@@ -12,7 +12,9 @@
 
 #include "scene_view.hpp"
 #include "viewer_options.hpp"
-#include "visgrab/view/scene_session.hpp"
+#include "visgrab/session/grasp_order.hpp"
+#include "visgrab/session/scene_loader.hpp"
+#include "visgrab/session/scene_session.hpp"
 #include "visgrab/view/trial_replay.hpp"
 
 class QLabel;
@@ -78,8 +80,10 @@ class ViewerWindow : public QMainWindow {
   void reportError(const QString& what, const QString& message);
 
   ViewerData data_;
-  std::unique_ptr<view::SceneSession> session_;
-  std::vector<view::SceneGrasp> grasps_;
+  /// The database's scenes with the hand (made when the first scene opens).
+  std::unique_ptr<session::SceneLoader> loader_;
+  std::unique_ptr<session::SceneSession> session_;
+  std::vector<session::SceneGrasp> grasps_;
   std::optional<view::TrialReplay> replay_;
   std::optional<std::size_t> replayedGrasp_;
   QString replayNote_;

@@ -5,7 +5,10 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <string>
+#include <tuple>
+#include <utility>
 
 #include "visgrab/database/database.hpp"
 #include "visgrab/grasp/grasp_resolver.hpp"
@@ -13,6 +16,9 @@
 #include "visgrab/render/offscreen_renderer.hpp"
 #include "visgrab/render/png_io.hpp"
 #include "visgrab/results/results_file.hpp"
+#include "visgrab/session/grasp_order.hpp"
+#include "visgrab/session/scene_loader.hpp"
+#include "visgrab/session/scene_session.hpp"
 #include "visgrab/taskio/grasp_file.hpp"
 #include "visgrab/view/grasp_pictures.hpp"
 
@@ -41,7 +47,26 @@ std::pair<int, int> sizeOption(const Arguments& a, int width, int height) {
   return {w, h};
 }
 
-int runRender(const std::vector<std::string>& args) {
+/// What `visgrab render` was asked for (its options, with the run's recorded inputs filled in).
+struct RenderRequest {
+  std::string sceneId;
+  std::string out;
+  bool montage = false;
+  bool overlay = false;
+  std::optional<std::string> graspSpec;
+  std::string method;
+  view::PictureOptions picture;
+  /// --size as given (each picture kind has its own default).
+  std::optional<std::pair<int, int>> montageSize, stripSize, sceneSize;
+  int columns = 4;
+  bool quiet = false;
+  std::optional<results::RunResults> run;
+  fs::path dbPath;
+  std::vector<fs::path> graspFiles;
+  fs::path handFile;
+};
+
+RenderRequest parseRenderArguments(const std::vector<std::string>& args) {
   Arguments a(args, {"montage", "overlay", "no-contacts", "quiet"});
   a.rejectUnknown({"db", "scene", "results", "grasps", "hand", "grasp", "method", "out", "montage",
                    "overlay", "view", "size", "no-contacts", "columns", "data", "quiet"});
@@ -103,111 +128,210 @@ int runRender(const std::vector<std::string>& args) {
                      " needs the grasps: --grasps FILE|DIR, or --results of a run that recorded "
                      "them");
   }
-
-  const auto db = database::Database::openAny(dbPath);
-  const database::SceneEntry& entry = db.scene(*sceneId);
-  const auto hand = grasp::loadHandGraspSetup(handFile);
-  const view::SceneSession session(entry, *hand);
-  std::vector<view::SceneGrasp> grasps;
-  if (!graspFiles.empty()) {
-    const auto contents = taskio::readGraspSources(graspFiles);
-    for (const auto& d : contents.rejected) std::cerr << d.format() << "\n";
-    grasps = view::sceneGrasps(db, entry, contents, run ? &*run : nullptr);
-  }
   const std::string method = a.option("method").value_or("");
 
-  render::OffscreenRenderer offscreen;
-  const view::WorkcellDrawing drawing(session.workcell(), offscreen.renderer(), hand->deviceName());
-  for (const auto& w : drawing.warnings()) std::cerr << "visgrab render: " << w << "\n";
+  RenderRequest request;
+  request.sceneId = *sceneId;
+  request.out = *out;
+  request.montage = montage;
+  request.overlay = overlay;
+  request.graspSpec = graspSpec;
+  request.method = method;
+  request.picture = options;
+  // The overlay has the stereo image's size; the other pictures read --size.
+  if (montage) {
+    request.montageSize = sizeOption(a, 320, 240);
+  } else if (graspSpec && !overlay) {
+    request.stripSize = sizeOption(a, 480, 360);
+  } else if (!graspSpec) {
+    request.sceneSize = sizeOption(a, 800, 600);
+  }
+  request.columns = columns;
+  request.quiet = quiet;
+  request.run = std::move(run);
+  request.dbPath = dbPath;
+  request.graspFiles = graspFiles;
+  request.handFile = handFile;
+  return request;
+}
+
+/// The scene to draw, loaded with the hand as the benchmark runs it, with its grasps in the
+/// benchmark's order (empty without grasp files).
+class RenderScene {
+ public:
+  explicit RenderScene(const RenderRequest& request)
+      : db_(database::Database::openAny(request.dbPath)),
+        entry_(&db_.scene(request.sceneId)),
+        hand_(grasp::loadHandGraspSetup(request.handFile)),
+        loader_(db_, *hand_),
+        session_(loader_, *entry_) {
+    if (request.graspFiles.empty()) return;
+    const auto contents = taskio::readGraspSources(request.graspFiles);
+    for (const auto& d : contents.rejected) std::cerr << d.format() << "\n";
+    grasps_ = session::sceneGrasps(db_, *entry_, contents, request.run ? &*request.run : nullptr);
+  }
+
+  const database::Database& database() const { return db_; }
+  const database::SceneEntry& entry() const { return *entry_; }
+  const grasp::HandGraspSetup& hand() const { return *hand_; }
+  const session::SceneSession& session() const { return session_; }
+  const std::vector<session::SceneGrasp>& grasps() const { return grasps_; }
+
+ private:
+  database::Database db_;
+  const database::SceneEntry* entry_;
+  std::unique_ptr<grasp::HandGraspSetup> hand_;
+  session::SceneLoader loader_;
+  session::SceneSession session_;
+  std::vector<session::SceneGrasp> grasps_;
+};
+
+/// A finished picture and what it shows (for the closing line).
+struct RenderedPicture {
   visual::RgbImage image;
   std::string summary;
-  if (montage) {
-    std::tie(options.width, options.height) = sizeOption(a, 320, 240);
-    std::vector<view::MontageTile> tiles;
-    int n = 0;
-    for (const auto& g : grasps) {
-      if (!method.empty() && g.request.method != method) continue;
-      ++n;  // as --grasp N counts (with --method, among that method's grasps)
-      view::MontageTile tile;
-      tile.label = std::to_string(n) + "  " + g.request.method + " " + g.request.id;
-      const auto resolved = session.resolve(g.request);
-      if (resolved.status == grasp::ResolveStatus::kInputError) {
-        std::cerr << "visgrab render: grasp " << g.request.id << " (" << g.request.method
-                  << ") left out: " << resolved.message << "\n";
-        continue;
-      }
-      if (resolved.placed()) tile.grasp = resolved.parameters;
-      if (g.record) {
-        tile.outcome = g.record->outcome;
-      } else if (!resolved.placed()) {
-        tile.outcome = rwsim::simulator::GraspOutcome::kInvalidContacts;
-      } else {
-        if (!quiet) std::fprintf(stderr, "\rsimulating grasp %d/%zu   ", n, grasps.size());
-        tile.outcome = session.trial().run(resolved.parameters, session.initialState()).outcome;
-      }
-      tiles.push_back(std::move(tile));
+};
+
+/// The outcome of `g` for a montage tile: its trial record, else simulated again.
+rwsim::simulator::GraspOutcome tileOutcome(const RenderScene& scene, const session::SceneGrasp& g,
+                                           const grasp::ResolvedGrasp& resolved, int n,
+                                           bool quiet) {
+  if (g.record) return g.record->outcome;
+  if (!resolved.placed()) return rwsim::simulator::GraspOutcome::kInvalidContacts;
+  if (!quiet) std::fprintf(stderr, "\rsimulating grasp %d/%zu   ", n, scene.grasps().size());
+  const auto& s = scene.session();
+  return s.trial().run(resolved.parameters, s.initialState()).outcome;
+}
+
+/// --montage: every grasp of the scene (of --method) as a tile coloured by its outcome.
+RenderedPicture renderMontage(const RenderRequest& request, const RenderScene& scene,
+                              render::OffscreenRenderer& offscreen,
+                              const view::WorkcellDrawing& drawing) {
+  view::PictureOptions options = request.picture;
+  std::tie(options.width, options.height) = *request.montageSize;
+  const std::string& method = request.method;
+  std::vector<view::MontageTile> tiles;
+  int n = 0;
+  for (const auto& g : scene.grasps()) {
+    if (!method.empty() && g.request.method != method) continue;
+    ++n;  // as --grasp N counts (with --method, among that method's grasps)
+    view::MontageTile tile;
+    tile.label = std::to_string(n) + "  " + g.request.method + " " + g.request.id;
+    const auto resolved = scene.session().resolve(g.request);
+    if (resolved.status == grasp::ResolveStatus::kInputError) {
+      std::cerr << "visgrab render: grasp " << g.request.id << " (" << g.request.method
+                << ") left out: " << resolved.message << "\n";
+      continue;
     }
-    if (!quiet) std::fputc('\n', stderr);
-    if (tiles.empty()) {
-      throw UsageError("the grasp files have no grasp for scene " + entry.id +
-                       (method.empty() ? "" : " and method " + method));
-    }
-    image = view::graspMontage(offscreen.renderer(), drawing, session, tiles,
-                               entry.id + "   " + std::to_string(tiles.size()) + " grasps" +
-                                   (method.empty() ? "" : " of " + method),
-                               options, columns);
-    summary = std::to_string(tiles.size()) + " grasps";
-  } else if (graspSpec) {
-    const view::SceneGrasp* chosen = nullptr;
-    try {
-      chosen = &view::selectGrasp(grasps, *graspSpec, method);
-    } catch (const std::invalid_argument& e) {
-      throw UsageError(std::string("--grasp: ") + e.what());
-    }
-    if (overlay) {
-      const auto resolved = session.resolve(chosen->request);
-      if (!resolved.placed()) {
-        std::cerr << "visgrab render: grasp " << chosen->request.id
-                  << " cannot be placed: " << resolved.message << "\n";
-        return 1;
-      }
-      const auto outcome =
-          chosen->record ? chosen->record->outcome
-                         : session.trial().run(resolved.parameters, session.initialState()).outcome;
-      const visual::RgbImage left = render::readImage(entry.leftImage);
-      image = view::graspOverlay(
-          offscreen.renderer(), drawing,
-          session.trial().placedState(resolved.parameters, session.initialState()),
-          resolved.parameters.X_W_tcp, left, db.calibration(entry.id), outcome,
-          entry.id + "   " + chosen->request.method + " " + chosen->request.id);
-      summary = std::string(rwsim::simulator::outcomeName(outcome));
-    } else {
-      std::tie(options.width, options.height) = sizeOption(a, 480, 360);
-      view::TrialPicture picture;
-      try {
-        picture = view::trialStrip(offscreen.renderer(), drawing, session, *chosen, options);
-      } catch (const std::invalid_argument& e) {
-        std::cerr << "visgrab render: " << e.what() << "\n";
-        return 1;
-      }
-      if (!picture.note.empty()) std::cerr << "visgrab render: " << picture.note << "\n";
-      image = picture.image;
-      summary = std::string(rwsim::simulator::outcomeName(picture.outcome));
-    }
-  } else {
-    if (overlay) throw UsageError("--overlay needs --grasp ID|N");
-    std::tie(options.width, options.height) = sizeOption(a, 800, 600);
-    const auto& initial = session.initialState();
-    const view::Orbit orbit = view::framed(view::presetOrbit(options.view),
-                                           view::objectsBox(session, drawing, initial, 0.05),
-                                           options.width, options.height);
-    image = view::renderState(offscreen.renderer(), drawing, initial, {},
-                              view::DrawStyle{false, true, std::nullopt}, orbit, options);
-    summary = "scene";
+    if (resolved.placed()) tile.grasp = resolved.parameters;
+    tile.outcome = tileOutcome(scene, g, resolved, n, request.quiet);
+    tiles.push_back(std::move(tile));
   }
-  render::writePng(*out, image);
-  std::cout << "wrote " << *out << " (" << image.width << "x" << image.height << ", " << summary
-            << ", hand " << hand->deviceName() << ")\n";
+  if (!request.quiet) std::fputc('\n', stderr);
+  const std::string& id = scene.entry().id;
+  if (tiles.empty()) {
+    throw UsageError("the grasp files have no grasp for scene " + id +
+                     (method.empty() ? "" : " and method " + method));
+  }
+  const std::string title = id + "   " + std::to_string(tiles.size()) + " grasps" +
+                            (method.empty() ? "" : " of " + method);
+  return {view::graspMontage(offscreen.renderer(), drawing, scene.session(), tiles, title, options,
+                             request.columns),
+          std::to_string(tiles.size()) + " grasps"};
+}
+
+/// The grasp --grasp names (session::selectGrasp: the N-th in trials.csv's order).
+const session::SceneGrasp& chosenGrasp(const RenderRequest& request, const RenderScene& scene) {
+  try {
+    return session::selectGrasp(scene.grasps(), *request.graspSpec, request.method);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(std::string("--grasp: ") + e.what());
+  }
+}
+
+/// --grasp --overlay: the grasp over the left stereo image; nullopt (after saying why) when the
+/// grasp cannot be placed.
+std::optional<RenderedPicture> renderOverlay(const RenderScene& scene,
+                                             const session::SceneGrasp& chosen,
+                                             render::OffscreenRenderer& offscreen,
+                                             const view::WorkcellDrawing& drawing) {
+  const auto& s = scene.session();
+  const auto resolved = s.resolve(chosen.request);
+  if (!resolved.placed()) {
+    std::cerr << "visgrab render: grasp " << chosen.request.id
+              << " cannot be placed: " << resolved.message << "\n";
+    return std::nullopt;
+  }
+  const auto outcome = chosen.record ? chosen.record->outcome
+                                     : s.trial().run(resolved.parameters, s.initialState()).outcome;
+  const database::SceneEntry& entry = scene.entry();
+  const visual::RgbImage left = render::readImage(entry.leftImage);
+  return RenderedPicture{
+      view::graspOverlay(offscreen.renderer(), drawing,
+                         s.trial().placedState(resolved.parameters, s.initialState()),
+                         resolved.parameters.X_W_tcp, left, scene.database().calibration(entry.id),
+                         outcome,
+                         entry.id + "   " + chosen.request.method + " " + chosen.request.id),
+      std::string(rwsim::simulator::outcomeName(outcome))};
+}
+
+/// --grasp: the trial's three moments; nullopt (after saying why) for a grasp the hand cannot
+/// take.
+std::optional<RenderedPicture> renderTrial(const RenderRequest& request, const RenderScene& scene,
+                                           const session::SceneGrasp& chosen,
+                                           render::OffscreenRenderer& offscreen,
+                                           const view::WorkcellDrawing& drawing) {
+  view::PictureOptions options = request.picture;
+  std::tie(options.width, options.height) = *request.stripSize;
+  view::TrialPicture picture;
+  try {
+    picture = view::trialStrip(offscreen.renderer(), drawing, scene.session(), chosen, options);
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "visgrab render: " << e.what() << "\n";
+    return std::nullopt;
+  }
+  if (!picture.note.empty()) std::cerr << "visgrab render: " << picture.note << "\n";
+  return RenderedPicture{picture.image,
+                         std::string(rwsim::simulator::outcomeName(picture.outcome))};
+}
+
+/// No --grasp: the scene alone, framed on its objects.
+RenderedPicture renderScenePicture(const RenderRequest& request, const RenderScene& scene,
+                                   render::OffscreenRenderer& offscreen,
+                                   const view::WorkcellDrawing& drawing) {
+  view::PictureOptions options = request.picture;
+  std::tie(options.width, options.height) = *request.sceneSize;
+  const auto& initial = scene.session().initialState();
+  const view::Orbit orbit = view::framed(view::presetOrbit(options.view),
+                                         view::objectsBox(scene.session(), drawing, initial, 0.05),
+                                         options.width, options.height);
+  return {view::renderState(offscreen.renderer(), drawing, initial, {},
+                            view::DrawStyle{false, true, std::nullopt}, orbit, options),
+          "scene"};
+}
+
+int runRender(const std::vector<std::string>& args) {
+  const RenderRequest request = parseRenderArguments(args);
+  const RenderScene scene(request);
+  render::OffscreenRenderer offscreen;
+  const view::WorkcellDrawing drawing(scene.session().workcell(), offscreen.renderer(),
+                                      scene.hand().deviceName());
+  for (const auto& w : drawing.warnings()) std::cerr << "visgrab render: " << w << "\n";
+  std::optional<RenderedPicture> picture;
+  if (request.montage) {
+    picture = renderMontage(request, scene, offscreen, drawing);
+  } else if (request.graspSpec) {
+    const session::SceneGrasp& chosen = chosenGrasp(request, scene);
+    picture = request.overlay ? renderOverlay(scene, chosen, offscreen, drawing)
+                              : renderTrial(request, scene, chosen, offscreen, drawing);
+  } else {
+    picture = renderScenePicture(request, scene, offscreen, drawing);
+  }
+  if (!picture) return 1;
+  render::writePng(request.out, picture->image);
+  std::cout << "wrote " << request.out << " (" << picture->image.width << "x"
+            << picture->image.height << ", " << picture->summary << ", hand "
+            << scene.hand().deviceName() << ")\n";
   return 0;
 }
 

@@ -10,6 +10,7 @@
 #include <iostream>
 #include <map>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <string>
 
@@ -20,7 +21,7 @@
 #include "rwsim/simulator/simulator.hpp"
 #include "visgrab/database/database.hpp"
 #include "visgrab/grasp/hand_grasp_setup.hpp"
-#include "visgrab/runner/benchmark_runner.hpp"
+#include "visgrab/session/scene_loader.hpp"
 
 namespace visgrab::app {
 
@@ -211,10 +212,10 @@ Eigen::VectorXd dofVector(const std::map<std::string, std::vector<double>>& list
   return Eigen::Map<const Eigen::VectorXd>(it->second.data(), dof);
 }
 
-std::string handName(const Arguments& a, const DynamicWorkCell& dwc) {
+std::string handName(const std::optional<std::string>& hand, const DynamicWorkCell& dwc) {
   std::string names;
   for (const auto& d : dwc.devices()) names += (names.empty() ? "" : ", ") + d.device->name();
-  if (const auto hand = a.option("hand")) {
+  if (hand) {
     if (!dwc.findDevice(*hand).valid()) {
       throw UsageError("no rigid device '" + *hand +
                        "' (devices: " + (names.empty() ? "none" : names) + ")");
@@ -257,7 +258,27 @@ bool isHandDescription(const std::string& value) {
   return std::filesystem::is_directory(value, ec) || value.ends_with(".grasp.xml");
 }
 
-int runGrasp(const std::vector<std::string>& raw) {
+/// What `visgrab grasp` was asked for.
+struct GraspCommand {
+  /// The options with several numbers: pose, qopen, qclose, taumax.
+  std::map<std::string, std::vector<double>> lists;
+  /// --hand: a device name, or (when `description` is set) a hand description.
+  std::optional<std::string> hand;
+  /// True when --hand names a hand description (a folder or a *.grasp.xml file).
+  bool description = false;
+  std::optional<std::string> preshape;
+  /// --db and --scene (both or neither).
+  std::optional<std::string> db, scene;
+  /// The dynamic workcell file (without --db).
+  std::string file;
+  std::optional<std::string> tcp, controller;
+  /// --dt (nullopt: the scene's own time step).
+  std::optional<double> dt;
+  /// --data (where the default hand is).
+  std::filesystem::path data;
+};
+
+GraspCommand parseGraspArguments(const std::vector<std::string>& raw) {
   std::vector<std::string> args = raw;
   const auto lists = takeNumberLists(args, {"pose", "qopen", "qclose", "taumax"});
   const Arguments a(args, {});
@@ -268,64 +289,92 @@ int runGrasp(const std::vector<std::string>& raw) {
     throw UsageError("--pose needs 6 numbers (x y z in m, roll pitch yaw in degrees), got " +
                      std::to_string(pose->second.size()));
   }
-  // The hand: a device of the dynamic workcell, or a hand description (folder or file).
-  std::unique_ptr<grasp::HandGraspSetup> description;
-  if (const auto h = a.option("hand"); h && isHandDescription(*h)) {
-    description = grasp::loadHandGraspSetup(*h);
-  }
-  const auto preshapeName = a.option("preshape");
-  // The scene: a dynamic workcell file, or a database scene with the hand put in.
-  std::unique_ptr<DynamicWorkCell> dwc;
-  const auto dbPath = a.option("db");
-  const auto sceneId = a.option("scene");
-  if (dbPath || sceneId) {
-    if (!dbPath || !sceneId) throw UsageError("--db DIR and --scene ID go together");
+  GraspCommand command;
+  command.lists = lists;
+  command.hand = a.option("hand");
+  command.description = command.hand && isHandDescription(*command.hand);
+  command.preshape = a.option("preshape");
+  command.db = a.option("db");
+  command.scene = a.option("scene");
+  if (command.db || command.scene) {
+    if (!command.db || !command.scene) throw UsageError("--db DIR and --scene ID go together");
     a.requirePositionals(0, "no FILE with --db and --scene");
-    if (a.option("hand") && !description) {
+    if (command.hand && !command.description) {
       throw UsageError("--hand with --db names a hand: its folder or *.grasp.xml");
     }
-    const auto db = database::Database::openAny(*dbPath);
-    if (!description) description = grasp::loadHandGraspSetup(dataFolder(a) / "hands/sdh");
-    dwc = runner::loadSceneWithHand(db.scene(*sceneId), *description);
   } else {
     a.requirePositionals(1, "FILE (a .dwc.xml dynamic workcell), or --db DIR --scene ID");
-    dwc = load(a.positionals()[0]);
-    if (!dwc) return 1;
+    command.file = a.positionals()[0];
   }
-  if (preshapeName && !description) {
-    throw UsageError("--preshape needs --hand DIR|GRASP.xml (a hand description with pre-shapes)");
+  command.tcp = a.option("tcp");
+  command.controller = a.option("controller");
+  if (a.option("dt")) command.dt = positiveOption(a, "dt", std::nullopt);
+  command.data = dataFolder(a);
+  return command;
+}
+
+/// The scene of a grasp trial and the hand's description, when there is one.
+struct GraspScene {
+  std::unique_ptr<grasp::HandGraspSetup> description;
+  std::unique_ptr<DynamicWorkCell> dwc;
+};
+
+/// Loads the scene: a database scene with the hand put in as the benchmark does
+/// (session::SceneLoader), or a dynamic workcell file. A null dwc after printing the errors.
+GraspScene loadGraspScene(const GraspCommand& command) {
+  GraspScene scene;
+  if (command.description) scene.description = grasp::loadHandGraspSetup(*command.hand);
+  if (command.db) {
+    const auto db = database::Database::openAny(*command.db);
+    if (!scene.description) {
+      scene.description = grasp::loadHandGraspSetup(command.data / "hands/sdh");
+    }
+    scene.dwc = session::SceneLoader(db, *scene.description).load(db.scene(*command.scene));
+  } else {
+    scene.dwc = load(command.file);
   }
+  return scene;
+}
+
+/// The trial setup: the benchmark's for a hand description (session::trialSetup), else the
+/// device --hand names with the scene's simulator options; then --tcp, --controller and --dt.
+rwsim::simulator::GraspTrialSetup graspTrialSetup(const GraspCommand& command,
+                                                  const GraspScene& scene) {
+  const DynamicWorkCell& dwc = *scene.dwc;
   rwsim::simulator::GraspTrialSetup setup;
-  if (description) {
-    setup = runner::trialSetup(*description, *dwc);
-    if (!dwc->findDevice(setup.hand).valid()) {
+  if (scene.description) {
+    setup = session::trialSetup(*scene.description, dwc);
+    if (!dwc.findDevice(setup.hand).valid()) {
       throw UsageError("the dynamic workcell has no device '" + setup.hand + "' (the hand of " +
-                       description->description().file + ")");
+                       scene.description->description().file + ")");
     }
   } else {
-    setup.hand = handName(a, *dwc);
-    setup.simulator = rwsim::simulator::optionsFromEngineProperties(*dwc);
+    setup.hand = handName(command.hand, dwc);
+    setup.simulator = rwsim::simulator::optionsFromEngineProperties(dwc);
   }
-  if (const auto tcp = a.option("tcp")) {
-    if (description) {
+  if (command.tcp) {
+    if (scene.description) {
       throw UsageError("--tcp goes with --hand NAME only: a hand description sets its own TCP (" +
-                       description->tcpFrameName() + ")");
+                       scene.description->tcpFrameName() + ")");
     }
-    setup.tcpFrame = *tcp;
+    setup.tcpFrame = *command.tcp;
   }
-  setup.controller = a.option("controller").value_or(setup.controller);
-  setup.simulator.timeStep = positiveOption(a, "dt", setup.simulator.timeStep);
-  std::unique_ptr<rwsim::simulator::GraspTrial> trial;
-  try {
-    trial = std::make_unique<rwsim::simulator::GraspTrial>(*dwc, setup);
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(e.what());
-  }
-  const int dof = dwc->device(trial->handDevice()).device->dof();
+  setup.controller = command.controller.value_or(setup.controller);
+  setup.simulator.timeStep = command.dt.value_or(setup.simulator.timeStep);
+  return setup;
+}
+
+/// The grasp: the pose, then the pre-shape's q and tau (with --preshape), then --qopen,
+/// --qclose and --taumax for a hand of `dof` joints.
+rwsim::simulator::GraspParameters graspParameters(const GraspCommand& command,
+                                                  const grasp::HandGraspSetup* description, int dof,
+                                                  const std::string& hand) {
+  const auto& lists = command.lists;
+  const auto& v = lists.at("pose");
   rwsim::simulator::GraspParameters grasp;
-  const auto& v = pose->second;
   grasp.X_W_tcp = rw::math::rpyTransform(rw::math::Vector3D(v[3], v[4], v[5]) * rw::math::kDeg2Rad,
                                          rw::math::Vector3D(v[0], v[1], v[2]));
+  const auto& preshapeName = command.preshape;
   if (preshapeName) {
     const grasp::PreShape* shape = description->findPreshape(*preshapeName);
     if (shape == nullptr) {
@@ -341,21 +390,41 @@ int runGrasp(const std::vector<std::string>& raw) {
     grasp.tauMax = shape->tauMax;
   }
   if (!preshapeName || lists.count("qopen") > 0) {
-    grasp.qOpen = dofVector(lists, "qopen", dof, setup.hand, !preshapeName);
+    grasp.qOpen = dofVector(lists, "qopen", dof, hand, !preshapeName);
   }
   if (!preshapeName || lists.count("qclose") > 0) {
-    grasp.qClosed = dofVector(lists, "qclose", dof, setup.hand, !preshapeName);
+    grasp.qClosed = dofVector(lists, "qclose", dof, hand, !preshapeName);
   }
   if (!preshapeName || lists.count("taumax") > 0) {
-    grasp.tauMax = dofVector(lists, "taumax", dof, setup.hand, false);
+    grasp.tauMax = dofVector(lists, "taumax", dof, hand, false);
   }
   if (grasp.tauMax.size() > 0 && grasp.tauMax.minCoeff() < 0.0) {
     throw UsageError("--taumax values must be >= 0");
   }
+  return grasp;
+}
+
+int runGrasp(const std::vector<std::string>& raw) {
+  const GraspCommand command = parseGraspArguments(raw);
+  const GraspScene scene = loadGraspScene(command);
+  if (!scene.dwc) return 1;
+  if (command.preshape && !scene.description) {
+    throw UsageError("--preshape needs --hand DIR|GRASP.xml (a hand description with pre-shapes)");
+  }
+  const rwsim::simulator::GraspTrialSetup setup = graspTrialSetup(command, scene);
+  std::unique_ptr<rwsim::simulator::GraspTrial> trial;
+  try {
+    trial = std::make_unique<rwsim::simulator::GraspTrial>(*scene.dwc, setup);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+  const DynamicWorkCell& dwc = *scene.dwc;
+  const int dof = dwc.devices()[static_cast<std::size_t>(trial->handDevice())].device->dof();
+  const auto grasp = graspParameters(command, scene.description.get(), dof, setup.hand);
   std::cout << "hand " << setup.hand << ", TCP "
-            << dwc->workcell().frames().frame(trial->tcpFrame()).name() << ", controller "
+            << dwc.workcell().frames().frame(trial->tcpFrame()).name() << ", controller "
             << setup.controller << "\n";
-  printResult(trial->run(grasp, dwc->workcell().defaultState()), *dwc);
+  printResult(trial->run(grasp, dwc.workcell().defaultState()), dwc);
   return 0;
 }
 

@@ -7,10 +7,12 @@
 #include <cstdio>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "support/test_database.hpp"
 #include "support/test_support.hpp"
 #include "visgrab/render/png_io.hpp"
+#include "visgrab/results/results_file.hpp"
 
 namespace {
 
@@ -158,6 +160,46 @@ TEST_F(RenderCli, ReportPicturesOfSeveralScenes) {
         path("two-report") / "images" / (std::string("column1-") + table + "-single-all-best.png");
     ASSERT_TRUE(fs::exists(image)) << image;
     EXPECT_GT(visgrab::render::readPng(image).width, 100);
+  }
+}
+
+// `--grasp N` is the scene's N-th row of trials.csv. The grasp file names the method "first" in
+// another scene before "second" and "first" in this one: the run writes this scene's trials
+// "first" then "second" (methods as first seen over the run); counting the methods within the
+// scene alone would put "second" first.
+TEST_F(RenderCli, GraspNIsTheScenesNthRowOfTrialsCsv) {
+  std::string plan;
+  const auto line = [&](const char* scene, const char* method, const char* id, double above) {
+    const auto base = visgrab::test::testDatabase().groundTruth(scene).front().X_WO.translation();
+    char text[256];
+    std::snprintf(text, sizeof text, "%s, %s, %s, preshape, %.6f,%.6f,%.6f, 0,0,1,0, SDH_CYL\n",
+                  scene, method, id, base.x(), base.y(), base.z() + above);
+    plan += text;
+  };
+  line("textured/single/cocacola/01", "first", "elsewhere", 0.06);
+  line(kScene, "second", "through", 0.02);
+  line(kScene, "first", "good", 0.06);
+  visgrab::test::writeFile(path("mixed.csv"), plan);
+  RunResult r = visgrab("run --db " + db() + " --grasps " + shellQuoted(path("mixed.csv")) +
+                        " --out " + shellQuoted(path("mixed")) + " --quiet");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  std::vector<visgrab::results::TrialRecord> rows;
+  for (const auto& t : visgrab::results::readResults(path("mixed")).trials) {
+    if (t.sceneId == kScene) rows.push_back(t);
+  }
+  ASSERT_EQ(rows.size(), 2u);
+  ASSERT_EQ(rows[0].graspId, "good");
+  ASSERT_NE(rows[0].outcome, rows[1].outcome);
+  for (const std::string& inputs : {" --db " + db() + " --grasps " + shellQuoted(path("mixed.csv")),
+                                    " --results " + shellQuoted(path("mixed"))}) {
+    for (std::size_t n = 1; n <= rows.size(); ++n) {
+      SCOPED_TRACE(inputs + " --grasp " + std::to_string(n));
+      r = visgrab("render" + inputs + " --scene " + kScene + " --grasp " + std::to_string(n) +
+                  " --size 120x90 --out " + shellQuoted(path("mixed.png")));
+      ASSERT_EQ(r.exitCode, 0) << r.output;
+      const std::string outcome(rwsim::simulator::outcomeName(rows[n - 1].outcome));
+      EXPECT_NE(r.output.find(", " + outcome + ", hand"), std::string::npos) << r.output;
+    }
   }
 }
 

@@ -32,7 +32,7 @@ std::string absoluteName(const fs::path& file) {
 // The whole pipeline: XML and schema (per file), Include/Define/Use, description, model.
 // `text` is the top-level file's content when it does not come from disk.
 std::unique_ptr<WorkCell> load(const fs::path& file, std::optional<std::string_view> text,
-                               common::DiagnosticSink& sink) {
+                               const WorkCellLoadOptions& options, common::DiagnosticSink& sink) {
   auto source =
       std::make_shared<common::SourceFile>(common::SourceFile{detail::displayPathOf(file), {}});
   try {
@@ -42,7 +42,7 @@ std::unique_ptr<WorkCell> load(const fs::path& file, std::optional<std::string_v
     }
     common::XmlReader reader(common::XmlReaderOptions{std::string(detail::workcellSchema()),
                                                       detail::explainWorkCellValueError});
-    detail::Preprocessor preprocessor(reader, sink);
+    detail::Preprocessor preprocessor(reader, sink, options.includeRedirects);
     const auto elements =
         text ? preprocessor.expandText(*text, file) : preprocessor.expandFile(file);
     if (!elements || sink.hasErrors()) return nullptr;
@@ -63,9 +63,10 @@ std::unique_ptr<WorkCell> load(const fs::path& file, std::optional<std::string_v
 }
 
 std::unique_ptr<WorkCell> loadOrThrow(const fs::path& file, std::optional<std::string_view> text,
+                                      const WorkCellLoadOptions& options,
                                       std::vector<common::Diagnostic>* warnings) {
   common::DiagnosticSink sink;
-  auto wc = load(file, text, sink);
+  auto wc = load(file, text, options, sink);
   if (!wc && !sink.hasErrors()) {
     sink.error(common::SourceLocation{}, "the workcell could not be loaded");
   }
@@ -78,22 +79,51 @@ std::unique_ptr<WorkCell> loadOrThrow(const fs::path& file, std::optional<std::s
   return wc;
 }
 
+// What identifies a file for a redirect: its canonical path if it can be found.
+fs::path identityOf(const fs::path& file) {
+  std::error_code ec;
+  fs::path canonical = fs::weakly_canonical(file, ec);
+  if (ec) canonical = fs::absolute(file, ec).lexically_normal();
+  return canonical;
+}
+
 }  // namespace
+
+std::optional<fs::path> redirectedInclude(const IncludeRedirects& redirects,
+                                          const fs::path& resolved) {
+  if (redirects.empty()) return std::nullopt;
+  const fs::path identity = identityOf(resolved);
+  for (const auto& [from, to] : redirects) {
+    if (identityOf(from) == identity) return to;
+  }
+  return std::nullopt;
+}
 
 std::unique_ptr<WorkCell> loadWorkCell(const fs::path& file,
                                        std::vector<common::Diagnostic>* warnings) {
-  return loadOrThrow(file, std::nullopt, warnings);
+  return loadOrThrow(file, std::nullopt, WorkCellLoadOptions{}, warnings);
+}
+
+std::unique_ptr<WorkCell> loadWorkCell(const fs::path& file, const WorkCellLoadOptions& options,
+                                       std::vector<common::Diagnostic>* warnings) {
+  return loadOrThrow(file, std::nullopt, options, warnings);
 }
 
 std::unique_ptr<WorkCell> loadWorkCellFromString(std::string_view xml, const fs::path& virtualFile,
                                                  std::vector<common::Diagnostic>* warnings) {
-  return loadOrThrow(virtualFile, xml, warnings);
+  return loadOrThrow(virtualFile, xml, WorkCellLoadOptions{}, warnings);
+}
+
+std::unique_ptr<WorkCell> loadWorkCellFromString(std::string_view xml, const fs::path& virtualFile,
+                                                 const WorkCellLoadOptions& options,
+                                                 std::vector<common::Diagnostic>* warnings) {
+  return loadOrThrow(virtualFile, xml, options, warnings);
 }
 
 std::vector<common::Diagnostic> checkWorkCell(const fs::path& file) {
   common::DiagnosticSink sink;
   try {
-    (void)load(file, std::nullopt, sink);
+    (void)load(file, std::nullopt, WorkCellLoadOptions{}, sink);
   } catch (...) {
     // load() reports what it can; nothing may escape a check.
   }

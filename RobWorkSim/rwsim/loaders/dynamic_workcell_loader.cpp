@@ -48,7 +48,8 @@ void forward(const Diagnostic& d, const std::string& referencedFrom, DiagnosticS
 /// Loads the workcell the dynamic workcell names; forwards its diagnostics.
 std::unique_ptr<rw::models::WorkCell> loadReferencedWorkCell(
     const detail::DynamicWorkCellDesc& desc, const fs::path& dwcFile,
-    std::optional<std::string_view> workcellText, DiagnosticSink& sink) {
+    std::optional<std::string_view> workcellText, const DynamicWorkCellLoadOptions& options,
+    DiagnosticSink& sink) {
   const fs::path file = dwcFile.parent_path() / desc.workcellFile;
   const std::string root = "<DynamicWorkcell workcell=\"" + desc.workcellFile + "\">: ";
   std::error_code ec;
@@ -62,9 +63,10 @@ std::unique_ptr<rw::models::WorkCell> loadReferencedWorkCell(
       desc.rootLocation.file->displayPath + ":" + std::to_string(desc.rootLocation.line);
   std::vector<Diagnostic> warnings;
   try {
-    auto workcell = workcellText
-                        ? rw::loaders::loadWorkCellFromString(*workcellText, file, &warnings)
-                        : rw::loaders::loadWorkCell(file, &warnings);
+    const rw::loaders::WorkCellLoadOptions workcellOptions{options.includeRedirects};
+    auto workcell = workcellText ? rw::loaders::loadWorkCellFromString(*workcellText, file,
+                                                                       workcellOptions, &warnings)
+                                 : rw::loaders::loadWorkCell(file, workcellOptions, &warnings);
     for (const Diagnostic& d : warnings) forward(d, referencedFrom, sink);
     return workcell;
   } catch (const rw::common::LoadError& e) {
@@ -76,6 +78,7 @@ std::unique_ptr<rw::models::WorkCell> loadReferencedWorkCell(
 // The whole pipeline: text (tag repair, schema, Includes), description, workcell, model.
 std::unique_ptr<DynamicWorkCell> load(const fs::path& file, std::optional<std::string_view> text,
                                       std::optional<std::string_view> workcellText,
+                                      const DynamicWorkCellLoadOptions& options,
                                       DiagnosticSink& sink) {
   const auto source =
       std::make_shared<const SourceFile>(SourceFile{file.lexically_normal().string(), {}});
@@ -96,13 +99,13 @@ std::unique_ptr<DynamicWorkCell> load(const fs::path& file, std::optional<std::s
     }
     rw::common::XmlReader reader(rw::common::XmlReaderOptions{
         std::string(detail::dynamicWorkCellSchema()), detail::explainDynamicWorkCellValueError});
-    detail::DocumentReader documents(reader, sink);
+    detail::DocumentReader documents(reader, sink, options.includeRedirects);
     const auto document = documents.read(*text, file);
     if (!document) return nullptr;
     const auto desc =
         detail::parseDynamicWorkCellDescription(document->root, document->topLevel, sink);
     if (!desc) return nullptr;
-    auto workcell = loadReferencedWorkCell(*desc, file, workcellText, sink);
+    auto workcell = loadReferencedWorkCell(*desc, file, workcellText, options, sink);
     if (!workcell || sink.hasErrors()) return nullptr;
     auto dwc = detail::buildDynamicWorkCell(*desc, std::move(workcell), sink);
     if (!dwc || sink.hasErrors()) return nullptr;
@@ -120,9 +123,10 @@ std::unique_ptr<DynamicWorkCell> load(const fs::path& file, std::optional<std::s
 std::unique_ptr<DynamicWorkCell> loadOrThrow(const fs::path& file,
                                              std::optional<std::string_view> text,
                                              std::optional<std::string_view> workcellText,
+                                             const DynamicWorkCellLoadOptions& options,
                                              std::vector<Diagnostic>* warnings) {
   DiagnosticSink sink;
-  auto dwc = load(file, text, workcellText, sink);
+  auto dwc = load(file, text, workcellText, options, sink);
   if (!dwc && !sink.hasErrors()) {
     sink.error(SourceLocation{}, "the dynamic workcell could not be loaded");
   }
@@ -139,26 +143,32 @@ std::unique_ptr<DynamicWorkCell> loadOrThrow(const fs::path& file,
 
 std::unique_ptr<DynamicWorkCell> loadDynamicWorkCell(const fs::path& file,
                                                      std::vector<Diagnostic>* warnings) {
-  return loadOrThrow(file, std::nullopt, std::nullopt, warnings);
+  return loadOrThrow(file, std::nullopt, std::nullopt, DynamicWorkCellLoadOptions{}, warnings);
+}
+
+std::unique_ptr<DynamicWorkCell> loadDynamicWorkCell(const fs::path& file,
+                                                     const DynamicWorkCellLoadOptions& options,
+                                                     std::vector<Diagnostic>* warnings) {
+  return loadOrThrow(file, std::nullopt, std::nullopt, options, warnings);
 }
 
 std::unique_ptr<DynamicWorkCell> loadDynamicWorkCellFromString(std::string_view xml,
                                                                const fs::path& virtualFile,
                                                                std::vector<Diagnostic>* warnings) {
-  return loadOrThrow(virtualFile, xml, std::nullopt, warnings);
+  return loadOrThrow(virtualFile, xml, std::nullopt, DynamicWorkCellLoadOptions{}, warnings);
 }
 
 std::unique_ptr<DynamicWorkCell> loadDynamicWorkCellFromStrings(std::string_view xml,
                                                                 std::string_view workcellXml,
                                                                 const fs::path& virtualFile,
                                                                 std::vector<Diagnostic>* warnings) {
-  return loadOrThrow(virtualFile, xml, workcellXml, warnings);
+  return loadOrThrow(virtualFile, xml, workcellXml, DynamicWorkCellLoadOptions{}, warnings);
 }
 
 std::vector<Diagnostic> checkDynamicWorkCell(const fs::path& file) {
   DiagnosticSink sink;
   try {
-    (void)load(file, std::nullopt, std::nullopt, sink);
+    (void)load(file, std::nullopt, std::nullopt, DynamicWorkCellLoadOptions{}, sink);
   } catch (...) {
     // load() reports what it can; nothing may escape a check.
   }

@@ -6,10 +6,18 @@
 #include <vector>
 
 #include "rw/common/diagnostic.hpp"
+#include "rw/loaders/workcell_loader.hpp"
 #include "rwsim/dynamics/dynamic_workcell.hpp"
 
 /// Readers of RobWorkSim's file formats.
 namespace rwsim::loaders {
+
+/// How a dynamic workcell is loaded besides its file.
+struct DynamicWorkCellLoadOptions {
+  /// Included files read from other files (rw::loaders::IncludeRedirects), for the Includes of
+  /// the dynamic workcell and those of the workcell it names alike; empty: none.
+  rw::loaders::IncludeRedirects includeRedirects;
+};
 
 /// Loads a RobWorkSim dynamic workcell file (`.dwc.xml`, reference §2) and the workcell it
 /// names (relative to the file's folder, loaded with rw::loaders::loadWorkCell).
@@ -26,6 +34,13 @@ namespace rwsim::loaders {
 /// file:line:column).
 std::unique_ptr<rwsim::dynamics::DynamicWorkCell> loadDynamicWorkCell(
     const std::filesystem::path& file, std::vector<rw::common::Diagnostic>* warnings = nullptr);
+
+/// Same as loadDynamicWorkCell, with `options` (Include redirects).
+/// @throws rw::common::LoadError as loadDynamicWorkCell; a redirect whose replacement cannot be
+/// read is an error at the redirected Include (file:line).
+std::unique_ptr<rwsim::dynamics::DynamicWorkCell> loadDynamicWorkCell(
+    const std::filesystem::path& file, const DynamicWorkCellLoadOptions& options,
+    std::vector<rw::common::Diagnostic>* warnings = nullptr);
 
 /// Same as loadDynamicWorkCell, reading the top-level XML from `xml`. Relative paths (the
 /// workcell, Includes) resolve against the folder of `virtualFile`; diagnostics name it.

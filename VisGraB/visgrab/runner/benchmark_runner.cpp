@@ -8,20 +8,19 @@
 #include <mutex>
 #include <optional>
 #include <stdexcept>
-#include <string_view>
 
 #include "rw/common/stop_signals.hpp"
-#include "rw/common/strings.hpp"
 #include "rw/common/task_pool.hpp"
-#include "rw/common/text_file.hpp"
-#include "rwsim/loaders/dynamic_workcell_loader.hpp"
 #include "rwsim/simulator/grasp_trial.hpp"
 #include "visgrab/database/database.hpp"
-#include "visgrab/database/scene_filter.hpp"
 #include "visgrab/grasp/grasp_resolver.hpp"
 #include "visgrab/grasp/hand_grasp_setup.hpp"
 #include "visgrab/results/results_file.hpp"
 #include "visgrab/results/results_writer.hpp"
+#include "visgrab/session/grasp_order.hpp"
+#include "visgrab/session/scene_loader.hpp"
+#include "visgrab/session/scene_selection.hpp"
+#include "visgrab/session/scene_session.hpp"
 #include "visgrab/taskio/grasp_file.hpp"
 
 namespace visgrab::runner {
@@ -32,17 +31,8 @@ namespace fs = std::filesystem;
 using rw::common::Diagnostic;
 using rwsim::simulator::GraspOutcome;
 
-/// One grasp to run: its request and its rank among its scene's grasps of its method.
-struct Job {
-  const grasp::GraspRequest* request = nullptr;
-  int rank = 0;
-};
-
-/// A scene with its grasps, in (method first seen, rank) order.
-struct SceneWork {
-  const database::SceneEntry* entry = nullptr;
-  std::vector<Job> jobs;
-};
+using session::RankedGrasp;
+using session::SceneGraspList;
 
 Diagnostic rejection(const grasp::GraspRequest& r, const std::string& message) {
   Diagnostic d;
@@ -52,38 +42,22 @@ Diagnostic rejection(const grasp::GraspRequest& r, const std::string& message) {
   return d;
 }
 
-std::vector<const database::SceneEntry*> selectScenes(const database::Database& db,
-                                                      const std::string& filterText) {
-  try {
-    return db.filter(filterText.empty() ? database::SceneFilter()
-                                        : database::SceneFilter::parse(filterText));
-  } catch (const database::FilterError& e) {
-    throw std::invalid_argument(std::string("scene filter: ") + e.what());
-  }
-}
-
 int objectIdOf(const rwsim::dynamics::DynamicWorkCell& dwc, rwsim::dynamics::BodyId body) {
   if (!body.valid()) return 0;
   const std::string& name = dwc.body(body).name;
   return database::objectIdByName(name).value_or(0);
 }
 
-/// Runs one scene's pending jobs; appends each trial as it finishes.
+/// Runs one scene's pending grasps in its session; appends each trial as it finishes.
 class SceneRunner {
  public:
-  SceneRunner(const SceneWork& work, const grasp::HandGraspSetup& hand)
-      : work_(&work), hand_(&hand) {
-    dwc_ = loadSceneWithHand(*work.entry, hand);
-    trial_ = std::make_unique<rwsim::simulator::GraspTrial>(*dwc_, trialSetup(hand, *dwc_));
-  }
+  SceneRunner(const SceneGraspList& work, const session::SceneLoader& loader)
+      : work_(&work), session_(loader, *work.entry) {}
 
   /// The trial record of `job`, or nullopt (and `rejected` set) for a grasp rejected as input.
-  std::optional<results::TrialRecord> run(const Job& job, Diagnostic& rejected) const {
+  std::optional<results::TrialRecord> run(const RankedGrasp& job, Diagnostic& rejected) const {
     const grasp::GraspRequest& r = *job.request;
-    const grasp::ResolvedGrasp resolved =
-        grasp::resolve(r, *hand_, [this](const rwsim::simulator::GraspParameters& g) {
-          return trial_->checkPlacement(g, dwc_->workcell().defaultState());
-        });
+    const grasp::ResolvedGrasp resolved = session_.resolve(r);
     if (resolved.status == grasp::ResolveStatus::kInputError) {
       rejected = rejection(r, resolved.message);
       return std::nullopt;
@@ -104,12 +78,12 @@ class SceneRunner {
       record.detail = resolved.message;
       return record;
     }
-    const auto result = trial_->run(resolved.parameters, dwc_->workcell().defaultState());
+    const auto result = session_.trial().run(resolved.parameters, session_.initialState());
     record.outcome = result.outcome;
     record.qLift = result.qLift;
     record.qGws = result.qGws;
     record.qGwsUnit = result.qGwsUnit;
-    record.object = objectIdOf(*dwc_, result.object);
+    record.object = objectIdOf(session_.dynamicWorkcell(), result.object);
     record.simulatedTime = result.simulatedTime;
     record.detail = result.detail;
     if (resolved.placement && resolved.placement->tests > 1) {
@@ -119,100 +93,11 @@ class SceneRunner {
   }
 
  private:
-  const SceneWork* work_;
-  const grasp::HandGraspSetup* hand_;
-  std::unique_ptr<rwsim::dynamics::DynamicWorkCell> dwc_;
-  std::unique_ptr<rwsim::simulator::GraspTrial> trial_;
+  const SceneGraspList* work_;
+  session::SceneSession session_;
 };
 
 }  // namespace
-
-namespace {
-
-/// One `<Include file="..."/>` of a scene file.
-struct IncludeRef {
-  std::size_t valueBegin = 0, valueEnd = 0;
-  fs::path target;
-};
-
-/// The Includes of `text` (a scene file in `folder`) whose target lies in a folder "hands"
-/// (`<Include file="..."/>` as the generator writes them).
-std::vector<IncludeRef> handIncludes(const std::string& text, const fs::path& folder) {
-  std::vector<IncludeRef> out;
-  constexpr std::string_view kTag = "<Include";
-  constexpr std::string_view kAttribute = "file=\"";
-  for (std::size_t at = text.find(kTag); at != std::string::npos; at = text.find(kTag, at + 1)) {
-    const std::size_t close = text.find('>', at);
-    const std::size_t attr = text.find(kAttribute, at);
-    if (close == std::string::npos || attr == std::string::npos || attr > close) continue;
-    const std::size_t begin = attr + kAttribute.size();
-    const std::size_t end = text.find('"', begin);
-    if (end == std::string::npos || end > close) continue;
-    const fs::path target = (folder / text.substr(begin, end - begin)).lexically_normal();
-    if (target.parent_path().parent_path().filename() != "hands") continue;
-    out.push_back(IncludeRef{begin, end, target});
-  }
-  return out;
-}
-
-bool sameContent(const fs::path& a, const fs::path& b) {
-  std::string ta, tb;
-  return rw::common::readTextFile(a, ta).empty() && rw::common::readTextFile(b, tb).empty() &&
-         ta == tb;
-}
-
-}  // namespace
-
-std::unique_ptr<rwsim::dynamics::DynamicWorkCell> loadSceneWithHand(
-    const database::SceneEntry& entry, const grasp::HandGraspSetup& hand) {
-  if (hand.workcellFile().empty() || hand.dynamicsFile().empty()) {
-    return rwsim::loaders::loadDynamicWorkCell(entry.dynamicWorkcell);
-  }
-  const std::string wcText = rw::common::readTextFileOrThrow(entry.workcell);
-  const std::string dwcText = rw::common::readTextFileOrThrow(entry.dynamicWorkcell);
-  const auto wcRefs = handIncludes(wcText, entry.workcell.parent_path());
-  const auto dwcRefs = handIncludes(dwcText, entry.dynamicWorkcell.parent_path());
-  if (wcRefs.size() != 1 || dwcRefs.size() != 1) {
-    // Not a generated scene (an original or hand-written one): usable as it is when it holds
-    // the hand already.
-    auto dwc = rwsim::loaders::loadDynamicWorkCell(entry.dynamicWorkcell);
-    if (dwc->findDevice(hand.deviceName()).valid()) return dwc;
-    throw std::runtime_error(
-        "scene " + entry.id + " has no device '" + hand.deviceName() + "' and does not include a " +
-        "hand from a hands/<hand>/ folder once in " + entry.workcell.filename().string() +
-        " and once in " + entry.dynamicWorkcell.filename().string() + " (found " +
-        std::to_string(wcRefs.size()) + " and " + std::to_string(dwcRefs.size()) +
-        "); cannot put the hand " + hand.description().file + " in");
-  }
-  const IncludeRef& wcRef = wcRefs.front();
-  const IncludeRef& dwcRef = dwcRefs.front();
-  if (sameContent(wcRef.target, hand.workcellFile()) &&
-      sameContent(dwcRef.target, hand.dynamicsFile())) {
-    return rwsim::loaders::loadDynamicWorkCell(entry.dynamicWorkcell);
-  }
-  if (!fs::is_regular_file(hand.dynamicsFile())) {
-    throw std::runtime_error("the hand's dynamics file " + hand.dynamicsFile().string() +
-                             " is missing (GraspDescription dynamics=\"...\"; default: the "
-                             "workcell's name up to its first dot + _dynamics.dwc.xml)");
-  }
-  std::string wc = wcText;
-  wc.replace(wcRef.valueBegin, wcRef.valueEnd - wcRef.valueBegin,
-             rw::common::escapeXml(hand.workcellFile().generic_string()));
-  std::string dwc = dwcText;
-  dwc.replace(dwcRef.valueBegin, dwcRef.valueEnd - dwcRef.valueBegin,
-              rw::common::escapeXml(hand.dynamicsFile().generic_string()));
-  return rwsim::loaders::loadDynamicWorkCellFromStrings(dwc, wc, entry.dynamicWorkcell);
-}
-
-rwsim::simulator::GraspTrialSetup trialSetup(const grasp::HandGraspSetup& hand,
-                                             const rwsim::dynamics::DynamicWorkCell& dwc) {
-  rwsim::simulator::GraspTrialSetup setup;
-  setup.hand = hand.deviceName();
-  setup.controller = hand.controllerName();
-  setup.tcpFrame = hand.tcpFrameName();
-  setup.simulator = rwsim::simulator::optionsFromEngineProperties(dwc);
-  return setup;
-}
 
 namespace {
 
@@ -228,7 +113,7 @@ struct RunInputs {
 /// the grasps rejected so far.
 struct RunPlan {
   results::RunResults run;
-  std::vector<SceneWork> work;
+  session::GraspOrder order;
   std::vector<Diagnostic> rejected;
   /// Rejected grasps per method (per file for grasps the reader could not parse).
   std::map<std::string, int> rejectedPerMethod;
@@ -236,7 +121,7 @@ struct RunPlan {
 
 /// The scenes with trials left to run, and the progress counters of the run.
 struct PendingWork {
-  std::vector<const SceneWork*> scenes;
+  std::vector<const SceneGraspList*> scenes;
   RunProgress progress;
 };
 
@@ -244,7 +129,7 @@ struct PendingWork {
 /// results unless resuming.
 RunInputs openInputs(const RunOptions& options) {
   RunInputs in{database::Database::openAny(options.database), {}, {}, {}};
-  in.selected = selectScenes(in.db, options.scenes);
+  in.selected = session::selectScenes(in.db, options.scenes);
   in.hand = grasp::loadHandGraspSetup(options.hand);
   in.grasps = taskio::readGraspSources(options.grasps);
   if (!options.resume && fs::exists(options.out / results::kTrialsFileName)) {
@@ -270,48 +155,24 @@ RunPlan planRun(const RunOptions& options, const RunInputs& in) {
     run.sources.grasps.push_back(fs::absolute(g).lexically_normal());
   }
   run.sources.hand = fs::absolute(options.hand).lexically_normal();
-  std::map<std::string, std::size_t> sceneOrder;
-  for (const auto* s : in.selected) {
-    sceneOrder.emplace(s->id, run.scenes.size());
-    run.scenes.push_back({s->id, s->conditions});
-  }
-  plan.work.resize(run.scenes.size());
-  std::map<std::pair<std::string, std::string>, int> ranks;
-  for (const auto& r : in.grasps.requests) {
-    if (!in.db.contains(r.sceneId)) {
-      const auto close = in.db.closestIds(r.sceneId);
-      std::string hint = close.empty() ? "" : " (did you mean " + close.front() + "?)";
-      plan.rejected.push_back(rejection(r, "unknown scene \"" + r.sceneId + "\"" + hint));
-      ++plan.rejectedPerMethod[r.method];
-      continue;
-    }
-    const auto& entry = in.db.scene(r.sceneId);
-    const auto it = sceneOrder.find(entry.id);
-    if (it == sceneOrder.end()) continue;  // filtered out
-    if (std::find(run.methods.begin(), run.methods.end(), r.method) == run.methods.end()) {
-      run.methods.push_back(r.method);
-    }
-    SceneWork& w = plan.work[it->second];
-    w.entry = &entry;
-    w.jobs.push_back({&r, ranks[{entry.id, r.method}]++});
-  }
-  // Within a scene: methods in the order first seen, then rank.
-  for (auto& w : plan.work) {
-    std::stable_sort(w.jobs.begin(), w.jobs.end(), [&](const Job& a, const Job& b) {
-      const auto ia = std::find(run.methods.begin(), run.methods.end(), a.request->method);
-      const auto ib = std::find(run.methods.begin(), run.methods.end(), b.request->method);
-      return ia < ib;
-    });
+  for (const auto* s : in.selected) run.scenes.push_back({s->id, s->conditions});
+  plan.order = session::benchmarkOrder(in.db, in.selected, in.grasps.requests);
+  run.methods = plan.order.methods;
+  for (const auto* r : plan.order.unknownScene) {
+    const auto close = in.db.closestIds(r->sceneId);
+    std::string hint = close.empty() ? "" : " (did you mean " + close.front() + "?)";
+    plan.rejected.push_back(rejection(*r, "unknown scene \"" + r->sceneId + "\"" + hint));
+    ++plan.rejectedPerMethod[r->method];
   }
   return plan;
 }
 
 /// The scenes with trials not yet in `writer` (resume) and how many trials they hold.
-PendingWork pendingScenes(const std::vector<SceneWork>& work,
+PendingWork pendingScenes(const std::vector<SceneGraspList>& work,
                           const results::ResultsWriter& writer) {
   PendingWork pending;
   for (const auto& w : work) {
-    const auto left = std::count_if(w.jobs.begin(), w.jobs.end(), [&](const Job& j) {
+    const auto left = std::count_if(w.grasps.begin(), w.grasps.end(), [&](const RankedGrasp& j) {
       return !writer.contains(w.entry->id, j.request->method, j.request->id);
     });
     if (left == 0) continue;
@@ -331,11 +192,11 @@ void writeRunFile(RunPlan& plan, results::ResultsWriter& writer) {
 
 /// A hand that does not fit (a missing dynamics file, a device or controller the scene's
 /// dynamics lack) fails every scene: reported once, as the run's error, not per grasp.
-void checkHandFits(const PendingWork& pending, const grasp::HandGraspSetup& hand,
+void checkHandFits(const PendingWork& pending, const session::SceneLoader& loader,
                    const fs::path& handFile) {
   if (pending.scenes.empty()) return;
   try {
-    const SceneRunner probe(*pending.scenes.front(), hand);
+    const SceneRunner probe(*pending.scenes.front(), loader);
   } catch (const rw::common::LoadError&) {
     throw;
   } catch (const std::exception& e) {
@@ -352,18 +213,18 @@ using TrialDone = std::function<void(const grasp::GraspRequest&, const std::opti
 /// a trial). Returns false early, between trials, once `stopping` says so. A scene file that
 /// cannot be read throws rw::common::LoadError; a scene the hand cannot be put in rejects its
 /// grasps.
-bool runScene(const SceneWork& w, const grasp::HandGraspSetup& hand, results::ResultsWriter& writer,
+bool runScene(const SceneGraspList& w, const session::SceneLoader& loader, results::ResultsWriter& writer,
               const std::function<bool()>& stopping, const TrialDone& trialDone) {
   std::unique_ptr<SceneRunner> runner;
   std::string failure;
   try {
-    runner = std::make_unique<SceneRunner>(w, hand);
+    runner = std::make_unique<SceneRunner>(w, loader);
   } catch (const rw::common::LoadError&) {
     throw;  // an unreadable or broken scene file: the run stops (and resumes once it is mended)
   } catch (const std::exception& e) {
     failure = e.what();
   }
-  for (const Job& job : w.jobs) {
+  for (const RankedGrasp& job : w.grasps) {
     if (stopping()) return false;
     const auto& r = *job.request;
     if (writer.contains(w.entry->id, r.method, r.id)) continue;
@@ -384,7 +245,7 @@ bool runScene(const SceneWork& w, const grasp::HandGraspSetup& hand, results::Re
 /// into `plan`. A set options.stop, or an error in any scene (a scene file that cannot be read,
 /// a failed write), ends every scene after its current trial; no new scene starts; the first
 /// error is thrown.
-void runScenes(const RunOptions& options, const grasp::HandGraspSetup& hand, PendingWork& pending,
+void runScenes(const RunOptions& options, const session::SceneLoader& loader, PendingWork& pending,
                RunPlan& plan, results::ResultsWriter& writer, const std::function<void()>& report) {
   std::mutex mutex;
   std::atomic<bool> failing{false};
@@ -406,7 +267,7 @@ void runScenes(const RunOptions& options, const grasp::HandGraspSetup& hand, Pen
   pool.run(pending.scenes.size(), [&](std::size_t i, int /*worker*/) {
     bool complete = false;
     try {
-      complete = runScene(*pending.scenes[i], hand, writer, stopping, trialDone);
+      complete = runScene(*pending.scenes[i], loader, writer, stopping, trialDone);
     } catch (...) {
       failing = true;
       throw;
@@ -446,12 +307,14 @@ RunSummary runBenchmark(const RunOptions& options,
                         const std::function<void(const RunProgress&)>& progress) {
   const auto start = std::chrono::steady_clock::now();
   const RunInputs in = openInputs(options);
+  // After openInputs: the loader keeps the address of in.db.
+  const session::SceneLoader loader(in.db, *in.hand);
   RunPlan plan = planRun(options, in);
   results::ResultsWriter writer(options.out);
-  PendingWork pending = pendingScenes(plan.work, writer);
+  PendingWork pending = pendingScenes(plan.order.scenes, writer);
   writeRunFile(plan, writer);
-  checkHandFits(pending, *in.hand, options.hand);
-  runScenes(options, *in.hand, pending, plan, writer, [&] {
+  checkHandFits(pending, loader, options.hand);
+  runScenes(options, loader, pending, plan, writer, [&] {
     pending.progress.elapsed =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (progress) progress(pending.progress);

@@ -8,33 +8,9 @@
 #include <vector>
 
 #include "rw/common/diagnostic.hpp"
-#include "rwsim/dynamics/dynamic_workcell.hpp"
-#include "rwsim/simulator/grasp_trial.hpp"
-#include "visgrab/database/database.hpp"
-#include "visgrab/grasp/hand_grasp_setup.hpp"
 
 /// The headless benchmark run: every grasp of every scene through the simulator.
 namespace visgrab::runner {
-
-/// The trial setup the benchmark uses for `hand` in the scene `dwc`: the hand's device,
-/// controller and TCP frame from its grasp description, the simulator options from the dwc's
-/// PhysicsEngine properties, the rest GraspTrialSetup's defaults.
-rwsim::simulator::GraspTrialSetup trialSetup(const grasp::HandGraspSetup& hand,
-                                             const rwsim::dynamics::DynamicWorkCell& dwc);
-
-/// The scene's dynamic workcell with `hand` in it. A generated scene includes its hand from the
-/// database's hands/ folder (one Include in scene.wc.xml, one in scene.dwc.xml). When those
-/// files equal the hand's workcell and dynamics files (the hand the database was generated
-/// with), the scene is loaded as it is; otherwise the two Includes are pointed at `hand`'s files
-/// (HandGraspSetup::workcellFile, dynamicsFile) and the scene is loaded from memory: any hand
-/// runs in any scene without generating the database again. The hand hangs from the scene's
-/// HandMount frame, as the generated one. A scene without exactly one such Include in each file
-/// (an original or hand-written one) is loaded as it is if it holds the hand's device.
-/// @throws rw::common::LoadError for unreadable or invalid files; std::runtime_error naming the
-/// scene when the hand cannot be put in (no such Includes and not the hand's device; the hand's
-/// dynamics file missing).
-std::unique_ptr<rwsim::dynamics::DynamicWorkCell> loadSceneWithHand(
-    const database::SceneEntry& entry, const grasp::HandGraspSetup& hand);
 
 /// What `visgrab run` needs.
 struct RunOptions {
@@ -45,7 +21,7 @@ struct RunOptions {
   /// The result folder (trials.csv, run.csv).
   std::filesystem::path out;
   /// The hand: its grasp description (e.g. scenes/hands/sdh/sdh.grasp.xml) or its folder
-  /// (scenes/hands/pg70); see loadSceneWithHand.
+  /// (scenes/hands/pg70); see session::SceneLoader.
   std::filesystem::path hand;
   /// Only the scenes this filter selects (docs/database-format.md); empty: all.
   std::string scenes;

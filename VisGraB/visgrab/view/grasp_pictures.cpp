@@ -115,7 +115,7 @@ std::string outcomeCaption(GraspOutcome outcome, double qLift, double qGws, doub
   return text;
 }
 
-Eigen::AlignedBox3d objectsBox(const SceneSession& session, const WorkcellDrawing& drawing,
+Eigen::AlignedBox3d objectsBox(const session::SceneSession& session, const WorkcellDrawing& drawing,
                                const rw::kinematics::State& state, double margin) {
   Eigen::AlignedBox3d box = drawing.bounds(state, session.objectFrames());
   if (box.isEmpty()) box.extend(Eigen::Vector3d::Zero());
@@ -151,7 +151,7 @@ visual::RgbImage renderState(render::GlRenderer& renderer, const WorkcellDrawing
 }
 
 visual::RgbImage graspStrip(render::GlRenderer& renderer, const WorkcellDrawing& drawing,
-                            const SceneSession& session, const TrialReplay& replay,
+                            const session::SceneSession& session, const TrialReplay& replay,
                             const std::string& title, const PictureOptions& options) {
   const auto& placed = replay.frames.at(replay.placed);
   const auto& closed = replay.frames.at(replay.closed);
@@ -193,9 +193,9 @@ visual::RgbImage graspStrip(render::GlRenderer& renderer, const WorkcellDrawing&
 }
 
 visual::RgbImage graspMontage(render::GlRenderer& renderer, const WorkcellDrawing& drawing,
-                              const SceneSession& session, const std::vector<MontageTile>& tiles,
-                              const std::string& title, const PictureOptions& options,
-                              int columns) {
+                              const session::SceneSession& session,
+                              const std::vector<MontageTile>& tiles, const std::string& title,
+                              const PictureOptions& options, int columns) {
   columns = std::max(1, columns);
   const rw::kinematics::State& initial = session.initialState();
   std::vector<cv::Mat> cells;
@@ -343,7 +343,7 @@ visual::RgbImage graspOverlay(render::GlRenderer& renderer, const WorkcellDrawin
 }
 
 TrialPicture trialStrip(render::GlRenderer& renderer, const WorkcellDrawing& drawing,
-                        const SceneSession& session, const SceneGrasp& grasp,
+                        const session::SceneSession& session, const session::SceneGrasp& grasp,
                         const PictureOptions& options) {
   const std::string title =
       session.entry().id + "   " + grasp.request.method + " " + grasp.request.id;

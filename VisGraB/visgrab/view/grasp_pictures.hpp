@@ -9,8 +9,9 @@
 #include "rwsim/simulator/grasp_trial.hpp"
 #include "visgrab/database/stereo_calibration.hpp"
 #include "visgrab/render/gl_renderer.hpp"
+#include "visgrab/session/grasp_order.hpp"
+#include "visgrab/session/scene_session.hpp"
 #include "visgrab/view/cameras.hpp"
-#include "visgrab/view/scene_session.hpp"
 #include "visgrab/view/trial_replay.hpp"
 #include "visgrab/view/workcell_drawing.hpp"
 #include "visgrab/visual/visual_mesh.hpp"
@@ -38,7 +39,7 @@ struct PictureOptions {
 Eigen::Vector3f outcomeColour(rwsim::simulator::GraspOutcome outcome);
 
 /// The objects' bounding box in `state`, grown by `margin` metres (where pictures look).
-Eigen::AlignedBox3d objectsBox(const SceneSession& session, const WorkcellDrawing& drawing,
+Eigen::AlignedBox3d objectsBox(const session::SceneSession& session, const WorkcellDrawing& drawing,
                                const rw::kinematics::State& state, double margin = 0.03);
 
 /// Appends the contact forces as orange arrows ending at their points, pointing the way each
@@ -57,7 +58,7 @@ visual::RgbImage renderState(render::GlRenderer& renderer, const WorkcellDrawing
 /// with the phase and time, under a title bar with `title` and the outcome in its colour with
 /// Q_lift, Q_GWS and Q_GWS,unit. All panels share one camera, framed on the objects and the hand.
 visual::RgbImage graspStrip(render::GlRenderer& renderer, const WorkcellDrawing& drawing,
-                            const SceneSession& session, const TrialReplay& replay,
+                            const session::SceneSession& session, const TrialReplay& replay,
                             const std::string& title, const PictureOptions& options);
 
 /// One tile of a montage: a grasp and its outcome.
@@ -74,9 +75,9 @@ struct MontageTile {
 /// its TCP, coloured by outcome, then one tile per grasp with the hand placed and coloured by
 /// its outcome; `columns` tiles per row, a legend of the outcomes present at the bottom.
 visual::RgbImage graspMontage(render::GlRenderer& renderer, const WorkcellDrawing& drawing,
-                              const SceneSession& session, const std::vector<MontageTile>& tiles,
-                              const std::string& title, const PictureOptions& options,
-                              int columns = 4);
+                              const session::SceneSession& session,
+                              const std::vector<MontageTile>& tiles, const std::string& title,
+                              const PictureOptions& options, int columns = 4);
 
 /// The grasp drawn into the scene's left stereo image `left` (calibration: K1 and X_TL; lens
 /// distortion is not modelled): hand pixels the objects would hide are drawn faintly, visible
@@ -105,7 +106,7 @@ struct TrialPicture {
 /// the reason. @throws std::invalid_argument for a grasp the hand cannot take as input (an
 /// unknown pre-shape, wrong lengths), naming it.
 TrialPicture trialStrip(render::GlRenderer& renderer, const WorkcellDrawing& drawing,
-                        const SceneSession& session, const SceneGrasp& grasp,
+                        const session::SceneSession& session, const session::SceneGrasp& grasp,
                         const PictureOptions& options);
 
 /// "stable   Q_lift 0.930   Q_GWS 0.4210   Q_GWS,unit 0.0120" (the qualities only for held

@@ -15,6 +15,9 @@
 #include "visgrab/grasp/hand_grasp_setup.hpp"
 #include "visgrab/render/offscreen_renderer.hpp"
 #include "visgrab/render/png_io.hpp"
+#include "visgrab/session/grasp_order.hpp"
+#include "visgrab/session/scene_loader.hpp"
+#include "visgrab/session/scene_session.hpp"
 #include "visgrab/taskio/grasp_file.hpp"
 #include "visgrab/view/grasp_pictures.hpp"
 
@@ -29,6 +32,8 @@ struct RunInputs {
   std::optional<database::Database> db;
   taskio::GraspFileContents grasps;
   std::unique_ptr<grasp::HandGraspSetup> hand;
+  /// The run's scenes with its hand (set once `db` has its place).
+  std::unique_ptr<session::SceneLoader> loader;
   /// Why the run's trials cannot be drawn (empty if they can).
   std::string problem;
 };
@@ -66,7 +71,7 @@ struct PictureWorker {
   std::string contextProblem;
   std::string loadedScene;
   std::size_t loadedRun = 0;
-  std::unique_ptr<SceneSession> session;
+  std::unique_ptr<session::SceneSession> session;
   std::unique_ptr<WorkcellDrawing> drawing;
 
   /// Drops the drawing, the session and the context, in that order, on the worker's thread.
@@ -105,18 +110,18 @@ void drawShowcase(analysis::Showcase& s, std::size_t runCount, const std::vector
     // first: its destructor leaves no context current.
     w.offscreen.reset();
     w.offscreen = std::make_unique<render::OffscreenRenderer>();
-    w.session = std::make_unique<SceneSession>(entry, *in.hand);
+    w.session = std::make_unique<session::SceneSession>(*in.loader, entry);
     w.drawing = std::make_unique<WorkcellDrawing>(w.session->workcell(), w.offscreen->renderer(),
                                                   in.hand->deviceName());
     w.loadedScene = entry.id;
     w.loadedRun = r;
   }
   // The showcase's request, with the showcase's own trial as its record.
-  std::optional<SceneGrasp> grasp;
+  std::optional<session::SceneGrasp> grasp;
   for (const auto& q : in.grasps.requests) {
     if (q.method == s.trial.method && q.id == s.trial.graspId && in.db->contains(q.sceneId) &&
         in.db->scene(q.sceneId).id == entry.id) {
-      grasp = SceneGrasp{q, s.trial};
+      grasp = session::SceneGrasp{q, s.trial.rank, s.trial};
       break;
     }
   }
@@ -143,6 +148,14 @@ void drawShowcases(std::vector<analysis::Showcase>& showcases,
   std::vector<RunInputs> inputs;
   inputs.reserve(runs.size());
   for (const auto& run : runs) inputs.push_back(openInputs(run));
+  for (auto& in : inputs) {
+    if (!in.problem.empty()) continue;
+    try {
+      in.loader = std::make_unique<session::SceneLoader>(*in.db, *in.hand);
+    } catch (const std::exception& e) {
+      in.problem = std::string("cannot open the run's input: ") + e.what();
+    }
+  }
   // Jobs in (run, scene) order, so that a worker often keeps its scene loaded.
   std::vector<std::size_t> jobs(showcases.size());
   for (std::size_t i = 0; i < jobs.size(); ++i) jobs[i] = i;

@@ -378,6 +378,65 @@ TEST(WorkCellLoader, IncludeDefineAndUseExpandPerFile) {
   EXPECT_EQ(a->collision[0].geometry->triangles().triangles.size(), 4u);
 }
 
+TEST(WorkCellLoader, AnIncludeRedirectPutsAnotherHandInTheScene) {
+  TempDir dir;
+  writeFile(dir.path() / "hands/a/hand_a.wc.xml",
+            "<TreeDevice name=\"HandA\">\n <Frame name=\"Base\" refframe=\"Mount\"/>\n"
+            "</TreeDevice>\n");
+  // Hand B's Include is relative to its own folder: the redirect keeps that.
+  writeFile(dir.path() / "other/b/hand_b.wc.xml",
+            "<TreeDevice name=\"HandB\">\n <Frame name=\"Base\" refframe=\"Mount\"/>\n"
+            " <Include file=\"tip.xml\"/>\n</TreeDevice>\n");
+  writeFile(dir.path() / "other/b/tip.xml", "<Frame name=\"Tip\" refframe=\"Base\"/>\n");
+  const auto scene = writeFile(dir.path() / "scenes/s1/scene.wc.xml",
+                               "<WorkCell name=\"w\">\n <Frame name=\"Mount\"/>\n"
+                               " <Include file=\"../../hands/a/hand_a.wc.xml\"/>\n</WorkCell>\n");
+  const auto asWritten = rw::loaders::loadWorkCell(scene);
+  EXPECT_NE(asWritten->findDevice("HandA"), nullptr);
+  EXPECT_EQ(asWritten->findDevice("HandB"), nullptr);
+
+  // The key names the file differently from the Include; it still matches.
+  rw::loaders::WorkCellLoadOptions options;
+  options.includeRedirects[dir.path() / "hands/x/../a/hand_a.wc.xml"] =
+      dir.path() / "other/b/hand_b.wc.xml";
+  const auto swapped = rw::loaders::loadWorkCell(scene, options);
+  EXPECT_EQ(swapped->findDevice("HandA"), nullptr);
+  EXPECT_NE(swapped->findDevice("HandB"), nullptr);
+  EXPECT_TRUE(swapped->findFrame("HandB.Tip").valid());
+  EXPECT_EQ(parentOf(*swapped, "HandB.Base"), swapped->findFrame("Mount"));
+
+  // A redirect of a file the scene does not include changes nothing.
+  rw::loaders::WorkCellLoadOptions unused;
+  unused.includeRedirects[dir.path() / "hands/a/other.wc.xml"] =
+      dir.path() / "other/b/hand_b.wc.xml";
+  EXPECT_NE(rw::loaders::loadWorkCell(scene, unused)->findDevice("HandA"), nullptr);
+}
+
+TEST(WorkCellLoader, AnIncludeRedirectToAMissingFileIsAnErrorAtTheInclude) {
+  TempDir dir;
+  writeFile(dir.path() / "hand_a.wc.xml", "<Frame name=\"Base\" refframe=\"WORLD\"/>\n");
+  const auto scene =
+      writeFile(dir.path() / "scene.wc.xml",
+                "<WorkCell name=\"w\">\n <Include file=\"hand_a.wc.xml\"/>\n</WorkCell>\n");
+  rw::loaders::WorkCellLoadOptions options;
+  options.includeRedirects[dir.path() / "hand_a.wc.xml"] = dir.path() / "no_such_hand.wc.xml";
+  try {
+    rw::loaders::loadWorkCell(scene, options);
+    FAIL() << "no LoadError";
+  } catch (const LoadError& e) {
+    ASSERT_EQ(e.diagnostics().size(), 1u);
+    const Diagnostic& d = e.diagnostics()[0];
+    EXPECT_EQ(d.file, scene.string());
+    EXPECT_EQ(d.line, 2);
+    EXPECT_NE(
+        d.message.find("cannot read \"" + (dir.path() / "no_such_hand.wc.xml").string() +
+                       "\" (redirected from \"" + (dir.path() / "hand_a.wc.xml").string() + "\")"),
+        std::string::npos)
+        << d.message;
+    EXPECT_NE(std::string(e.what()).find(scene.string() + ":2:"), std::string::npos) << e.what();
+  }
+}
+
 TEST(WorkCellLoader, CollisionPrefersStlAndDrawingPrefersAc3d) {
   TempDir dir;
   writeFile(dir.path() / "m.stl", tetrahedronStl());

@@ -225,6 +225,53 @@ TEST_F(DynamicWorkCellLoader, IncludesAreRelativeToTheTopLevelFileWithAFallback)
   EXPECT_EQ(warnings_.size(), 1u);
 }
 
+TEST_F(DynamicWorkCellLoader, IncludeRedirectsSwapTheHandInBothFiles) {
+  // The scene includes the SDH (scene.wc.xml) and its dynamics (here); the redirects put the
+  // PG70 in, from its own folder.
+  const auto hands = visgrab::test::sourceDir() / "scenes/hands";
+  writeFile(scene_.path() / "sdh_dynamics.xml",
+            "<IncludeData>\n" + sdhDevice() + sdhController() + "</IncludeData>\n");
+  // The PG70's links are of material Finger.
+  std::string materials = visgrab::test::dwc::kMaterials;
+  materials.replace(materials.find("<Material id=\"Rubber\"/>"), 0, "<Material id=\"Finger\"/>");
+  writeFile(scene_.path() / "materials.xml", materials);
+  const auto top = scene_.writeTop(SceneDir::dwc("<Include file=\"sdh_dynamics.xml\"/>\n"));
+  const auto sdh = rwsim::loaders::loadDynamicWorkCell(top);
+  EXPECT_GE(sdh->findDevice("SchunkHand"), 0);
+
+  rwsim::loaders::DynamicWorkCellLoadOptions options;
+  options.includeRedirects[hands / "sdh/sdh.wc.xml"] = hands / "pg70/pg70.wc.xml";
+  options.includeRedirects[scene_.path() / "sdh_dynamics.xml"] =
+      hands / "pg70/pg70_dynamics.dwc.xml";
+  const auto pg70 = rwsim::loaders::loadDynamicWorkCell(top, options);
+  EXPECT_EQ(pg70->findDevice("SchunkHand"), -1);
+  ASSERT_GE(pg70->findDevice("PG70"), 0);
+  EXPECT_NE(pg70->workcell().findDevice("PG70"), nullptr);
+  EXPECT_EQ(pg70->workcell().findDevice("SchunkHand"), nullptr);
+  EXPECT_TRUE(pg70->workcell().findFrame("Mount").valid());
+}
+
+TEST_F(DynamicWorkCellLoader, AnIncludeRedirectToAMissingFileIsAnErrorAtTheInclude) {
+  const auto top = scene_.writeTop(SceneDir::dwc("<FixedBody frame=\"Table\"/>\n"));
+  rwsim::loaders::DynamicWorkCellLoadOptions options;
+  options.includeRedirects[scene_.path() / "materials.xml"] = scene_.path() / "gone.xml";
+  try {
+    rwsim::loaders::loadDynamicWorkCell(top, options);
+    FAIL() << "no LoadError";
+  } catch (const rw::common::LoadError& e) {
+    ASSERT_FALSE(e.diagnostics().empty());
+    const Diagnostic& d = e.diagnostics()[0];
+    EXPECT_EQ(d.file, top.string());
+    EXPECT_EQ(d.line, 2);
+    EXPECT_NE(d.message.find("cannot read \"" + (scene_.path() / "gone.xml").string() +
+                             "\" (redirected from \"" + (scene_.path() / "materials.xml").string() +
+                             "\")"),
+              std::string::npos)
+        << d.message;
+    EXPECT_NE(std::string(e.what()).find(top.string() + ":2:"), std::string::npos) << e.what();
+  }
+}
+
 TEST_F(DynamicWorkCellLoader, LoadsFromAString) {
   std::vector<Diagnostic> warnings;
   const auto dwc =

@@ -19,6 +19,7 @@
 #include "visgrab/grasp/hand_grasp_setup.hpp"
 #include "visgrab/results/results_file.hpp"
 #include "visgrab/runner/benchmark_runner.hpp"
+#include "visgrab/session/scene_loader.hpp"
 #include "visgrab/taskio/grasp_list.hpp"
 
 namespace {
@@ -86,7 +87,7 @@ TEST(NewHand, TheSceneGetsTheGivenHand) {
   EXPECT_EQ(hand->deviceName(), "Jaws");
   EXPECT_EQ(hand->dynamicsFile(), (handFolder() / "jaws_dynamics.dwc.xml").lexically_normal());
   const auto& entry = visgrab::test::testDatabase().scene(kScene);
-  const auto dwc = visgrab::runner::loadSceneWithHand(entry, *hand);
+  const auto dwc = visgrab::session::SceneLoader(visgrab::test::testDatabase(), *hand).load(entry);
   ASSERT_EQ(dwc->devices().size(), 1u);
   EXPECT_EQ(dwc->devices()[0].device->name(), "Jaws");
   EXPECT_EQ(dwc->workcell().findDevice("SchunkHand"), nullptr);
@@ -94,7 +95,8 @@ TEST(NewHand, TheSceneGetsTheGivenHand) {
   // The SDH the database was generated with: the scene as it is.
   const auto sdh =
       visgrab::grasp::loadHandGraspSetup(visgrab::test::sourceDir() / "scenes/hands/sdh");
-  const auto original = visgrab::runner::loadSceneWithHand(entry, *sdh);
+  const auto original =
+      visgrab::session::SceneLoader(visgrab::test::testDatabase(), *sdh).load(entry);
   EXPECT_NE(original->workcell().findDevice("SchunkHand"), nullptr);
 }
 
@@ -189,12 +191,12 @@ TEST(NewHand, ASceneHoldingItsHandDirectlyIsUsedAsItIs) {
   entry.workcell = tmp.path() / "scene.wc.xml";
   entry.dynamicWorkcell = tmp.path() / "scene.dwc.xml";
   const auto jaws = visgrab::grasp::loadHandGraspSetup(gripper);
-  const auto dwc = visgrab::runner::loadSceneWithHand(entry, *jaws);
+  const auto dwc = visgrab::session::SceneLoader(visgrab::test::testDatabase(), *jaws).load(entry);
   EXPECT_TRUE(dwc->findDevice("Jaws").valid());
   const auto sdh =
       visgrab::grasp::loadHandGraspSetup(visgrab::test::sourceDir() / "scenes/hands/sdh");
   try {
-    visgrab::runner::loadSceneWithHand(entry, *sdh);
+    visgrab::session::SceneLoader(visgrab::test::testDatabase(), *sdh).load(entry);
     FAIL() << "put the SDH into a scene that cannot take it";
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("scene hand-written has no device 'SchunkHand'"),

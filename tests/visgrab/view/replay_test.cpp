@@ -12,8 +12,8 @@
 #include "support/test_database.hpp"
 #include "support/test_support.hpp"
 #include "visgrab/render/offscreen_renderer.hpp"
+#include "visgrab/session/scene_session.hpp"
 #include "visgrab/view/grasp_pictures.hpp"
-#include "visgrab/view/scene_session.hpp"
 #include "visgrab/view/trial_replay.hpp"
 
 namespace {
@@ -30,8 +30,10 @@ const visgrab::grasp::HandGraspSetup& hand() {
   return *h;
 }
 
-const visgrab::view::SceneSession& session() {
-  static const visgrab::view::SceneSession s(visgrab::test::testDatabase().scene(kScene), hand());
+const visgrab::session::SceneSession& session() {
+  static const visgrab::session::SceneSession s(
+      visgrab::session::SceneLoader(visgrab::test::testDatabase(), hand()),
+      visgrab::test::testDatabase().scene(kScene));
   return s;
 }
 
@@ -41,8 +43,8 @@ Vector3D canBase() {
 }
 
 // SDH_CYL pointing straight down with its TCP at `tcp` (as the runner test's known grasps).
-visgrab::view::SceneGrasp graspAt(const std::string& id, const Vector3D& tcp) {
-  visgrab::view::SceneGrasp g;
+visgrab::session::SceneGrasp graspAt(const std::string& id, const Vector3D& tcp) {
+  visgrab::session::SceneGrasp g;
   g.request.sceneId = kScene;
   g.request.id = id;
   g.request.method = "known";
@@ -52,7 +54,7 @@ visgrab::view::SceneGrasp graspAt(const std::string& id, const Vector3D& tcp) {
   return g;
 }
 
-rwsim::simulator::GraspParameters resolved(const visgrab::view::SceneGrasp& g) {
+rwsim::simulator::GraspParameters resolved(const visgrab::session::SceneGrasp& g) {
   const auto r = session().resolve(g.request);
   EXPECT_TRUE(r.ok()) << r.message;
   return r.parameters;

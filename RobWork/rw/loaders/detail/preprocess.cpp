@@ -133,7 +133,13 @@ void Preprocessor::expandUse(const common::XmlElement& use, FileScope& scope,
 void Preprocessor::expandInclude(const common::XmlElement& include, FileScope& scope,
                                  std::vector<common::XmlElement>& out) {
   const fs::path name(include.attributeOr("file", ""));
-  const fs::path path = (name.is_absolute() ? name : scope.dir / name).lexically_normal();
+  fs::path path = (name.is_absolute() ? name : scope.dir / name).lexically_normal();
+  // A redirected Include names the file it replaces in its messages.
+  std::string redirectNote;
+  if (const auto replacement = redirectedInclude(redirects_, path)) {
+    redirectNote = " (redirected from \"" + path.string() + "\")";
+    path = replacement->lexically_normal();
+  }
   const std::string display = path.string();
   if (scope.depth + 1 > kMaxIncludeDepth) {
     sink_.error(include.location, include.describe() + ": includes are nested deeper than " +
@@ -160,8 +166,8 @@ void Preprocessor::expandInclude(const common::XmlElement& include, FileScope& s
   std::string text;
   const std::string problem = readTextFile(path, text);
   if (!problem.empty()) {
-    sink_.error(include.location,
-                include.describe() + ": cannot read \"" + display + "\": " + problem);
+    sink_.error(include.location, include.describe() + ": cannot read \"" + display + "\"" +
+                                      redirectNote + ": " + problem);
     return;
   }
   auto source = std::make_shared<common::SourceFile>();

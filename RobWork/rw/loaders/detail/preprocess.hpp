@@ -10,6 +10,7 @@
 #include "rw/common/text_file.hpp"
 #include "rw/common/xml_reader.hpp"
 #include "rw/common/xml_tree.hpp"
+#include "rw/loaders/workcell_loader.hpp"
 
 namespace rw::loaders::detail {
 
@@ -25,12 +26,15 @@ std::string displayPathOf(const std::filesystem::path& file);
 /// `<Include file>` is replaced by the elements of that file (relative to the including file,
 /// cycles and depth checked), `<Define id>` stores its elements for `<Use id>` later in the same
 /// file (Define/Use scope is one file, a Use needs an earlier Define). Elements keep the file
-/// and line they were written at; files reached through Include carry the include chain.
+/// and line they were written at; files reached through Include carry the include chain. An
+/// Include whose file has a redirect (IncludeRedirects) reads the replacement instead.
 class Preprocessor {
  public:
-  /// Uses `reader` to parse every file; reports problems to `sink`.
-  Preprocessor(common::XmlReader& reader, common::DiagnosticSink& sink)
-      : reader_(reader), sink_(sink) {}
+  /// Uses `reader` to parse every file; reports problems to `sink`; `redirects` must outlive
+  /// the preprocessor.
+  Preprocessor(common::XmlReader& reader, common::DiagnosticSink& sink,
+               const IncludeRedirects& redirects)
+      : reader_(reader), sink_(sink), redirects_(redirects) {}
 
   /// Reads, parses and expands `file`; nullopt after an error in any file.
   std::optional<std::vector<common::XmlElement>> expandFile(const std::filesystem::path& file);
@@ -54,6 +58,7 @@ class Preprocessor {
 
   common::XmlReader& reader_;
   common::DiagnosticSink& sink_;
+  const IncludeRedirects& redirects_;
   std::size_t elementBudgetUsed_ = 0;
   std::size_t filesRead_ = 0;
   bool overBudget_ = false;

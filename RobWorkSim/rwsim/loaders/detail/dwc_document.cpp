@@ -120,8 +120,24 @@ void DocumentReader::include(const XmlElement& element, const Context& context,
     return;
   }
   const std::string file = element.attributeOr("file", "");
-  const auto path = resolveInclude(element, file, context);
-  if (!path) return;
+  // A redirect applies to the file as RobWork resolves it (the top-level file's folder), or,
+  // when that does not exist, to the file found next to the including file.
+  const fs::path relative(file);
+  const fs::path primary = relative.is_absolute() ? relative : topDir_ / relative;
+  std::optional<fs::path> replacement = rw::loaders::redirectedInclude(redirects_, primary);
+  std::string redirectNote = " (redirected from \"" + displayPathOf(primary) + "\")";
+  std::optional<fs::path> path;
+  if (!replacement) {
+    path = resolveInclude(element, file, context);
+    if (!path) return;
+    replacement = rw::loaders::redirectedInclude(redirects_, *path);
+    redirectNote = " (redirected from \"" + displayPathOf(*path) + "\")";
+  }
+  if (replacement) {
+    path = *replacement;
+  } else {
+    redirectNote.clear();
+  }
   const std::string identity = identityOf(*path);
   if (std::find(context.identities.begin(), context.identities.end(), identity) !=
       context.identities.end()) {
@@ -136,8 +152,8 @@ void DocumentReader::include(const XmlElement& element, const Context& context,
   std::string text;
   const std::string problem = readTextFile(*path, text);
   if (!problem.empty()) {
-    sink_.error(element.location,
-                what + "cannot read \"" + displayPathOf(*path) + "\": " + problem);
+    sink_.error(element.location, what + "cannot read \"" + displayPathOf(*path) + "\"" +
+                                      redirectNote + ": " + problem);
     return;
   }
   SourceFile included{displayPathOf(*path), {}};

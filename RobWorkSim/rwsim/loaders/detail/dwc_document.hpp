@@ -11,6 +11,7 @@
 #include "rw/common/text_file.hpp"
 #include "rw/common/xml_reader.hpp"
 #include "rw/common/xml_tree.hpp"
+#include "rw/loaders/workcell_loader.hpp"
 
 namespace rwsim::loaders::detail {
 
@@ -32,12 +33,15 @@ struct DynamicWorkCellDocument {
 /// RobWork reads them), validates against the schema and expands <Include file> elements:
 /// the file must have the root <IncludeData>; its path is relative to the top-level file's
 /// folder (RobWork's rule, reference §2.1), or, if not found there, relative to the including
-/// file (with a warning); cycles and nesting deeper than kMaxIncludeDepth are errors.
+/// file (with a warning); cycles and nesting deeper than kMaxIncludeDepth are errors. An Include
+/// whose file has a redirect (rw::loaders::IncludeRedirects) reads the replacement instead.
 class DocumentReader {
  public:
-  /// Uses `reader` (with the dynamic workcell schema) and reports to `sink`.
-  DocumentReader(rw::common::XmlReader& reader, rw::common::DiagnosticSink& sink)
-      : reader_(reader), sink_(sink) {}
+  /// Uses `reader` (with the dynamic workcell schema) and reports to `sink`; `redirects` must
+  /// outlive the reader.
+  DocumentReader(rw::common::XmlReader& reader, rw::common::DiagnosticSink& sink,
+                 const rw::loaders::IncludeRedirects& redirects)
+      : reader_(reader), sink_(sink), redirects_(redirects) {}
 
   /// Reads the top-level file `file` whose content is `text`; nullopt after an error.
   std::optional<DynamicWorkCellDocument> read(std::string_view text,
@@ -59,6 +63,7 @@ class DocumentReader {
 
   rw::common::XmlReader& reader_;
   rw::common::DiagnosticSink& sink_;
+  const rw::loaders::IncludeRedirects& redirects_;
   std::filesystem::path topDir_;
   std::size_t filesRead_ = 0;
 };

@@ -1,52 +1,72 @@
-#include "visgrab/view/scene_session.hpp"
+#include "visgrab/session/grasp_order.hpp"
 
 #include <algorithm>
 #include <charconv>
 #include <map>
 #include <stdexcept>
-#include <string>
+#include <utility>
 
-#include "rwsim/loaders/dynamic_workcell_loader.hpp"
-#include "visgrab/runner/benchmark_runner.hpp"
+#include "visgrab/session/scene_selection.hpp"
 
-namespace visgrab::view {
+namespace visgrab::session {
 
-SceneSession::SceneSession(const database::SceneEntry& entry, const grasp::HandGraspSetup& hand)
-    : entry_(entry), hand_(&hand) {
-  dwc_ = runner::loadSceneWithHand(entry, hand);
-  trial_ = std::make_unique<rwsim::simulator::GraspTrial>(*dwc_, runner::trialSetup(hand, *dwc_));
-  initial_ = dwc_->workcell().defaultState();
-  const auto& bodies = dwc_->bodies();
-  for (std::size_t b = 0; b < bodies.size(); ++b) {
-    if (bodies[b].kind != rwsim::dynamics::BodyKind::kRigid) continue;
-    if (trial_->isHandBody(rwsim::dynamics::BodyId(b))) continue;
-    for (const auto frame : bodies[b].geometryFrames) objectFrames_.push_back(frame);
+GraspOrder benchmarkOrder(const database::Database& db,
+                          const std::vector<const database::SceneEntry*>& selected,
+                          const std::vector<grasp::GraspRequest>& requests) {
+  GraspOrder order;
+  std::map<std::string, std::size_t> position;
+  for (const auto* entry : selected) {
+    position.emplace(entry->id, order.scenes.size());
+    order.scenes.push_back(SceneGraspList{entry, {}});
   }
-}
-
-grasp::ResolvedGrasp SceneSession::resolve(const grasp::GraspRequest& request) const {
-  return grasp::resolve(request, *hand_, [this](const rwsim::simulator::GraspParameters& g) {
-    return trial_->checkPlacement(g, initial_);
-  });
+  std::map<std::pair<std::string, std::string>, int> ranks;
+  for (const auto& r : requests) {
+    if (!db.contains(r.sceneId)) {
+      order.unknownScene.push_back(&r);
+      continue;
+    }
+    const std::string& id = db.scene(r.sceneId).id;
+    const auto it = position.find(id);
+    if (it == position.end()) continue;  // not selected
+    if (std::find(order.methods.begin(), order.methods.end(), r.method) == order.methods.end()) {
+      order.methods.push_back(r.method);
+    }
+    order.scenes[it->second].grasps.push_back(RankedGrasp{&r, ranks[{id, r.method}]++});
+  }
+  const auto methodIndex = [&](const RankedGrasp& g) {
+    return std::find(order.methods.begin(), order.methods.end(), g.request->method) -
+           order.methods.begin();
+  };
+  for (auto& scene : order.scenes) {
+    std::stable_sort(scene.grasps.begin(), scene.grasps.end(),
+                     [&](const RankedGrasp& a, const RankedGrasp& b) {
+                       return methodIndex(a) < methodIndex(b);
+                     });
+  }
+  return order;
 }
 
 std::vector<SceneGrasp> sceneGrasps(const database::Database& db, const database::SceneEntry& entry,
                                     const taskio::GraspFileContents& grasps,
                                     const results::RunResults* results) {
-  std::vector<std::string> methods;
-  if (results != nullptr) methods = results->methods;
-  std::vector<SceneGrasp> out;
-  for (const auto& r : grasps.requests) {
-    if (!db.contains(r.sceneId) || db.scene(r.sceneId).id != entry.id) continue;
-    if (std::find(methods.begin(), methods.end(), r.method) == methods.end()) {
-      methods.push_back(r.method);
+  std::vector<const database::SceneEntry*> selected;
+  if (results != nullptr) {
+    for (const auto& s : results->scenes) {
+      if (db.contains(s.id)) selected.push_back(&db.scene(s.id));
     }
-    out.push_back(SceneGrasp{r, std::nullopt});
+  } else {
+    selected = selectScenes(db, "");
   }
-  std::stable_sort(out.begin(), out.end(), [&](const SceneGrasp& a, const SceneGrasp& b) {
-    return std::find(methods.begin(), methods.end(), a.request.method) <
-           std::find(methods.begin(), methods.end(), b.request.method);
-  });
+  if (std::none_of(selected.begin(), selected.end(),
+                   [&](const database::SceneEntry* s) { return s->id == entry.id; })) {
+    selected.push_back(&entry);
+  }
+  const GraspOrder order = benchmarkOrder(db, selected, grasps.requests);
+  std::vector<SceneGrasp> out;
+  for (const auto& scene : order.scenes) {
+    if (scene.entry->id != entry.id) continue;
+    for (const auto& g : scene.grasps) out.push_back(SceneGrasp{*g.request, g.rank, std::nullopt});
+  }
   if (results != nullptr) {
     std::map<std::pair<std::string, std::string>, const results::TrialRecord*> byKey;
     for (const auto& t : results->trials) {
@@ -99,4 +119,4 @@ const SceneGrasp& selectGrasp(const std::vector<SceneGrasp>& grasps, std::string
                               std::to_string(pool.size()) + ")");
 }
 
-}  // namespace visgrab::view
+}  // namespace visgrab::session

@@ -1,0 +1,63 @@
+#pragma once
+
+#include <filesystem>
+#include <memory>
+
+#include "rw/loaders/workcell_loader.hpp"
+#include "rwsim/dynamics/dynamic_workcell.hpp"
+#include "rwsim/simulator/grasp_trial.hpp"
+#include "visgrab/database/database.hpp"
+#include "visgrab/grasp/hand_grasp_setup.hpp"
+
+/// A database scene with a hand, as the benchmark runs it: loading, trial set-up, grasp order
+/// and scene selection, in one place for the runner, the pictures, the command line and the
+/// viewer.
+namespace visgrab::session {
+
+/// The trial setup the benchmark uses for `hand` in the scene `dwc`: the hand's device,
+/// controller and TCP frame from its grasp description, the simulator options from the dwc's
+/// PhysicsEngine properties, the rest GraspTrialSetup's defaults.
+rwsim::simulator::GraspTrialSetup trialSetup(const grasp::HandGraspSetup& hand,
+                                             const rwsim::dynamics::DynamicWorkCell& dwc);
+
+/// The Include redirects that put `hand` into scenes generated under `databaseRoot`: a
+/// generated scene includes the hand it was generated with from the database's hands/<name>/
+/// folder (its workcell in scene.wc.xml, its dynamics in scene.dwc.xml). Each such folder with
+/// one grasp description gives two redirects, its workcell and dynamics files to `hand`'s
+/// (HandGraspSetup::workcellFile, dynamicsFile). None where those files hold the same text as
+/// `hand`'s (the hand the database was generated with: the scene as it is), for a hand without
+/// its own files, or for a database without hands/ (an original one).
+/// @throws rw::common::LoadError for an unreadable grasp description in hands/.
+rw::loaders::IncludeRedirects handRedirects(const std::filesystem::path& databaseRoot,
+                                            const grasp::HandGraspSetup& hand);
+
+/// Loads the scenes of one database with one hand put in: any hand runs in any scene without
+/// generating the database again. The redirects are worked out once (handRedirects).
+class SceneLoader {
+ public:
+  /// `db` and `hand` must outlive the loader.
+  /// @throws rw::common::LoadError as handRedirects.
+  SceneLoader(const database::Database& db, const grasp::HandGraspSetup& hand);
+
+  /// The database.
+  const database::Database& database() const { return *db_; }
+  /// The hand.
+  const grasp::HandGraspSetup& hand() const { return *hand_; }
+  /// The redirects each scene is loaded with (empty: scenes as they are).
+  const rw::loaders::IncludeRedirects& redirects() const { return redirects_; }
+
+  /// The scene's dynamic workcell with the hand in it, hanging from the scene's HandMount frame
+  /// as the generated one. A scene that does not include the database's hand (an original or
+  /// hand-written one) is loaded as it is and must hold the hand's device.
+  /// @throws rw::common::LoadError for unreadable or invalid files; std::runtime_error naming
+  /// the scene when the hand cannot be put in (the scene lacks the hand's device; the hand's
+  /// dynamics file is missing).
+  std::unique_ptr<rwsim::dynamics::DynamicWorkCell> load(const database::SceneEntry& entry) const;
+
+ private:
+  const database::Database* db_;
+  const grasp::HandGraspSetup* hand_;
+  rw::loaders::IncludeRedirects redirects_;
+};
+
+}  // namespace visgrab::session

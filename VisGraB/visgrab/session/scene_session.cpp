@@ -1,0 +1,24 @@
+#include "visgrab/session/scene_session.hpp"
+
+namespace visgrab::session {
+
+SceneSession::SceneSession(const SceneLoader& loader, const database::SceneEntry& entry)
+    : entry_(entry), hand_(&loader.hand()) {
+  dwc_ = loader.load(entry);
+  trial_ = std::make_unique<rwsim::simulator::GraspTrial>(*dwc_, trialSetup(*hand_, *dwc_));
+  initial_ = dwc_->workcell().defaultState();
+  const auto& bodies = dwc_->bodies();
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    if (bodies[b].kind != rwsim::dynamics::BodyKind::kRigid) continue;
+    if (trial_->isHandBody(rwsim::dynamics::BodyId(b))) continue;
+    for (const auto frame : bodies[b].geometryFrames) objectFrames_.push_back(frame);
+  }
+}
+
+grasp::ResolvedGrasp SceneSession::resolve(const grasp::GraspRequest& request) const {
+  return grasp::resolve(request, *hand_, [this](const rwsim::simulator::GraspParameters& g) {
+    return trial_->checkPlacement(g, initial_);
+  });
+}
+
+}  // namespace visgrab::session
