@@ -419,7 +419,7 @@ int runGrasp(const std::vector<std::string>& raw) {
     throw UsageError(e.what());
   }
   const DynamicWorkCell& dwc = *scene.dwc;
-  const int dof = dwc.devices()[static_cast<std::size_t>(trial->handDevice())].device->dof();
+  const int dof = dwc.device(trial->handDevice()).device->dof();
   const auto grasp = graspParameters(command, scene.description.get(), dof, setup.hand);
   std::cout << "hand " << setup.hand << ", TCP "
             << dwc.workcell().frames().frame(trial->tcpFrame()).name() << ", controller "

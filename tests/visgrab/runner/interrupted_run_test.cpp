@@ -341,7 +341,8 @@ TEST_F(InterruptedRun, AnUnreadableSceneFileStopsTheRunAndResumeCompletesIt) {
                            visgrab::test::shellQuoted(out);
   const auto run = visgrab::test::runProgram(VISGRAB_BINARY, args + " --threads 2");
   EXPECT_EQ(run.exitCode, 1) << run.output;
-  EXPECT_NE(run.output.find("cannot read " + missing.string() + ": no such file"),
+  // The scene loader's diagnostic: the file, then the system's reason.
+  EXPECT_NE(run.output.find(missing.string() + ": error: cannot read the file: no such file"),
             std::string::npos)
       << run.output;
   EXPECT_GE(lineCount(out / "trials.csv"), 2u + 6u) << "the scenes before it did not run";
