@@ -32,6 +32,7 @@ packages=(build-essential cmake ninja-build pkg-config
   libode-dev libeigen3-dev libboost-dev libxerces-c-dev libassimp-dev libopencv-dev
   qtbase5-dev libqhull-dev libgtest-dev libgmock-dev libbenchmark-dev
   libegl-dev libegl1-mesa-dev libegl-mesa0 libgl1-mesa-dri libgl-dev libgles-dev libgbm-dev
+  libcli11-dev python3-jsonschema
   xvfb xauth clang-format)
 
 install_packages() {

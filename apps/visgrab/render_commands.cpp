@@ -41,11 +41,7 @@ std::pair<int, int> sizeOption(const Arguments& a, int width, int height) {
   return {w, h};
 }
 
-int runRender(const std::vector<std::string>& args) {
-  Arguments a(args, {"montage", "overlay", "no-contacts", "quiet"});
-  a.rejectUnknown({"db", "scene", "results", "grasps", "hand", "grasp", "method", "out", "montage",
-                   "overlay", "view", "size", "no-contacts", "columns", "data", "quiet"});
-  a.requirePositionals(0, "no positional arguments");
+int runRender(const Arguments& a) {
   const auto sceneId = a.option("scene");
   const auto out = a.option("out");
   if (!sceneId) throw UsageError("--scene ID is required");
@@ -213,19 +209,55 @@ int runRender(const std::vector<std::string>& args) {
 
 }  // namespace
 
-std::vector<Command> renderCommands() {
-  return {
-      {"render", "",
-       "--scene ID --out FILE.png [--db DIR] [--results RESULTS] [--grasps FILE|DIR] "
-       "[--hand DIR|GRASP.xml] [--grasp ID|N [--overlay]] [--method M] [--montage [--columns N]] "
-       "[--view oblique|front|side|top] [--size WxH] [--no-contacts] [--quiet]",
-       "Draw a scene (headless, EGL): alone; with --grasp the trial's three moments (placed, "
-       "closed, lifted) labelled with the outcome and qualities, contact forces as arrows; "
-       "--overlay the grasp over the left stereo image; --montage every grasp of the scene "
-       "coloured by outcome. --results takes the database, grasps, hand and outcomes from a "
-       "run.",
-       guarded(runRender)},
-  };
+void addRenderCommands(CommandLine& cli) {
+  CLI::App& render = cli.addCommand(
+      nullptr, "render",
+      "Draw a scene (headless, EGL): alone; with --grasp the trial's three moments (placed, "
+      "closed, lifted) labelled with the outcome and qualities, contact forces as arrows; "
+      "--overlay the grasp over the left stereo image; --montage every grasp of the scene "
+      "coloured by outcome. --results takes the database, grasps, hand and outcomes from a "
+      "run.",
+      guarded(runRender));
+  render.add_option("--scene", "The scene to draw")->required()->type_name("ID");
+  render.add_option("--out", "The picture to write (PNG)")->required()->type_name("FILE.png");
+  render.add_option("--db", "The database (default: the one --results recorded)")
+      ->type_name("DIR|MANIFEST");
+  render.add_option("--results", "A run's result folder: database, grasps, hand and outcomes")
+      ->type_name("RESULTS");
+  render
+      .add_option("--grasps",
+                  "Grasp files or folders (default: the ones --results recorded); repeatable")
+      ->type_name("FILE|DIR")
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  render
+      .add_option("--hand",
+                  "The hand: its folder or grasp description (default: the one --results "
+                  "recorded, else the SDH)")
+      ->type_name("DIR|GRASP.xml");
+  render
+      .add_option("--grasp",
+                  "The grasp to draw: its id, or N for the scene's N-th grasp in the benchmark's "
+                  "order")
+      ->type_name("ID|N");
+  addFlag(render, "--overlay", "Draw --grasp over the left stereo image");
+  render.add_option("--method", "Count --grasp (and --montage) among method M's grasps only")
+      ->type_name("M");
+  addFlag(render, "--montage", "Every grasp of the scene, one tile each, coloured by outcome");
+  render.add_option("--columns", "Tiles per row of --montage")
+      ->type_name("N")
+      ->default_str("4")
+      ->check(integerAtLeast(1));
+  render.add_option("--view", "The camera: oblique, front, side or top")
+      ->type_name("VIEW")
+      ->default_str("oblique");
+  render
+      .add_option("--size",
+                  "Picture (tile) size in pixels, 16..8192 each (default: 800x600 for a scene, "
+                  "480x360 per moment, 320x240 per montage tile)")
+      ->type_name("WxH");
+  addFlag(render, "--no-contacts", "Leave the contact forces out");
+  addDataOption(render);
+  addQuietFlag(render);
 }
 
 }  // namespace visgrab::app
