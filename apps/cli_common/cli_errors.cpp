@@ -107,7 +107,8 @@ std::string describeParseError(const CLI::ParseError& e, const CLI::App& cmd) {
     }
     for (const CLI::Option* opt : cmd.get_options()) {
       if (!opt->get_required() || opt->count() > 0) continue;
-      if (opt->get_positional()) return "missing " + opt->get_name() + " (" + opt->get_description() + ")";
+      if (opt->get_positional())
+        return "missing " + opt->get_name() + " (" + opt->get_description() + ")";
       return optionWithType(*opt) + " is required";
     }
   }
@@ -118,7 +119,8 @@ std::string describeParseError(const CLI::ParseError& e, const CLI::App& cmd) {
     if (std::regex_match(what, m, twice)) {
       return m[1].str() + " is given " + m[2].str() + " times (once at most)";
     }
-    if (std::regex_match(what, m, missing)) return m[1].str() + ": expected " + m[2].str() + " after it";
+    if (std::regex_match(what, m, missing))
+      return m[1].str() + ": expected " + m[2].str() + " after it";
   }
   if (dynamic_cast<const CLI::ValidationError*>(&e) != nullptr) {
     // "--time: must be > 0, got -1" from the checks below: "--time must be > 0, got -1".

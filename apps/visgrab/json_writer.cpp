@@ -1,5 +1,6 @@
 #include "json_writer.hpp"
 
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -46,14 +47,13 @@ std::string JsonWriter::quoted(std::string_view text) {
 
 std::string JsonWriter::number(double number) {
   if (!std::isfinite(number)) return "null";
+  // The shortest text that reads back as the same double.
   char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", number);
-  return buf;
+  const auto result = std::to_chars(buf, buf + sizeof buf, number);
+  return std::string(buf, result.ptr);
 }
 
-void JsonWriter::newline() {
-  *out_ << "\n" << std::string(2 * levels_.size(), ' ');
-}
+void JsonWriter::newline() { *out_ << "\n" << std::string(2 * levels_.size(), ' '); }
 
 void JsonWriter::beforeValue() {
   if (afterKey_) {
@@ -144,9 +144,11 @@ JsonWriter& JsonWriter::null() {
 }
 
 JsonWriter& JsonWriter::numbers(const std::vector<double>& values) {
-  beginArray();
-  for (const double v : values) value(v);
-  return endArray();
+  beforeValue();
+  *out_ << "[";
+  for (std::size_t i = 0; i < values.size(); ++i) *out_ << (i ? ", " : "") << number(values[i]);
+  *out_ << "]";
+  return *this;
 }
 
 void JsonWriter::finish() {

@@ -11,8 +11,8 @@ namespace visgrab::app {
 /// Writes one JSON document (RFC 8259) to a stream, indented by two spaces: objects and arrays
 /// are opened and closed in order, members are named with key(). Strings are escaped (quote,
 /// backslash, control characters as \uXXXX; other bytes, UTF-8 included, pass unchanged).
-/// Numbers are written with 17 significant digits (a double reads back bit-exact); a NaN or
-/// infinite number is written as null.
+/// Numbers are written in the shortest form that reads back as the same double; a NaN or
+/// infinite number is written as null. An array of numbers (numbers()) goes on one line.
 class JsonWriter {
  public:
   /// Writes to `out`, which must outlive this.
@@ -44,7 +44,7 @@ class JsonWriter {
   JsonWriter& value(bool flag);
   /// null.
   JsonWriter& null();
-  /// An array of numbers (each null when not finite).
+  /// An array of numbers on one line (each null when not finite).
   JsonWriter& numbers(const std::vector<double>& values);
   /// Ends the document with a newline. @pre every object and array is closed.
   void finish();

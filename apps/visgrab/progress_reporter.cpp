@@ -13,8 +13,7 @@ namespace visgrab::app {
 namespace {
 
 double steadySeconds() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
-      .count();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
 constexpr int kBarWidth = 30;
@@ -53,8 +52,8 @@ std::string ProgressReporter::line(long done, long total, std::string_view detai
   std::snprintf(counts, sizeof counts, "%ld/%ld %s", done, total, unit_.c_str());
   std::string text = label_ + ": ";
   if (settings_.terminal) {
-    const long filled = total > 0 ? std::clamp(kBarWidth * done / total, 0L, long{kBarWidth})
-                                  : long{kBarWidth};
+    const long filled =
+        total > 0 ? std::clamp(kBarWidth * done / total, 0L, long{kBarWidth}) : long{kBarWidth};
     std::string bar(static_cast<std::size_t>(filled), '#');
     bar.resize(kBarWidth, '.');
     text += "[" + bar + "] ";
