@@ -229,6 +229,7 @@ void addRunCommands(CommandLine& cli) {
   analyze.add_option("RESULTS", "Result folders of `visgrab run`, one per method")
       ->required()
       ->expected(1, CLI::detail::expected_max_vector_size)
+      ->allow_extra_args()
       ->type_name("");
   analyze.add_option("--out", "The report folder to write")->required()->type_name("REPORT");
   addThreadsOption(analyze);

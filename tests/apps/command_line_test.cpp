@@ -71,8 +71,8 @@ TEST(CommandLineHelp, EveryVisgrabCommandListsEveryOptionInItsHelp) {
     if (cmd->get_subcommands({}).empty()) leaves.push_back(wordsAfterProgram(*cmd));
   }
   EXPECT_EQ(leaves, (std::vector<std::string>{"wc info", "wc check", "sim", "grasp", "db generate",
-                                               "db list", "db show", "run", "benchmark",
-                                               "analyze", "baseline", "render"}));
+                                              "db list", "db show", "run", "benchmark", "analyze",
+                                              "baseline", "render"}));
   for (const CLI::App* cmd : commands) {
     const std::string words = wordsAfterProgram(*cmd);
     const RunResult help = visgrab::test::runProgram(VISGRAB_BINARY, words + " --help");
@@ -92,8 +92,9 @@ TEST(CommandLineHelp, TheHelpCheckFindsAMissingOption) {
   CLI::App app("test", "prog");
   app.add_option("--shown", "shown")->type_name("N");
   app.add_option("--missing", "missing")->type_name("DIR");
-  EXPECT_NONFATAL_FAILURE(expectHelpListsEverything(app, "  -h,--help  help\n  --shown N  shown\n", "prog"),
-                          "--missing DIR");
+  EXPECT_NONFATAL_FAILURE(
+      expectHelpListsEverything(app, "  -h,--help  help\n  --shown N  shown\n", "prog"),
+      "--missing DIR");
 }
 
 TEST(CommandLineRules, EqualsAndRepeatsAreTheSameForEveryCommand) {
@@ -109,14 +110,18 @@ TEST(CommandLineRules, EqualsAndRepeatsAreTheSameForEveryCommand) {
   const RunResult twice = visgrab::test::runProgram(VISGRAB_BINARY, "db list --db a --db=b");
   EXPECT_EQ(twice.exitCode, 2) << twice.output;
   EXPECT_NE(twice.output.find("--db is given 2 times"), std::string::npos) << twice.output;
-  const RunResult flag =
-      visgrab::test::runProgram(VISGRAB_BINARY, "db list --db a --json --json");
+  const RunResult flag = visgrab::test::runProgram(VISGRAB_BINARY, "db list --db a --json --json");
   EXPECT_EQ(flag.exitCode, 2) << flag.output;
   EXPECT_NE(flag.output.find("--json is given 2 times"), std::string::npos) << flag.output;
   // ... but a repeatable one collects its values (the run then finds no database: exit 1).
   const RunResult grasps = visgrab::test::runProgram(
       VISGRAB_BINARY, "run --db " + missing + " --grasps a --grasps=b --out " + missing);
   EXPECT_EQ(grasps.exitCode, 1) << grasps.output;
+  // Several positionals reach the command (which finds no results in the first: exit 1).
+  const RunResult results = visgrab::test::runProgram(
+      VISGRAB_BINARY, "analyze " + missing + " " + missing + "2 --out " + missing + "3");
+  EXPECT_EQ(results.exitCode, 1) << results.output;
+  EXPECT_NE(results.output.find("no-db/trials.csv"), std::string::npos) << results.output;
   // A missing value names what was expected.
   const RunResult value = visgrab::test::runProgram(VISGRAB_BINARY, "db list --db");
   EXPECT_EQ(value.exitCode, 2) << value.output;
@@ -146,8 +151,8 @@ TEST(CommandLineRules, TheViewerFollowsTheSameRules) {
   EXPECT_NE(twice.output.find("--db is given 2 times"), std::string::npos) << twice.output;
   // --grasps is repeatable: both files reach the loader, which names the first missing one.
   const RunResult grasps = visgrab::test::runProgram(
-      VISGRAB_VIEWER_BINARY, "--db " + visgrab::test::shellQuoted(dir.path()) +
-                                 " --grasps a.csv --grasps=b.csv");
+      VISGRAB_VIEWER_BINARY,
+      "--db " + visgrab::test::shellQuoted(dir.path()) + " --grasps a.csv --grasps=b.csv");
   EXPECT_EQ(grasps.exitCode, 1) << grasps.output;
 }
 
@@ -166,10 +171,10 @@ TEST(ViewerOptions, ParsesEveryOption) {
   EXPECT_EQ(o.screenshot->string(), "x.png");
   EXPECT_EQ(o.width, 640);
   EXPECT_EQ(o.height, 480);
-  EXPECT_THROW(visgrab::viewer::parseViewerOptions({"--size", "8x8"}),
-               visgrab::viewer::UsageError);
-  EXPECT_THROW(visgrab::viewer::parseViewerOptions({"--method", "", "--grasp", "1", "--scene", "s"}),
-               visgrab::viewer::UsageError);
+  EXPECT_THROW(visgrab::viewer::parseViewerOptions({"--size", "8x8"}), visgrab::viewer::UsageError);
+  EXPECT_THROW(
+      visgrab::viewer::parseViewerOptions({"--method", "", "--grasp", "1", "--scene", "s"}),
+      visgrab::viewer::UsageError);
 }
 #endif
 
