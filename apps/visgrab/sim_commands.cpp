@@ -425,7 +425,7 @@ int runGrasp(const Arguments& a) {
     throw UsageError(e.what());
   }
   const DynamicWorkCell& dwc = *scene.dwc;
-  const int dof = dwc.devices()[static_cast<std::size_t>(trial->handDevice())].device->dof();
+  const int dof = dwc.device(trial->handDevice()).device->dof();
   const auto grasp = graspParameters(command, scene.description.get(), dof, setup.hand);
   if (command.json) {
     return printResultJson(setup.hand, dwc.workcell().frames().frame(trial->tcpFrame()).name(),

@@ -83,7 +83,7 @@ std::unique_ptr<rwsim::dynamics::DynamicWorkCell> SceneLoader::load(
   rwsim::loaders::DynamicWorkCellLoadOptions options;
   options.includeRedirects = redirects_;
   auto dwc = rwsim::loaders::loadDynamicWorkCell(entry.dynamicWorkcell, options);
-  if (dwc->findDevice(hand_->deviceName()) < 0) {
+  if (!dwc->findDevice(hand_->deviceName()).valid()) {
     throw std::runtime_error("scene " + entry.id + " has no device '" + hand_->deviceName() +
                              "' and does not include the hand of its database (hands/<hand>/ "
                              "with one grasp description); cannot put the hand " +

@@ -237,15 +237,15 @@ TEST_F(DynamicWorkCellLoader, IncludeRedirectsSwapTheHandInBothFiles) {
   writeFile(scene_.path() / "materials.xml", materials);
   const auto top = scene_.writeTop(SceneDir::dwc("<Include file=\"sdh_dynamics.xml\"/>\n"));
   const auto sdh = rwsim::loaders::loadDynamicWorkCell(top);
-  EXPECT_GE(sdh->findDevice("SchunkHand"), 0);
+  EXPECT_TRUE(sdh->findDevice("SchunkHand").valid());
 
   rwsim::loaders::DynamicWorkCellLoadOptions options;
   options.includeRedirects[hands / "sdh/sdh.wc.xml"] = hands / "pg70/pg70.wc.xml";
   options.includeRedirects[scene_.path() / "sdh_dynamics.xml"] =
       hands / "pg70/pg70_dynamics.dwc.xml";
   const auto pg70 = rwsim::loaders::loadDynamicWorkCell(top, options);
-  EXPECT_EQ(pg70->findDevice("SchunkHand"), -1);
-  ASSERT_GE(pg70->findDevice("PG70"), 0);
+  EXPECT_FALSE(pg70->findDevice("SchunkHand").valid());
+  ASSERT_TRUE(pg70->findDevice("PG70").valid());
   EXPECT_NE(pg70->workcell().findDevice("PG70"), nullptr);
   EXPECT_EQ(pg70->workcell().findDevice("SchunkHand"), nullptr);
   EXPECT_TRUE(pg70->workcell().findFrame("Mount").valid());

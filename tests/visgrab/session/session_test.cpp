@@ -151,8 +151,8 @@ TEST(SceneLoader, RedirectsTheDatabasesHandFilesToTheGivenHand) {
             pg70->dynamicsFile());
   const visgrab::session::SceneLoader loader(database(), *pg70);
   const auto dwc = loader.load(database().scene(kFirstScene));
-  EXPECT_GE(dwc->findDevice("PG70"), 0);
-  EXPECT_LT(dwc->findDevice("SchunkHand"), 0);
+  EXPECT_TRUE(dwc->findDevice("PG70").valid());
+  EXPECT_FALSE(dwc->findDevice("SchunkHand").valid());
 }
 
 TEST(SceneSelection, SelectsByTheFilterAndNamesABadWord) {
