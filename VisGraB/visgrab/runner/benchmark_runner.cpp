@@ -213,8 +213,9 @@ using TrialDone = std::function<void(const grasp::GraspRequest&, const std::opti
 /// a trial). Returns false early, between trials, once `stopping` says so. A scene file that
 /// cannot be read throws rw::common::LoadError; a scene the hand cannot be put in rejects its
 /// grasps.
-bool runScene(const SceneGraspList& w, const session::SceneLoader& loader, results::ResultsWriter& writer,
-              const std::function<bool()>& stopping, const TrialDone& trialDone) {
+bool runScene(const SceneGraspList& w, const session::SceneLoader& loader,
+              results::ResultsWriter& writer, const std::function<bool()>& stopping,
+              const TrialDone& trialDone) {
   std::unique_ptr<SceneRunner> runner;
   std::string failure;
   try {
