@@ -34,6 +34,7 @@ packages=(build-essential cmake ninja-build pkg-config
   libode-dev libeigen3-dev libxerces-c-dev libassimp-dev libopencv-dev
   qtbase5-dev libqhull-dev libgtest-dev libbenchmark-dev
   libegl-dev libegl-mesa0 libgl1-mesa-dri libgl-dev
+  libcli11-dev python3-jsonschema
   xvfb xauth clang-format python3
   clang libclang-rt-14-dev)  # the fuzz stage: clang 14 with libFuzzer and the sanitizer runtimes
 

@@ -102,7 +102,7 @@ int run(int argc, char** argv) {
     return 2;
   }
   if (options.help) {
-    std::cout << visgrab::viewer::usageText();
+    std::cout << options.helpText;
     return 0;
   }
   visgrab::viewer::ViewerData data;

@@ -2,9 +2,8 @@
 
 #include <charconv>
 #include <cstdlib>
-#include <string_view>
-#include <system_error>
 
+#include "cli_common/cli_errors.hpp"
 #include "rw/common/diagnostic.hpp"
 #include "visgrab/results/results_file.hpp"
 
@@ -17,29 +16,24 @@ namespace fs = std::filesystem;
 constexpr int kMinViewSide = 16;
 constexpr int kMaxViewSide = 8192;
 
-// A positive integer in [kMinViewSide, kMaxViewSide], or nullopt.
-std::optional<int> viewSide(std::string_view text) {
-  int value = 0;
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (ec != std::errc() || end != text.data() + text.size()) return std::nullopt;
-  if (value < kMinViewSide || value > kMaxViewSide) return std::nullopt;
-  return value;
-}
-
-// "--size WxH" into width and height. @throws UsageError.
-void parseSize(const std::string& text, ViewerOptions& options) {
+// "WxH" (or "WXH") into width and height; an error message, empty when it is fine.
+std::string parseSize(const std::string& text, ViewerOptions& options) {
   const std::size_t x = text.find_first_of("xX");
-  const auto w =
-      x == std::string::npos ? std::nullopt : viewSide(std::string_view(text).substr(0, x));
-  const auto h =
-      x == std::string::npos ? std::nullopt : viewSide(std::string_view(text).substr(x + 1));
-  if (!w || !h) {
-    throw UsageError("--size: expected WIDTHxHEIGHT in pixels, each " +
-                     std::to_string(kMinViewSide) + ".." + std::to_string(kMaxViewSide) +
-                     " (e.g. 1024x768), got '" + text + "'");
+  int w = 0;
+  int h = 0;
+  const char* begin = text.data();
+  const char* end = begin + text.size();
+  const bool ok = x != std::string::npos && std::from_chars(begin, begin + x, w).ptr == begin + x &&
+                  std::from_chars(begin + x + 1, end, h).ptr == end && x > 0 &&
+                  x + 1 < text.size() && w >= kMinViewSide && w <= kMaxViewSide &&
+                  h >= kMinViewSide && h <= kMaxViewSide;
+  if (!ok) {
+    return "needs WIDTHxHEIGHT in pixels, each " + std::to_string(kMinViewSide) + ".." +
+           std::to_string(kMaxViewSide) + " (e.g. 1024x768), got '" + text + "'";
   }
-  options.width = *w;
-  options.height = *h;
+  options.width = w;
+  options.height = h;
+  return {};
 }
 
 // The project's scene data folder: $VISGRAB_DATA, else the source tree's scenes/ folder.
@@ -50,96 +44,85 @@ fs::path dataFolder() {
 
 }  // namespace
 
-std::string usageLine() {
-  return "usage: visgrab-viewer [--db DIR|MANIFEST] [--scene ID] [--results RESULTS]\n"
-         "                      [--grasps FILE|DIR]... [--hand DIR|GRASP.xml] [--grasp ID|N]\n"
-         "                      [--method M] [--screenshot FILE.png] [--size WxH]\n"
-         "       visgrab-viewer --help\n";
+std::unique_ptr<CLI::App> makeViewerApp(ViewerOptions& options) {
+  auto app = std::make_unique<CLI::App>(
+      "Browse the scenes of a database, their grasps and outcomes; replay a grasp's trial.",
+      "visgrab-viewer");
+  app->formatter(cli::makeHelpFormatter());
+  // The same rules as visgrab: `--name=value` or `--name value`; an option given twice is a
+  // mistake unless its help says repeatable.
+  app->add_option("--db", options.database,
+                  "Scene database: a generated folder or an original VisGraB manifest (default: "
+                  "the results' database, else ./database)")
+      ->type_name("DIR|MANIFEST");
+  app->add_option("--scene", options.scene, "The scene shown first (default: the first one)")
+      ->type_name("ID");
+  app->add_option("--results", options.results,
+                  "A run's result folder: outcomes in the grasp table; its run.csv gives the "
+                  "default database, grasp files and hand")
+      ->type_name("RESULTS");
+  app->add_option("--grasps", options.grasps,
+                  "Grasp files or folders (docs/grasp-format.md); repeatable")
+      ->type_name("FILE|DIR")
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  app->add_option("--hand", options.hand,
+                  "The hand: its folder or grasp description (default: the results' hand, else "
+                  "$VISGRAB_DATA or the source tree's scenes/hands/sdh/sdh.grasp.xml)")
+      ->type_name("DIR|GRASP.xml");
+  app->add_option("--grasp", options.grasp,
+                  "Replay this grasp of --scene: its id, or N for the scene's N-th grasp")
+      ->type_name("ID|N");
+  app->add_option("--method", options.method, "Count --grasp among method M's grasps only")
+      ->type_name("M");
+  app->add_option("--screenshot", options.screenshot,
+                  "Render the 3-D view once (with --grasp: after lifting), save it as a PNG and "
+                  "exit")
+      ->type_name("FILE.png");
+  app->add_option_function<std::string>(
+         "--size",
+         [&options](const std::string& text) {
+           const std::string problem = parseSize(text, options);
+           if (!problem.empty()) throw CLI::ValidationError("--size", problem);
+         },
+         "Size of the 3-D view in pixels, 16..8192 each")
+      ->type_name("WxH")
+      ->default_str(std::to_string(options.width) + "x" + std::to_string(options.height));
+  app->footer(
+      "Mouse: left-drag orbits, right- or middle-drag pans, the wheel zooms; double-click or F\n"
+      "frames the objects and the hand; keys 1-4 choose the oblique, front, side and top views;\n"
+      "space plays and pauses a replay; Ctrl+S saves a screenshot. See docs/viewer.md.\n"
+      "Options: '--name value' and '--name=value' are the same; an option given twice is an\n"
+      "error unless its help says 'repeatable'.\n"
+      "Exit codes: 0 success, 1 unreadable input, 2 a command-line mistake.");
+  return app;
 }
 
-std::string usageText() {
-  return usageLine() +
-         "\n"
-         "Browse the scenes of a database, their grasps and outcomes; replay a grasp's trial.\n"
-         "\n"
-         "  --db DIR|MANIFEST    scene database (default: the results' database, else ./database)\n"
-         "  --scene ID           the scene shown first (default: the first one)\n"
-         "  --results RESULTS    a run's result folder: outcomes in the grasp table; its run.csv\n"
-         "                       gives the default database, grasp files and hand\n"
-         "  --grasps FILE|DIR    grasp files (docs/grasp-format.md); may be repeated\n"
-         "  --hand DIR|GRASP.xml the hand: its folder or grasp description (default: the results' "
-         "hand, else\n"
-         "                       $VISGRAB_DATA or the source tree's "
-         "scenes/hands/sdh/sdh.grasp.xml)\n"
-         "  --grasp ID|N         replay this grasp of --scene (its id, or N for the N-th grasp)\n"
-         "  --method M           count --grasp among method M's grasps only\n"
-         "  --screenshot FILE    render the 3-D view once (with --grasp: after lifting), save it\n"
-         "                       as a PNG and exit\n"
-         "  --size WxH           size of the 3-D view in pixels (default 960x720)\n"
-         "\n"
-         "Mouse: left-drag orbits, right- or middle-drag pans, the wheel zooms; double-click or F\n"
-         "frames the objects and the hand; keys 1-4 choose the oblique, front, side and top "
-         "views;\n"
-         "space plays and pauses a replay; Ctrl+S saves a screenshot. See docs/viewer.md.\n"
-         "Exit codes: 0 success, 1 unreadable input, 2 a command-line mistake.\n";
+std::string usageLine() {
+  ViewerOptions options;
+  const auto app = makeViewerApp(options);
+  return cli::makeHelpFormatter()->make_usage(app.get(), app->get_name()) +
+         "run 'visgrab-viewer --help' for the options\n";
 }
 
 ViewerOptions parseViewerOptions(const std::vector<std::string>& args) {
   ViewerOptions options;
-  bool sizeGiven = false;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& arg = args[i];
-    if (arg == "--help" || arg == "-h") {
-      options.help = true;
-      continue;
-    }
-    if (arg.rfind("--", 0) != 0) {
-      throw UsageError("unexpected argument '" + arg + "' (options start with --; see --help)");
-    }
-    const auto value = [&](const char* what) {
-      if (i + 1 >= args.size() || args[i + 1].rfind("--", 0) == 0) {
-        throw UsageError(arg + ": expected " + what + " after it");
-      }
-      return args[++i];
-    };
-    const auto once = [&](bool given) {
-      if (given) throw UsageError(arg + " is given twice");
-    };
-    if (arg == "--db") {
-      once(options.database.has_value());
-      options.database = value("a database folder or manifest");
-    } else if (arg == "--scene") {
-      once(options.scene.has_value());
-      options.scene = value("a scene id");
-    } else if (arg == "--results") {
-      once(options.results.has_value());
-      options.results = value("a result folder");
-    } else if (arg == "--grasps") {
-      options.grasps.emplace_back(value("a grasp file or folder"));
-    } else if (arg == "--hand") {
-      once(options.hand.has_value());
-      options.hand = value("a hand's grasp description (.grasp.xml)");
-    } else if (arg == "--grasp") {
-      once(options.grasp.has_value());
-      options.grasp = value("a grasp id or number");
-    } else if (arg == "--method") {
-      once(!options.method.empty());
-      options.method = value("a method name");
-      if (options.method.empty()) throw UsageError("--method: expected a method name, got ''");
-    } else if (arg == "--screenshot") {
-      once(options.screenshot.has_value());
-      options.screenshot = value("a PNG file to write");
-    } else if (arg == "--size") {
-      once(sizeGiven);
-      sizeGiven = true;
-      parseSize(value("WIDTHxHEIGHT"), options);
-    } else {
-      throw UsageError("unknown option '" + arg + "' (see --help)");
-    }
+  const auto app = makeViewerApp(options);
+  std::vector<std::string> reversed(args.rbegin(), args.rend());
+  try {
+    app->parse(reversed);
+  } catch (const CLI::CallForHelp&) {
+    options.help = true;
+    options.helpText = app->help();
+    return options;
+  } catch (const CLI::ParseError& e) {
+    throw UsageError(cli::describeParseError(e, *app));
   }
-  if (options.help) return options;
   if (options.grasp && !options.scene) {
     throw UsageError("--grasp needs --scene ID (the scene whose grasp it is)");
+  }
+  if (app->count("--method") > 0 && options.method.empty()) {
+    throw UsageError("--method: expected a method name, got ''");
   }
   if (!options.method.empty() && !options.grasp) {
     throw UsageError("--method only chooses among the grasps for --grasp; give --grasp too");

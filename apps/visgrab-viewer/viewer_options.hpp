@@ -1,5 +1,7 @@
 #pragma once
 
+#include <CLI/CLI.hpp>
+
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -43,9 +45,15 @@ struct ViewerOptions {
   int width = 960;
   /// See width.
   int height = 720;
-  /// --help.
+  /// --help or -h.
   bool help = false;
+  /// The help text, when help was asked for.
+  std::string helpText;
 };
+
+/// The viewer's command line (CLI11): every option bound to its field of `options` (which must
+/// outlive the app), with its type, default and help.
+std::unique_ptr<CLI::App> makeViewerApp(ViewerOptions& options);
 
 /// Parses the arguments (without the program name).
 /// @throws UsageError naming the option and what was expected.
@@ -53,9 +61,6 @@ ViewerOptions parseViewerOptions(const std::vector<std::string>& args);
 
 /// The usage lines printed after a command-line mistake.
 std::string usageLine();
-
-/// The usage text of --help.
-std::string usageText();
 
 /// Everything the viewer shows, loaded before the window opens.
 struct ViewerData {

@@ -1,11 +1,11 @@
 #include "baseline_commands.hpp"
 
-#include <chrono>
-#include <cstdio>
 #include <iostream>
 #include <map>
 #include <opencv2/imgcodecs.hpp>
+#include <optional>
 
+#include "progress_reporter.hpp"
 #include "visgrab/database/atomic_file.hpp"
 #include "visgrab/database/database.hpp"
 #include "visgrab/database/scene_filter.hpp"
@@ -35,19 +35,13 @@ int runAndWrite(const fs::path& dbPath, const std::string& filter, const fs::pat
   const auto db = database::Database::openAny(dbPath);
   const auto scenes = selectScenes(db, filter);
   if (scenes.empty()) throw UsageError("--scenes selects no scene of " + dbPath.string());
-  const auto start = std::chrono::steady_clock::now();
-  auto progress = [&](const vision::BaselineProgress& p) {
-    const double elapsed =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::fprintf(stderr, "\rbaseline: %d/%d scenes  %.1f scenes/s  %s   ", p.done, p.total,
-                 p.done / std::max(elapsed, 1e-9), p.lastId.c_str());
-    if (p.done == p.total) std::fputc('\n', stderr);
-    std::fflush(stderr);
-  };
-  const auto results = vision::baselineGrasps(
-      db, scenes, options,
-      quiet ? std::function<void(const vision::BaselineProgress&)>{}
-            : std::function<void(const vision::BaselineProgress&)>(progress));
+  std::optional<ProgressReporter> reporter;
+  if (!quiet) reporter.emplace("baseline", "scenes");
+  const auto results =
+      vision::baselineGrasps(db, scenes, options, [&](const vision::BaselineProgress& p) {
+        if (reporter) reporter->update(p.done, p.total, p.lastId);
+      });
+  reporter.reset();
   std::vector<grasp::GraspRequest> all;
   std::map<std::string, int> perType;
   int failed = 0;
@@ -81,18 +75,13 @@ int runAndWrite(const fs::path& dbPath, const std::string& filter, const fs::pat
   return static_cast<int>(all.size());
 }
 
-int runBaseline(const std::vector<std::string>& args) {
-  Arguments a(args, {"quiet"});
-  a.rejectUnknown({"db", "out", "scenes", "threads", "per-type", "debug", "preshape", "quiet"});
-  a.requirePositionals(0, "no positional arguments");
+int runBaseline(const Arguments& a) {
   const auto db = a.option("db");
   const auto out = a.option("out");
-  if (!db) throw UsageError("--db DIR|MANIFEST is required");
-  if (!out) throw UsageError("--out GRASPS (the grasp list file to write) is required");
   vision::BaselineOptions options;
   options.threads = threadsOption(a);
   options.grasps.perType = integerOption(a, "per-type", options.grasps.perType, 1);
-  const std::string filter = a.option("scenes").value_or("");
+  const std::string filter = scenesFilter(a);
   if (const auto debug = a.option("debug")) {
     // Pictures of what the baseline saw, one per scene (sequential: meant for a few scenes).
     const auto database = database::Database::openAny(*db);
@@ -126,18 +115,34 @@ int writeBaselineGrasps(const fs::path& db, const std::string& filter, const fs:
   return runAndWrite(db, filter, out, options, quiet);
 }
 
-std::vector<Command> baselineCommands() {
-  return {
-      {"baseline", "",
-       "--db DIR|MANIFEST --out GRASPS [--scenes FILTER] [--per-type N] [--threads N] "
-       "[--preshape NAME] [--debug DIR] [--quiet]",
-       "The paper's baseline method: stereo point cloud, table plane, object clusters, surface "
-       "patches and the grasp types s2EGA1, s2EGA3, s3EGA1 (at most N each per scene, default "
-       "20) as contact grasps in one grasp list; --preshape NAME writes the two-contact ones as "
-       "pre-shape grasps (TCP between the contacts, z along the approach, x across: one plan for "
-       "any two-finger hand); --debug writes a picture per scene.",
-       guarded(runBaseline)},
-  };
+void addBaselineCommands(CommandLine& cli) {
+  CLI::App& baseline = cli.addCommand(
+      nullptr, "baseline",
+      "The paper's baseline method: stereo point cloud, table plane, object clusters, surface "
+      "patches and the grasp types s2EGA1, s2EGA3, s3EGA1 as contact grasps in one grasp list.",
+      guarded(runBaseline));
+  baseline.add_option("--db", kDatabaseOptionHelp)->required()->type_name("DIR|MANIFEST");
+  baseline.add_option("--out", "The grasp list file to write (docs/grasp-format.md)")
+      ->required()
+      ->type_name("GRASPS");
+  addScenesOption(baseline);
+  baseline.add_option("--per-type", "At most N grasps of each type per scene")
+      ->type_name("N")
+      ->default_str(std::to_string(vision::BaselineOptions().grasps.perType))
+      ->check(integerAtLeast(1));
+  addThreadsOption(baseline);
+  baseline
+      .add_option("--preshape",
+                  "Write the two-contact grasps as pre-shape grasps with this pre-shape (TCP "
+                  "between the contacts, z along the approach, x across: one plan for any "
+                  "two-finger hand)")
+      ->type_name("NAME");
+  baseline
+      .add_option("--debug",
+                  "Write a picture per scene of what the baseline saw into DIR (sequential: "
+                  "meant for a few scenes)")
+      ->type_name("DIR");
+  addQuietFlag(baseline);
 }
 
 }  // namespace visgrab::app

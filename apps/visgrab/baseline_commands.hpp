@@ -9,7 +9,7 @@
 namespace visgrab::app {
 
 /// `visgrab baseline`: the paper's baseline method (§4) from the stereo images to grasp files.
-std::vector<Command> baselineCommands();
+void addBaselineCommands(CommandLine& cli);
 
 /// Runs the baseline with its default settings on the scenes of `db` that `filter` selects
 /// (empty: all) and writes one grasp list (docs/grasp-format.md) atomically to `out`.

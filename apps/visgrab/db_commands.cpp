@@ -4,11 +4,15 @@
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <thread>
 
+#include "json_writer.hpp"
+#include "progress_reporter.hpp"
 #include "rw/common/diagnostic.hpp"
 #include "rw/common/stop_signals.hpp"
+#include "rw/math/rpy.hpp"
 #include "visgrab/database/database.hpp"
 #include "visgrab/database/scene_filter.hpp"
 #include "visgrab/database/scene_set.hpp"
@@ -21,45 +25,15 @@ namespace {
 namespace fs = std::filesystem;
 
 database::SceneFilter parseFilter(const Arguments& a) {
-  std::vector<std::string> texts;
-  if (const auto f = a.option("scenes")) texts.push_back(*f);
   try {
-    return database::SceneFilter::parse(texts);
+    return database::SceneFilter::parse(a.values("scenes"));
   } catch (const database::FilterError& e) {
     throw UsageError(std::string("--scenes: ") + e.what());
   }
 }
 
-std::string duration(double seconds) {
-  const int s = static_cast<int>(seconds + 0.5);
-  char text[32];
-  if (s >= 3600) {
-    std::snprintf(text, sizeof text, "%dh%02dm", s / 3600, (s / 60) % 60);
-  } else {
-    std::snprintf(text, sizeof text, "%dm%02ds", s / 60, s % 60);
-  }
-  return text;
-}
-
-void printProgress(const generator::GenerationProgress& p) {
-  const double rate = p.elapsed > 0.0 ? p.done / p.elapsed : 0.0;
-  const double left = rate > 0.0 ? (p.total - p.done) / rate : 0.0;
-  const int width = 30;
-  const int filled = p.total > 0 ? width * p.done / p.total : width;
-  std::string bar(static_cast<std::size_t>(filled), '#');
-  bar.resize(static_cast<std::size_t>(width), '.');
-  std::fprintf(stderr, "\r[%s] %d/%d scenes  %.2f scenes/s  %s left  %-45s", bar.c_str(), p.done,
-               p.total, rate, duration(left).c_str(), p.lastId.c_str());
-  if (p.done == p.total) std::fputc('\n', stderr);
-  std::fflush(stderr);
-}
-
-int runGenerate(const std::vector<std::string>& args) {
-  const Arguments a(args, {"quiet"});
-  a.rejectUnknown({"out", "scenes", "threads", "seed", "data", "quiet"});
-  a.requirePositionals(0, "no positional arguments");
+int runGenerate(const Arguments& a) {
   const auto out = a.option("out");
-  if (!out) throw UsageError("--out DIR is required");
   const database::SceneFilter filter = parseFilter(a);
   std::vector<database::SceneConditions> scenes;
   for (const auto& s : database::enumerateScenes()) {
@@ -76,21 +50,25 @@ int runGenerate(const std::vector<std::string>& args) {
   options.seed = static_cast<std::uint64_t>(integerOption(a, "seed", 1, 0));
   std::cerr << "visgrab db generate: " << scenes.size() << " scenes into " << *out << " with "
             << options.threads << " thread(s), seed " << options.seed << "\n";
-  const bool quiet = a.flag("quiet");
+  std::optional<ProgressReporter> reporter;
+  if (!a.flag("quiet")) reporter.emplace("db generate", "scenes");
   // SIGINT/SIGTERM: the scenes being made are finished and indexed, then it stops (exit 130/143);
   // running it again continues.
   rw::common::catchStopSignals();
   options.stop = &rw::common::stopSignalFlag();
   generator::GenerationReport report;
   try {
-    report = generator::generateDatabase(
-        scenes, options,
-        quiet ? std::function<void(const generator::GenerationProgress&)>{} : printProgress);
+    report =
+        generator::generateDatabase(scenes, options, [&](const generator::GenerationProgress& p) {
+          if (reporter) reporter->update(p.done, p.total, p.lastId);
+        });
   } catch (const rw::common::StopRequested& e) {
+    reporter.reset();
     std::cerr << "\nvisgrab db generate: " << rw::common::signalName(rw::common::stopSignal())
               << ": " << e.what() << "\n";
     return rw::common::stopExitCode(rw::common::stopSignal());
   }
+  reporter.reset();
   std::cout << report.generated << " scenes generated, " << report.skipped << " already complete, "
             << report.failures.size() << " failed\n";
   for (const auto& f : report.failures) std::cerr << "failed: " << f << "\n";
@@ -98,47 +76,142 @@ int runGenerate(const std::vector<std::string>& args) {
 }
 
 database::Database openDatabase(const Arguments& a) {
-  const auto db = a.option("db");
-  if (!db) throw UsageError("--db DIR (or an original VisGraB manifest) is required");
-  return database::Database::openAny(*db);
+  return database::Database::openAny(a.option("db").value());
 }
 
-int runList(const std::vector<std::string>& args) {
-  const Arguments a(args, {});
-  a.rejectUnknown({"db", "scenes"});
-  a.requirePositionals(0, "no positional arguments");
+// A scene's conditions as JSON (null when unknown).
+void writeConditionsJson(JsonWriter& j, const database::SceneEntry& s) {
+  j.key("conditions");
+  if (!s.conditions) {
+    j.null();
+    return;
+  }
+  const auto& c = *s.conditions;
+  j.beginObject().key("texture").value(std::string(database::toString(c.texture)));
+  j.key("kind").value(std::string(database::toString(c.kind)));
+  j.key("arrangement").value(std::string(database::toString(c.arrangement())));
+  j.key("objects").beginArray();
+  for (const int o : c.objects) {
+    j.beginObject().key("id").value(o);
+    j.key("name").value(std::string(database::objectName(o))).endObject();
+  }
+  j.endArray().key("pose").value(c.pose);
+  j.key("description").value(database::describe(c)).endObject();
+}
+
+// One scene of `db list --json` (and the start of `db show --json`'s).
+void writeSceneJson(JsonWriter& j, const database::SceneEntry& s) {
+  j.key("id").value(s.id).key("original_id").value(s.originalId);
+  writeConditionsJson(j, s);
+}
+
+int runList(const Arguments& a) {
   const database::SceneFilter filter = parseFilter(a);
   const database::Database db = openDatabase(a);
   const auto scenes = db.filter(filter);
-  for (const auto* s : scenes) std::cout << database::Database::summaryLine(*s) << "\n";
+  if (a.flag("json")) {
+    JsonWriter j(std::cout);
+    j.beginObject().key("schema").value("visgrab/db-list/1");
+    j.key("database").value(db.root().string());
+    j.key("total").value(db.list().size()).key("scenes").beginArray();
+    for (const auto* s : scenes) {
+      j.beginObject();
+      writeSceneJson(j, *s);
+      j.endObject();
+    }
+    j.endArray().endObject().finish();
+  } else {
+    for (const auto* s : scenes) std::cout << database::Database::summaryLine(*s) << "\n";
+  }
   std::cerr << scenes.size() << " of " << db.list().size() << " scenes\n";
   return 0;
 }
 
-int runShow(const std::vector<std::string>& args) {
-  const Arguments a(args, {});
-  a.rejectUnknown({"db"});
-  a.requirePositionals(1, "ID (a scene id, see visgrab db list)");
+// A file of `db show --json`: its path and whether it exists (null when the scene has none).
+void writeFileJson(JsonWriter& j, const char* name, const fs::path& file) {
+  j.key(name);
+  if (file.empty()) {
+    j.null();
+    return;
+  }
+  std::error_code ec;
+  j.beginObject().key("path").value(file.string());
+  j.key("exists").value(fs::exists(file, ec)).endObject();
+}
+
+void printShowJson(const database::SceneEntry& s) {
+  JsonWriter j(std::cout);
+  j.beginObject().key("schema").value("visgrab/db-show/1");
+  writeSceneJson(j, s);
+  j.key("files").beginObject();
+  writeFileJson(j, "left_image", s.leftImage);
+  writeFileJson(j, "right_image", s.rightImage);
+  writeFileJson(j, "calibration", s.calibration);
+  writeFileJson(j, "workcell", s.workcell);
+  writeFileJson(j, "dynamic_workcell", s.dynamicWorkcell);
+  writeFileJson(j, "disparity", s.disparity);
+  writeFileJson(j, "point_cloud", s.pointCloud);
+  writeFileJson(j, "collision_mesh", s.collision);
+  j.endObject().key("ground_truth").beginArray();
+  for (const database::ObjectPose& o : s.groundTruth) {
+    const Eigen::Vector3d p = o.X_WO.translation();
+    const Eigen::Quaterniond q(o.X_WO.linear());
+    const Eigen::Vector3d rpy = rw::math::rotationToRpy(o.X_WO.linear());
+    j.beginObject().key("object").value(o.object);
+    j.key("name").value(std::string(database::objectName(o.object)));
+    j.key("position").numbers({p.x(), p.y(), p.z()});
+    j.key("quaternion").numbers({q.w(), q.x(), q.y(), q.z()});
+    j.key("rpy").numbers({rpy.x(), rpy.y(), rpy.z()}).endObject();
+  }
+  j.endArray().endObject().finish();
+}
+
+int runShow(const Arguments& a) {
   const database::Database db = openDatabase(a);
-  std::cout << database::Database::details(db.scene(a.positionals()[0]));
+  const database::SceneEntry& scene = db.scene(a.positionals().at(0));
+  if (a.flag("json")) {
+    printShowJson(scene);
+  } else {
+    std::cout << database::Database::details(scene);
+  }
   return 0;
 }
 
 }  // namespace
 
-std::vector<Command> databaseCommands() {
-  return {
-      {"db", "generate",
-       "--out DIR [--scenes FILTER] [--threads N] [--seed S] [--data SCENES_DIR] [--quiet]",
-       "Generate the scene database (or the scenes FILTER selects): objects, settled scenes, "
-       "rendered stereo pairs, calibration, index. Resumes an interrupted run.",
-       guarded(runGenerate)},
-      {"db", "list", "--db DIR|MANIFEST [--scenes FILTER]",
-       "List the scenes of a generated database or an original VisGraB manifest.",
-       guarded(runList)},
-      {"db", "show", "--db DIR|MANIFEST ID",
-       "Show one scene: conditions, files, calibration and ground-truth poses.", guarded(runShow)},
-  };
+void addDatabaseCommands(CommandLine& cli) {
+  CLI::App& db = cli.addGroup("db", "The scene database: generate it, list and show its scenes.");
+  CLI::App& generate = cli.addCommand(
+      &db, "generate",
+      "Generate the scene database (or the scenes --scenes selects): objects, settled scenes, "
+      "rendered stereo pairs, calibration, index. Resumes an interrupted run.",
+      guarded(runGenerate));
+  generate.add_option("--out", "The database folder to write (or complete)")
+      ->required()
+      ->type_name("DIR");
+  addScenesOption(generate);
+  addThreadsOption(generate);
+  generate.add_option("--seed", "Seed of the scenes' random placements")
+      ->type_name("S")
+      ->default_str("1")
+      ->check(integerAtLeast(0));
+  addDataOption(generate);
+  addQuietFlag(generate);
+
+  CLI::App& list = cli.addCommand(
+      &db, "list", "List the scenes of a generated database or an original VisGraB manifest.",
+      guarded(runList));
+  list.add_option("--db", kDatabaseOptionHelp)->required()->type_name("DIR|MANIFEST");
+  addScenesOption(list);
+  addFlag(list, "--json", "Print JSON instead (docs/schemas/db-list.schema.json)");
+
+  CLI::App& show = cli.addCommand(
+      &db, "show", "Show one scene: conditions, files, calibration and ground-truth poses.",
+      guarded(runShow));
+  show.add_option("ID", "A scene id (see visgrab db list)")->required()->type_name("");
+  show.add_option("--db", kDatabaseOptionHelp)->required()->type_name("DIR|MANIFEST");
+  addFlag(show, "--json",
+          "Print JSON instead (docs/schemas/db-show.schema.json; poses in m and rad)");
 }
 
 }  // namespace visgrab::app

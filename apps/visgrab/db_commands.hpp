@@ -7,6 +7,6 @@
 namespace visgrab::app {
 
 /// `visgrab db generate | list | show`: make and browse the scene database.
-std::vector<Command> databaseCommands();
+void addDatabaseCommands(CommandLine& cli);
 
 }  // namespace visgrab::app

@@ -1,7 +1,6 @@
 #include "render_commands.hpp"
 
 #include <charconv>
-#include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -10,6 +9,7 @@
 #include <tuple>
 #include <utility>
 
+#include "progress_reporter.hpp"
 #include "visgrab/database/database.hpp"
 #include "visgrab/grasp/grasp_resolver.hpp"
 #include "visgrab/grasp/hand_grasp_setup.hpp"
@@ -66,16 +66,11 @@ struct RenderRequest {
   fs::path handFile;
 };
 
-RenderRequest parseRenderArguments(const std::vector<std::string>& args) {
-  Arguments a(args, {"montage", "overlay", "no-contacts", "quiet"});
-  a.rejectUnknown({"db", "scene", "results", "grasps", "hand", "grasp", "method", "out", "montage",
-                   "overlay", "view", "size", "no-contacts", "columns", "data", "quiet"});
-  a.requirePositionals(0, "no positional arguments");
-  const auto sceneId = a.option("scene");
-  const auto out = a.option("out");
-  if (!sceneId) throw UsageError("--scene ID is required");
-  if (!out) throw UsageError("--out FILE.png is required");
-  if (fs::path(*out).extension() != ".png") {
+// --scene and --out are required options of the CLI11 command (addRenderCommands).
+RenderRequest parseRenderArguments(const Arguments& a) {
+  const std::string sceneId = a.option("scene").value();
+  const std::string out = a.option("out").value();
+  if (fs::path(out).extension() != ".png") {
     throw UsageError("--out: the picture is written as PNG; give a file name ending in .png");
   }
   const bool montage = a.flag("montage");
@@ -131,8 +126,8 @@ RenderRequest parseRenderArguments(const std::vector<std::string>& args) {
   const std::string method = a.option("method").value_or("");
 
   RenderRequest request;
-  request.sceneId = *sceneId;
-  request.out = *out;
+  request.sceneId = sceneId;
+  request.out = out;
   request.montage = montage;
   request.overlay = overlay;
   request.graspSpec = graspSpec;
@@ -192,13 +187,14 @@ struct RenderedPicture {
   std::string summary;
 };
 
-/// The outcome of `g` for a montage tile: its trial record, else simulated again.
+/// The outcome of `g` for a montage tile: its trial record, else simulated again (reported on
+/// `progress` unless it is null).
 rwsim::simulator::GraspOutcome tileOutcome(const RenderScene& scene, const session::SceneGrasp& g,
                                            const grasp::ResolvedGrasp& resolved, int n,
-                                           bool quiet) {
+                                           ProgressReporter* progress) {
   if (g.record) return g.record->outcome;
   if (!resolved.placed()) return rwsim::simulator::GraspOutcome::kInvalidContacts;
-  if (!quiet) std::fprintf(stderr, "\rsimulating grasp %d/%zu   ", n, scene.grasps().size());
+  if (progress) progress->update(n, static_cast<long>(scene.grasps().size()));
   const auto& s = scene.session();
   return s.trial().run(resolved.parameters, s.initialState()).outcome;
 }
@@ -211,6 +207,8 @@ RenderedPicture renderMontage(const RenderRequest& request, const RenderScene& s
   std::tie(options.width, options.height) = *request.montageSize;
   const std::string& method = request.method;
   std::vector<view::MontageTile> tiles;
+  std::optional<ProgressReporter> progress;
+  if (!request.quiet) progress.emplace("simulating grasp", "grasps");
   int n = 0;
   for (const auto& g : scene.grasps()) {
     if (!method.empty() && g.request.method != method) continue;
@@ -224,10 +222,10 @@ RenderedPicture renderMontage(const RenderRequest& request, const RenderScene& s
       continue;
     }
     if (resolved.placed()) tile.grasp = resolved.parameters;
-    tile.outcome = tileOutcome(scene, g, resolved, n, request.quiet);
+    tile.outcome = tileOutcome(scene, g, resolved, n, progress ? &*progress : nullptr);
     tiles.push_back(std::move(tile));
   }
-  if (!request.quiet) std::fputc('\n', stderr);
+  progress.reset();
   const std::string& id = scene.entry().id;
   if (tiles.empty()) {
     throw UsageError("the grasp files have no grasp for scene " + id +
@@ -310,8 +308,8 @@ RenderedPicture renderScenePicture(const RenderRequest& request, const RenderSce
           "scene"};
 }
 
-int runRender(const std::vector<std::string>& args) {
-  const RenderRequest request = parseRenderArguments(args);
+int runRender(const Arguments& a) {
+  const RenderRequest request = parseRenderArguments(a);
   const RenderScene scene(request);
   render::OffscreenRenderer offscreen;
   const view::WorkcellDrawing drawing(scene.session().workcell(), offscreen.renderer(),
@@ -337,19 +335,55 @@ int runRender(const std::vector<std::string>& args) {
 
 }  // namespace
 
-std::vector<Command> renderCommands() {
-  return {
-      {"render", "",
-       "--scene ID --out FILE.png [--db DIR] [--results RESULTS] [--grasps FILE|DIR] "
-       "[--hand DIR|GRASP.xml] [--grasp ID|N [--overlay]] [--method M] [--montage [--columns N]] "
-       "[--view oblique|front|side|top] [--size WxH] [--no-contacts] [--quiet]",
-       "Draw a scene (headless, EGL): alone; with --grasp the trial's three moments (placed, "
-       "closed, lifted) labelled with the outcome and qualities, contact forces as arrows; "
-       "--overlay the grasp over the left stereo image; --montage every grasp of the scene "
-       "coloured by outcome. --results takes the database, grasps, hand and outcomes from a "
-       "run.",
-       guarded(runRender)},
-  };
+void addRenderCommands(CommandLine& cli) {
+  CLI::App& render = cli.addCommand(
+      nullptr, "render",
+      "Draw a scene (headless, EGL): alone; with --grasp the trial's three moments (placed, "
+      "closed, lifted) labelled with the outcome and qualities, contact forces as arrows; "
+      "--overlay the grasp over the left stereo image; --montage every grasp of the scene "
+      "coloured by outcome. --results takes the database, grasps, hand and outcomes from a "
+      "run.",
+      guarded(runRender));
+  render.add_option("--scene", "The scene to draw")->required()->type_name("ID");
+  render.add_option("--out", "The picture to write (PNG)")->required()->type_name("FILE.png");
+  render.add_option("--db", "The database (default: the one --results recorded)")
+      ->type_name("DIR|MANIFEST");
+  render.add_option("--results", "A run's result folder: database, grasps, hand and outcomes")
+      ->type_name("RESULTS");
+  render
+      .add_option("--grasps",
+                  "Grasp files or folders (default: the ones --results recorded); repeatable")
+      ->type_name("FILE|DIR")
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  render
+      .add_option("--hand",
+                  "The hand: its folder or grasp description (default: the one --results "
+                  "recorded, else the SDH)")
+      ->type_name("DIR|GRASP.xml");
+  render
+      .add_option("--grasp",
+                  "The grasp to draw: its id, or N for the scene's N-th grasp in the benchmark's "
+                  "order")
+      ->type_name("ID|N");
+  addFlag(render, "--overlay", "Draw --grasp over the left stereo image");
+  render.add_option("--method", "Count --grasp (and --montage) among method M's grasps only")
+      ->type_name("M");
+  addFlag(render, "--montage", "Every grasp of the scene, one tile each, coloured by outcome");
+  render.add_option("--columns", "Tiles per row of --montage")
+      ->type_name("N")
+      ->default_str("4")
+      ->check(integerAtLeast(1));
+  render.add_option("--view", "The camera: oblique, front, side or top")
+      ->type_name("VIEW")
+      ->default_str("oblique");
+  render
+      .add_option("--size",
+                  "Picture (tile) size in pixels, 16..8192 each (default: 800x600 for a scene, "
+                  "480x360 per moment, 320x240 per montage tile)")
+      ->type_name("WxH");
+  addFlag(render, "--no-contacts", "Leave the contact forces out");
+  addDataOption(render);
+  addQuietFlag(render);
 }
 
 }  // namespace visgrab::app

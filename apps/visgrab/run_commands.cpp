@@ -5,11 +5,13 @@
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <memory>
 #include <optional>
 #include <string>
 #include <thread>
 
 #include "baseline_commands.hpp"
+#include "progress_reporter.hpp"
 #include "rw/common/diagnostic.hpp"
 #include "rw/common/stop_signals.hpp"
 #include "visgrab/analysis/report.hpp"
@@ -26,24 +28,15 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string clock(double seconds) {
-  const int s = static_cast<int>(seconds + 0.5);
-  char text[32];
-  std::snprintf(text, sizeof text, "%dm%02ds", s / 60, s % 60);
-  return text;
-}
-
-void printProgress(const runner::RunProgress& p) {
-  const double rate = p.elapsed > 0.0 ? p.trialsDone / p.elapsed : 0.0;
-  const double left = rate > 0.0 ? (p.trialsTotal - p.trialsDone) / rate : 0.0;
-  const int width = 30;
-  const int filled = p.trialsTotal > 0 ? width * p.trialsDone / p.trialsTotal : width;
-  std::string bar(static_cast<std::size_t>(filled), '#');
-  bar.resize(static_cast<std::size_t>(width), '.');
-  std::fprintf(stderr, "\r[%s] scenes %d/%d  trials %d/%d  %.1f trials/s  %s left   ", bar.c_str(),
-               p.scenesDone, p.scenesTotal, p.trialsDone, p.trialsTotal, rate, clock(left).c_str());
-  if (p.scenesDone == p.scenesTotal && p.trialsDone == p.trialsTotal) std::fputc('\n', stderr);
-  std::fflush(stderr);
+// The runner's progress on stderr (none with --quiet).
+std::function<void(const runner::RunProgress&)> runProgress(bool quiet) {
+  if (quiet) return {};
+  auto reporter = std::make_shared<ProgressReporter>("run", "trials");
+  return [reporter](const runner::RunProgress& p) {
+    reporter->update(
+        p.trialsDone, p.trialsTotal,
+        "scenes " + std::to_string(p.scenesDone) + "/" + std::to_string(p.scenesTotal));
+  };
 }
 
 // What a command stopped by SIGINT/SIGTERM prints; returns its exit code (128 + the signal).
@@ -61,30 +54,21 @@ std::optional<runner::RunSummary> runStoppable(runner::RunOptions& options, bool
   rw::common::catchStopSignals();
   options.stop = &rw::common::stopSignalFlag();
   try {
-    return runner::runBenchmark(
-        options, quiet ? std::function<void(const runner::RunProgress&)>{} : printProgress);
+    return runner::runBenchmark(options, runProgress(quiet));
   } catch (const rw::common::StopRequested& e) {
     stoppedBySignal(e, command);
     return std::nullopt;
   }
 }
 
-int runRun(const std::vector<std::string>& args) {
-  Arguments a(args, {"resume", "quiet"});
-  a.rejectUnknown({"db", "grasps", "out", "threads", "resume", "hand", "scenes", "data", "quiet"});
-  a.requirePositionals(0, "no positional arguments (grasp files go after --grasps)");
+int runRun(const Arguments& a) {
   runner::RunOptions options;
-  const auto db = a.option("db");
   const auto grasps = a.values("grasps");
-  const auto out = a.option("out");
-  if (!db) throw UsageError("--db DIR (a generated database or an original manifest) is required");
-  if (grasps.empty()) throw UsageError("--grasps FILE|DIR is required");
-  if (!out) throw UsageError("--out RESULTS is required");
-  options.database = *db;
+  options.database = a.option("db").value();
   options.grasps.assign(grasps.begin(), grasps.end());
-  options.out = *out;
+  options.out = a.option("out").value();
   options.hand = a.option("hand").value_or((dataFolder(a) / "hands/sdh/sdh.grasp.xml").string());
-  options.scenes = a.option("scenes").value_or("");
+  options.scenes = scenesFilter(a);
   options.threads = threadsOption(a);
   options.resume = a.flag("resume");
   const bool quiet = a.flag("quiet");
@@ -108,11 +92,8 @@ analysis::ShowcaseDrawer pictureDrawer(const Arguments& a, int threads, bool qui
   view::ReportPictureOptions options;
   options.threads = threads;
   if (!quiet) {
-    options.progress = [](int done, int total) {
-      std::fprintf(stderr, "\rreport pictures: %d/%d   ", done, total);
-      if (done == total) std::fputc('\n', stderr);
-      std::fflush(stderr);
-    };
+    auto reporter = std::make_shared<ProgressReporter>("report pictures", "pictures");
+    options.progress = [reporter](int done, int total) { reporter->update(done, total); };
   }
   return [options, quiet](std::vector<analysis::Showcase>& showcases,
                           const std::vector<results::RunResults>& runs, const fs::path& dir) {
@@ -130,12 +111,8 @@ analysis::ShowcaseDrawer pictureDrawer(const Arguments& a, int threads, bool qui
   };
 }
 
-int runAnalyze(const std::vector<std::string>& args) {
-  Arguments a(args, {"no-pictures", "quiet"});
-  a.rejectUnknown({"out", "no-pictures", "threads", "quiet"});
+int runAnalyze(const Arguments& a) {
   const auto out = a.option("out");
-  if (!out) throw UsageError("--out REPORT is required");
-  if (a.positionals().empty()) throw UsageError("at least one RESULTS folder is required");
   std::vector<results::RunResults> runs;
   for (const auto& dir : a.positionals()) {
     std::vector<rw::common::Diagnostic> warnings;
@@ -145,13 +122,6 @@ int runAnalyze(const std::vector<std::string>& args) {
   analysis::writeReport(runs, *out, {}, pictureDrawer(a, threadsOption(a), a.flag("quiet")));
   std::cout << "report in " << *out << " (report.html, report.md, CSV tables)\n";
   return 0;
-}
-
-void printGenerationProgress(const generator::GenerationProgress& p) {
-  std::fprintf(stderr, "\rgenerating the database: %d/%d scenes  %s  ", p.done, p.total,
-               p.lastId.c_str());
-  if (p.done == p.total) std::fputc('\n', stderr);
-  std::fflush(stderr);
 }
 
 // Generates the database at `dir` (the scenes `filter` selects) unless its index exists.
@@ -177,26 +147,24 @@ void ensureDatabase(const fs::path& dir, const std::string& filter, int threads,
   options.threads = threads;
   rw::common::catchStopSignals();
   options.stop = &rw::common::stopSignalFlag();
-  const auto report = generator::generateDatabase(
-      scenes, options,
-      quiet ? std::function<void(const generator::GenerationProgress&)>{}
-            : printGenerationProgress);
+  std::optional<ProgressReporter> reporter;
+  if (!quiet) reporter.emplace("generating the database", "scenes");
+  const auto report =
+      generator::generateDatabase(scenes, options, [&](const generator::GenerationProgress& p) {
+        if (reporter) reporter->update(p.done, p.total, p.lastId);
+      });
+  reporter.reset();
   for (const auto& f : report.failures) std::cerr << "failed: " << f << "\n";
   if (!report.failures.empty()) throw std::runtime_error("the database could not be generated");
 }
 
-int runBenchmarkCommand(const std::vector<std::string>& args) {
-  Arguments a(args, {"resume", "quiet", "no-pictures"});
-  a.rejectUnknown({"db", "grasps", "out", "threads", "resume", "hand", "scenes", "data", "quiet",
-                   "no-pictures"});
-  a.requirePositionals(0, "no positional arguments (grasp files go after --grasps)");
+int runBenchmarkCommand(const Arguments& a) {
   const auto out = a.option("out");
-  if (!out) throw UsageError("--out DIR is required");
   const fs::path data = dataFolder(a);
   const fs::path db = a.option("db").value_or("database");
   const int threads = threadsOption(a);
   const bool quiet = a.flag("quiet");
-  const std::string scenes = a.option("scenes").value_or("");
+  const std::string scenes = scenesFilter(a);
   try {
     ensureDatabase(db, scenes, threads, data, quiet);
   } catch (const rw::common::StopRequested& e) {
@@ -238,27 +206,69 @@ int runBenchmarkCommand(const std::vector<std::string>& args) {
 
 }  // namespace
 
-std::vector<Command> runCommands() {
-  return {
-      {"run", "",
-       "--db DIR|MANIFEST --grasps FILE|DIR [--grasps ...] --out RESULTS [--threads N] [--resume] "
-       "[--hand DIR|GRASP.xml] [--scenes FILTER] [--quiet]",
-       "Run every grasp of every scene through the simulator; each finished trial is written at "
-       "once (RESULTS/trials.csv), so --resume continues a killed run.",
-       guarded(runRun)},
-      {"benchmark", "",
-       "--out DIR [--grasps FILE|DIR] [--db DIR] [--threads N] [--resume] [--hand DIR|GRASP.xml] "
-       "[--scenes FILTER] [--no-pictures] [--quiet]",
-       "Run and analyze in one: generate the database (default ./database) if it is missing, make "
-       "the baseline's grasps (DIR/grasps/baseline.csv) unless --grasps gives a method's, run "
-       "them (DIR/results), write the report with its pictures (DIR/report/report.html).",
-       guarded(runBenchmarkCommand)},
-      {"analyze", "", "RESULTS... --out REPORT [--threads N] [--no-pictures] [--quiet]",
-       "The paper's five analyses of one or more result folders (methods side by side): CSV "
-       "tables, report.md, report.html with SVG plots and pictures of the best, a typical and a "
-       "failed grasp per method and condition (REPORT/images; --no-pictures leaves them out).",
-       guarded(runAnalyze)},
-  };
+void addRunCommands(CommandLine& cli) {
+  constexpr const char* kHandHelp =
+      "The hand: its folder or grasp description (default: the SDH, DATA/hands/sdh)";
+  constexpr const char* kResumeHelp =
+      "Continue a killed run: keep the trials already in the results, run the rest";
+  CLI::App& run = cli.addCommand(
+      nullptr, "run",
+      "Run every grasp of every scene through the simulator; each finished trial is written at "
+      "once (RESULTS/trials.csv), so --resume continues a killed run.",
+      guarded(runRun));
+  run.add_option("--db", kDatabaseOptionHelp)->required()->type_name("DIR|MANIFEST");
+  run.add_option("--grasps", "Grasp files or folders (docs/grasp-format.md); repeatable")
+      ->required()
+      ->type_name("FILE|DIR")
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  run.add_option("--out", "The result folder to write")->required()->type_name("RESULTS");
+  addThreadsOption(run);
+  addFlag(run, "--resume", kResumeHelp);
+  run.add_option("--hand", kHandHelp)->type_name("DIR|GRASP.xml");
+  addScenesOption(run);
+  addDataOption(run);
+  addQuietFlag(run);
+
+  CLI::App& benchmark = cli.addCommand(
+      nullptr, "benchmark",
+      "Run and analyze in one: generate the database (default ./database) if it is missing, make "
+      "the baseline's grasps (DIR/grasps/baseline.csv) unless --grasps gives a method's, run "
+      "them (DIR/results), write the report with its pictures (DIR/report/report.html).",
+      guarded(runBenchmarkCommand));
+  benchmark.add_option("--out", "The folder to write (grasps/, results/, report/)")
+      ->required()
+      ->type_name("DIR");
+  benchmark
+      .add_option("--grasps",
+                  "A method's grasp files or folders (default: the baseline's); repeatable")
+      ->type_name("FILE|DIR")
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  benchmark.add_option("--db", "The database folder; generated there when it is missing")
+      ->type_name("DIR")
+      ->default_str("database");
+  addThreadsOption(benchmark);
+  addFlag(benchmark, "--resume", kResumeHelp);
+  benchmark.add_option("--hand", kHandHelp)->type_name("DIR|GRASP.xml");
+  addScenesOption(benchmark);
+  addDataOption(benchmark);
+  addFlag(benchmark, "--no-pictures", "Leave the report's pictures out");
+  addQuietFlag(benchmark);
+
+  CLI::App& analyze = cli.addCommand(
+      nullptr, "analyze",
+      "The paper's five analyses of one or more result folders (methods side by side): CSV "
+      "tables, report.md, report.html with SVG plots and pictures of the best, a typical and a "
+      "failed grasp per method and condition (REPORT/images; --no-pictures leaves them out).",
+      guarded(runAnalyze));
+  analyze.add_option("RESULTS", "Result folders of `visgrab run`, one per method")
+      ->required()
+      ->expected(1, CLI::detail::expected_max_vector_size)
+      ->allow_extra_args()
+      ->type_name("");
+  analyze.add_option("--out", "The report folder to write")->required()->type_name("REPORT");
+  addThreadsOption(analyze);
+  addFlag(analyze, "--no-pictures", "Leave the report's pictures out");
+  addQuietFlag(analyze);
 }
 
 }  // namespace visgrab::app

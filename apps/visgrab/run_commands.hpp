@@ -7,6 +7,6 @@
 namespace visgrab::app {
 
 /// `visgrab run | analyze`: grasps through the simulator, results into the paper's analyses.
-std::vector<Command> runCommands();
+void addRunCommands(CommandLine& cli);
 
 }  // namespace visgrab::app

@@ -1,6 +1,5 @@
 #include "sim_commands.hpp"
 
-#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -14,6 +13,7 @@
 #include <sstream>
 #include <string>
 
+#include "json_writer.hpp"
 #include "rw/common/diagnostic.hpp"
 #include "rw/math/rpy.hpp"
 #include "rwsim/loaders/dynamic_workcell_loader.hpp"
@@ -76,51 +76,22 @@ double positiveOption(const Arguments& a, const std::string& name, std::optional
   return v;
 }
 
-// A word meant as a number (then it must parse): starts like one and is not an option.
-bool looksNumeric(const std::string& s) {
-  if (s.empty() || s.rfind("--", 0) == 0) return false;
-  return std::isdigit(static_cast<unsigned char>(s[0])) || s[0] == '-' || s[0] == '+' ||
-         s[0] == '.';
-}
-
-// Takes the options that carry several numbers (`--pose x y z r p y`, also `--pose=x,y,...` or
-// one quoted word) out of `args`; the rest stays for Arguments.
-std::map<std::string, std::vector<double>> takeNumberLists(std::vector<std::string>& args,
-                                                           const std::vector<std::string>& names) {
+// The options that carry several numbers (`--pose x y z r p y`, also `--pose=x,y,...` or one
+// quoted word), by name; each may be given once.
+std::map<std::string, std::vector<double>> numberLists(const Arguments& a,
+                                                       const std::vector<std::string>& names) {
   std::map<std::string, std::vector<double>> lists;
-  std::vector<std::string> rest;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    std::string name;
-    std::string inlineValue;
-    for (const auto& n : names) {
-      if (args[i] == "--" + n) name = n;
-      if (args[i].rfind("--" + n + "=", 0) == 0) {
-        name = n;
-        inlineValue = args[i].substr(n.size() + 3);
-      }
-    }
-    if (name.empty()) {
-      rest.push_back(args[i]);
-      continue;
-    }
-    if (lists.count(name)) throw UsageError("--" + name + " given twice");
-    std::vector<std::string> words;
-    const auto split = [&](const std::string& text) {
-      std::string t = text;
-      for (char& c : t) c = (c == ',') ? ' ' : c;
-      std::istringstream is(t);
-      for (std::string w; is >> w;) words.push_back(w);
-    };
-    if (!inlineValue.empty()) split(inlineValue);
-    while (inlineValue.empty() && i + 1 < args.size() && !args[i + 1].empty() &&
-           (looksNumeric(args[i + 1]) || args[i + 1].find_first_of(" ,") != std::string::npos)) {
-      split(args[++i]);
-    }
+  for (const auto& name : names) {
+    const auto given = a.occurrences(name);
+    if (given.empty()) continue;
+    if (given.size() > 1) throw UsageError("--" + name + " given twice");
     auto& values = lists[name];
-    for (const auto& w : words) values.push_back(parseNumber(name, w));
+    for (const auto& word : given.front()) {
+      std::istringstream is(word);
+      for (std::string w; is >> w;) values.push_back(parseNumber(name, w));
+    }
     if (values.empty()) throw UsageError("--" + name + " needs numbers");
   }
-  args = rest;
   return lists;
 }
 
@@ -135,10 +106,7 @@ void writePoseRow(std::ostream& out, double t, const std::string& body, const Tr
       << std::flush;
 }
 
-int runSim(const std::vector<std::string>& args) {
-  const Arguments a(args, {});
-  a.rejectUnknown({"time", "dt", "out"});
-  a.requirePositionals(1, "FILE (a .dwc.xml dynamic workcell)");
+int runSim(const Arguments& a) {
   const double duration = positiveOption(a, "time", std::nullopt);
   const auto dwc = load(a.positionals()[0]);
   if (!dwc) return 1;
@@ -252,6 +220,44 @@ void printResult(const rwsim::simulator::GraspTrialResult& r, const DynamicWorkC
   }
 }
 
+std::vector<double> numbersOf(const Eigen::VectorXd& v) {
+  return std::vector<double>(v.data(), v.data() + v.size());
+}
+
+// `visgrab grasp --json` (docs/schemas/grasp.schema.json). Returns the exit code.
+int printResultJson(const std::string& hand, const std::string& tcp, const std::string& controller,
+                    const rwsim::simulator::GraspTrialResult& r, const DynamicWorkCell& dwc) {
+  JsonWriter j(std::cout);
+  j.beginObject().key("schema").value("visgrab/grasp/1");
+  j.key("hand").value(hand).key("tcp").value(tcp).key("controller").value(controller);
+  j.key("outcome").value(std::string(rwsim::simulator::outcomeName(r.outcome)));
+  j.key("robwork_code").value(rwsim::simulator::robworkCode(r.outcome));
+  j.key("q_lift").value(r.qLift).key("q_gws").value(r.qGws).key("q_gws_unit").value(r.qGwsUnit);
+  j.key("object");
+  if (r.object.valid()) {
+    j.value(dwc.body(r.object).name);
+  } else {
+    j.null();
+  }
+  j.key("simulated_time").value(r.simulatedTime).key("q_grasp").numbers(numbersOf(r.qGrasp));
+  j.key("hand_lift").numbers(numbersOf(r.handLift));
+  j.key("object_lift").numbers(numbersOf(r.objectLift));
+  j.key("detail").value(r.detail).key("contacts").beginArray();
+  for (const auto& c : r.contacts) {
+    j.beginObject().key("position").numbers(numbersOf(c.position));
+    j.key("normal").numbers(numbersOf(c.normal)).key("normal_force").value(c.normalForce);
+    j.key("mu").value(c.mu).key("force").numbers(numbersOf(c.force)).key("hand_link");
+    if (c.handBody.valid()) {
+      j.value(dwc.body(c.handBody).name);
+    } else {
+      j.null();
+    }
+    j.endObject();
+  }
+  j.endArray().endObject().finish();
+  return 0;
+}
+
 // True if --hand names a hand description (a folder or a *.grasp.xml file), not a device.
 bool isHandDescription(const std::string& value) {
   std::error_code ec;
@@ -276,13 +282,12 @@ struct GraspCommand {
   std::optional<double> dt;
   /// --data (where the default hand is).
   std::filesystem::path data;
+  /// --json: print the result as JSON (docs/schemas/grasp.schema.json).
+  bool json = false;
 };
 
-GraspCommand parseGraspArguments(const std::vector<std::string>& raw) {
-  std::vector<std::string> args = raw;
-  const auto lists = takeNumberLists(args, {"pose", "qopen", "qclose", "taumax"});
-  const Arguments a(args, {});
-  a.rejectUnknown({"hand", "tcp", "controller", "dt", "db", "scene", "preshape", "data"});
+GraspCommand parseGraspArguments(const Arguments& a) {
+  const auto lists = numberLists(a, {"pose", "qopen", "qclose", "taumax"});
   const auto pose = lists.find("pose");
   if (pose == lists.end()) throw UsageError("--pose x y z roll pitch yaw is required");
   if (pose->second.size() != 6) {
@@ -310,6 +315,7 @@ GraspCommand parseGraspArguments(const std::vector<std::string>& raw) {
   command.controller = a.option("controller");
   if (a.option("dt")) command.dt = positiveOption(a, "dt", std::nullopt);
   command.data = dataFolder(a);
+  command.json = a.flag("json");
   return command;
 }
 
@@ -404,8 +410,8 @@ rwsim::simulator::GraspParameters graspParameters(const GraspCommand& command,
   return grasp;
 }
 
-int runGrasp(const std::vector<std::string>& raw) {
-  const GraspCommand command = parseGraspArguments(raw);
+int runGrasp(const Arguments& a) {
+  const GraspCommand command = parseGraspArguments(a);
   const GraspScene scene = loadGraspScene(command);
   if (!scene.dwc) return 1;
   if (command.preshape && !scene.description) {
@@ -421,6 +427,10 @@ int runGrasp(const std::vector<std::string>& raw) {
   const DynamicWorkCell& dwc = *scene.dwc;
   const int dof = dwc.device(trial->handDevice()).device->dof();
   const auto grasp = graspParameters(command, scene.description.get(), dof, setup.hand);
+  if (command.json) {
+    return printResultJson(setup.hand, dwc.workcell().frames().frame(trial->tcpFrame()).name(),
+                           setup.controller, trial->run(grasp, dwc.workcell().defaultState()), dwc);
+  }
   std::cout << "hand " << setup.hand << ", TCP "
             << dwc.workcell().frames().frame(trial->tcpFrame()).name() << ", controller "
             << setup.controller << "\n";
@@ -430,23 +440,57 @@ int runGrasp(const std::vector<std::string>& raw) {
 
 }  // namespace
 
-std::vector<Command> simulationCommands() {
-  return {
-      {"sim", "", "FILE.dwc.xml --time T [--dt DT] [--out poses.csv]",
-       "Simulate a dynamic workcell for T seconds; write every body's pose per step as CSV "
-       "(time,body,x,y,z,qw,qx,qy,qz) or print the final poses.",
-       runSim},
-      {"grasp", "",
-       "FILE.dwc.xml|--db DIR --scene ID [--hand NAME|DIR|GRASP.xml] --pose X Y Z ROLL PITCH "
-       "YAW (--qopen Q... --qclose Q... [--taumax T...] | --preshape NAME) [--tcp FRAME] "
-       "[--controller NAME] [--dt DT]",
-       "Run one grasp trial: TCP pose in m and RobWork RPY degrees (Rz Ry Rx, as in .wc.xml), "
-       "q in rad/m, tau in N m/N; print the outcome, RobWork code, Q_lift, Q_GWS and contacts. "
-       "--hand names a device of FILE, or a hand (its folder or grasp description: device, "
-       "controller, TCP and --preshape from it); --db/--scene run it in a database scene with "
-       "that hand put in (default the SDH).",
-       runGrasp},
-  };
+void addSimulationCommands(CommandLine& cli) {
+  CLI::App& sim = cli.addCommand(
+      nullptr, "sim",
+      "Simulate a dynamic workcell for T seconds; write every body's pose per step as CSV "
+      "(time,body,x,y,z,qw,qx,qy,qz; m) or print the final poses.",
+      guarded(runSim));
+  sim.add_option("FILE", "The dynamic workcell (.dwc.xml)")->required()->type_name("");
+  sim.add_option("--time", "Simulated time in s")
+      ->required()
+      ->type_name("SECONDS")
+      ->check(positiveNumber());
+  sim.add_option("--dt", "Time step in s (default: the workcell's engine properties)")
+      ->type_name("SECONDS")
+      ->check(positiveNumber());
+  sim.add_option("--out", "Write the poses of every step to this CSV file")->type_name("poses.csv");
+
+  CLI::App& grasp = cli.addCommand(
+      nullptr, "grasp",
+      "Run one grasp trial; print the outcome, RobWork code, Q_lift, Q_GWS and contacts. "
+      "--hand names a device of FILE, or a hand (its folder or grasp description: device, "
+      "controller, TCP and --preshape from it); --db/--scene run it in a database scene with "
+      "that hand put in (default the SDH). Give FILE before the number lists (or end a list "
+      "with --).",
+      guarded(runGrasp));
+  grasp.add_option("FILE", "The dynamic workcell (.dwc.xml); or --db and --scene")->type_name("");
+  grasp.add_option("--db", kDatabaseOptionHelp)->type_name("DIR|MANIFEST");
+  grasp.add_option("--scene", "The database scene (with --db)")->type_name("ID");
+  grasp
+      .add_option("--hand",
+                  "A device of FILE, or a hand: its folder or grasp description (default: the "
+                  "only device of FILE; with --db the SDH)")
+      ->type_name("NAME|DIR|GRASP.xml");
+  addNumberList(grasp, "--pose", "X Y Z ROLL PITCH YAW",
+                "The TCP pose: position in m, RobWork RPY in degrees (Rz Ry Rx, as in .wc.xml)")
+      ->required();
+  addNumberList(grasp, "--qopen", "Q", "Open joint values, one per DOF (rad or m)");
+  addNumberList(grasp, "--qclose", "Q", "Closed joint values, one per DOF (rad or m)");
+  addNumberList(grasp, "--taumax", "T",
+                "Joint force limits, one per DOF (N m or N; default: the controller's)");
+  grasp
+      .add_option("--preshape",
+                  "A pre-shape of the hand description: its qopen, qclose, taumax and TCP offset")
+      ->type_name("NAME");
+  grasp.add_option("--tcp", "The TCP frame (with --hand NAME only)")->type_name("FRAME");
+  grasp.add_option("--controller", "The hand's controller (default: the hand's own)")
+      ->type_name("NAME");
+  grasp.add_option("--dt", "Time step in s (default: the workcell's engine properties)")
+      ->type_name("SECONDS")
+      ->check(positiveNumber());
+  addDataOption(grasp);
+  addFlag(grasp, "--json", "Print JSON instead (docs/schemas/grasp.schema.json; SI units)");
 }
 
 }  // namespace visgrab::app

@@ -9,6 +9,6 @@ namespace visgrab::app {
 /// `visgrab sim FILE.dwc.xml --time T ...` (simulate a dynamic workcell and write body poses)
 /// and `visgrab grasp FILE.dwc.xml --hand NAME --pose ... --qopen ... --qclose ...` (one grasp
 /// trial).
-std::vector<Command> simulationCommands();
+void addSimulationCommands(CommandLine& cli);
 
 }  // namespace visgrab::app

@@ -6,6 +6,7 @@
 #include <sstream>
 #include <string>
 
+#include "json_writer.hpp"
 #include "rw/loaders/workcell_loader.hpp"
 #include "rw/math/rpy.hpp"
 
@@ -133,20 +134,129 @@ void printWarnings(const std::vector<rw::common::Diagnostic>& warnings) {
   for (const auto& w : warnings) std::cerr << w.format() << "\n";
 }
 
-int runInfo(const std::vector<std::string>& args) {
-  const Arguments a(args, {});
-  a.rejectUnknown({});
-  a.requirePositionals(1, "FILE (a .wc.xml workcell)");
+// --- wc info --json (docs/schemas/wc-info.schema.json) -------------------------------------
+
+void writeFramesJson(JsonWriter& j, const WorkCell& wc) {
+  j.key("frames").beginArray();
+  for (const Frame& f : wc.frames().frames()) {
+    j.beginObject().key("name").value(f.name()).key("parent");
+    if (f.parent().valid()) {
+      j.value(wc.frames().frame(f.parent()).name());
+    } else {
+      j.null();
+    }
+    const auto& X = f.fixedTransform();
+    const rw::math::Vector3D rpy = rw::math::rotationToRpy(X.linear());
+    j.key("type").value(typeName(f)).key("dependent").value(f.isDependent());
+    j.key("passive").value(f.isPassive()).key("daf").value(f.isDaf());
+    j.key("position").numbers({X.translation().x(), X.translation().y(), X.translation().z()});
+    j.key("rpy").numbers({rpy.x(), rpy.y(), rpy.z()}).endObject();
+  }
+  j.endArray();
+}
+
+void writeDevicesJson(JsonWriter& j, const WorkCell& wc) {
+  const auto& tree = wc.frames();
+  j.key("devices").beginArray();
+  for (const auto& d : wc.devices()) {
+    j.beginObject().key("name").value(d->name());
+    j.key("kind").value(d->kind() == rw::models::Device::Kind::kTree ? "tree" : "serial");
+    j.key("dof").value(d->dof()).key("base").value(tree.frame(d->base()).name());
+    j.key("ends").beginArray();
+    for (const FrameId e : d->ends()) j.value(tree.frame(e).name());
+    j.endArray().key("joints").beginArray();
+    int index = 0;
+    for (const FrameId id : d->joints()) {
+      const Frame& f = tree.frame(id);
+      j.beginObject().key("name").value(f.name()).key("type").value(typeName(f));
+      j.key("q_index");
+      if (f.isActiveJoint()) {
+        j.value(index++);
+      } else {
+        j.null();
+      }
+      j.key("passive").value(f.isPassive()).key("dependency");
+      if (f.isDependent()) {
+        const auto& dep = *f.dependency();
+        j.beginObject().key("owner").value(tree.frame(dep.owner).name());
+        j.key("gain").value(dep.gain).key("offset").value(dep.offset).endObject();
+      } else {
+        j.null();
+      }
+      const auto& l = f.limits();
+      j.key("limits").beginObject().key("lower").value(l.lower).key("upper").value(l.upper);
+      j.key("velocity").value(l.velocity).key("acceleration").value(l.acceleration);
+      j.endObject().endObject();
+    }
+    j.endArray().key("configurations").beginArray();
+    for (const auto& [name, q] : d->configurations()) {
+      j.beginObject().key("name").value(name).key("q");
+      j.numbers(std::vector<double>(q.data(), q.data() + q.size())).endObject();
+    }
+    j.endArray().endObject();
+  }
+  j.endArray();
+}
+
+void writeGeometryJson(JsonWriter& j, const rw::models::GeometryInstance& g) {
+  const auto& geometry = *g.geometry;
+  const bool mesh = geometry.type() == rw::geometry::GeometryType::kMesh;
+  j.beginObject().key("name").value(g.name);
+  j.key("type").value(rw::geometry::geometryTypeName(geometry.type()));
+  j.key("file");
+  if (mesh) {
+    j.value(geometry.sourceFile());
+  } else {
+    j.null();
+  }
+  j.key("triangles");
+  if (mesh) {
+    j.value(geometry.triangles().triangles.size());
+  } else {
+    j.null();
+  }
+  j.key("convex").value(geometry.isConvex());
+  const auto& p = geometry.parameters();
+  j.key("parameters").numbers(std::vector<double>(p.begin(), p.end())).endObject();
+}
+
+void printInfoJson(const WorkCell& wc) {
+  JsonWriter j(std::cout);
+  j.beginObject().key("schema").value("visgrab/wc-info/1");
+  j.key("name").value(wc.name()).key("file").value(wc.fileName());
+  writeFramesJson(j, wc);
+  writeDevicesJson(j, wc);
+  j.key("objects").beginArray();
+  for (const auto& o : wc.objects()) {
+    j.beginObject().key("frame").value(wc.frames().frame(o.frame).name());
+    j.key("collision").beginArray();
+    for (const auto& g : o.collision) writeGeometryJson(j, g);
+    j.endArray().key("visual").beginArray();
+    for (const auto& g : o.visual) writeGeometryJson(j, g);
+    j.endArray().endObject();
+  }
+  j.endArray();
+  j.key("collision_excluded_pairs").value(wc.collisionSetup().excludePairs.size());
+  j.key("proximity_rules").value(wc.proximitySetup().rules.size());
+  j.endObject().finish();
+}
+
+int runInfo(const Arguments& a) {
+  const std::string file = a.positionals().at(0);
   std::vector<rw::common::Diagnostic> warnings;
   std::unique_ptr<WorkCell> wc;
   try {
-    wc = rw::loaders::loadWorkCell(a.positionals()[0], &warnings);
+    wc = rw::loaders::loadWorkCell(file, &warnings);
   } catch (const rw::common::LoadError& e) {
     printWarnings(warnings);
     std::cerr << e.what() << "\n";
     return 1;
   }
   printWarnings(warnings);
+  if (a.flag("json")) {
+    printInfoJson(*wc);
+    return 0;
+  }
   std::cout << "WorkCell \"" << wc->name() << "\"  (" << wc->fileName() << ")\n\nFrames ("
             << wc->frames().size() << "):\n";
   printFrame(*wc, rw::kinematics::FrameTree::kWorld, "  ", true, true);
@@ -155,30 +265,35 @@ int runInfo(const std::vector<std::string>& args) {
   return 0;
 }
 
-int runCheck(const std::vector<std::string>& args) {
-  const Arguments a(args, {});
-  a.rejectUnknown({});
-  a.requirePositionals(1, "FILE (a .wc.xml workcell)");
-  const auto diagnostics = rw::loaders::checkWorkCell(a.positionals()[0]);
+int runCheck(const Arguments& a) {
+  const std::string file = a.positionals().at(0);
+  const auto diagnostics = rw::loaders::checkWorkCell(file);
   std::size_t errors = 0;
   for (const auto& d : diagnostics) {
     std::cerr << d.format() << "\n";
     if (d.severity == rw::common::Diagnostic::Severity::kError) ++errors;
   }
   const std::size_t warnings = diagnostics.size() - errors;
-  std::cout << a.positionals()[0] << ": " << errors << " error(s), " << warnings << " warning(s)\n";
+  std::cout << file << ": " << errors << " error(s), " << warnings << " warning(s)\n";
   return errors == 0 ? 0 : 1;
 }
 
 }  // namespace
 
-std::vector<Command> workcellCommands() {
-  return {
-      {"wc", "info", "FILE", "Print the frame tree, devices, joint order and limits, geometry.",
-       runInfo},
-      {"wc", "check", "FILE",
-       "Validate a workcell; print every problem as file:line:col; exit 1 on errors.", runCheck},
-  };
+void addWorkcellCommands(CommandLine& cli) {
+  CLI::App& wc = cli.addGroup("wc", "Workcell files (.wc.xml): print one, check one.");
+  CLI::App& info = cli.addCommand(
+      &wc, "info",
+      "Print the frame tree (poses in m and RobWork RPY degrees), devices, joint order and "
+      "limits (rad or m), geometry.",
+      guarded(runInfo));
+  info.add_option("FILE", "The workcell (.wc.xml)")->required()->type_name("");
+  addFlag(info, "--json",
+          "Print JSON instead (docs/schemas/wc-info.schema.json; SI units: m, rad)");
+  CLI::App& check = cli.addCommand(
+      &wc, "check", "Validate a workcell; print every problem as file:line:col; exit 1 on errors.",
+      guarded(runCheck));
+  check.add_option("FILE", "The workcell (.wc.xml)")->required()->type_name("");
 }
 
 }  // namespace visgrab::app

@@ -7,6 +7,6 @@
 namespace visgrab::app {
 
 /// `visgrab wc info FILE` and `visgrab wc check FILE`.
-std::vector<Command> workcellCommands();
+void addWorkcellCommands(CommandLine& cli);
 
 }  // namespace visgrab::app

@@ -69,7 +69,7 @@ TEST(SimCli, BadArgumentsAreUsageErrors) {
   const std::string open7 = " --qopen -1.048 0.174 0 -1.048 0.174 -1.048 0.174";
   const std::string close7 = " --qclose 0 0.349 0 0 0.349 0 0.349";
   const Case cases[] = {
-      {"sim " + scene(), "--time is required"},
+      {"sim " + scene(), "--time SECONDS is required"},
       {"sim " + scene() + " --time -1", "--time must be > 0"},
       {"sim " + scene() + " --time 1 --speed 2", "unknown option --speed"},
       {"grasp " + scene() + " --hand SchunkHand" + open7 + close7, "--pose"},

@@ -1,0 +1,22 @@
+#include "baseline_commands.hpp"
+#include "command_line.hpp"
+#include "db_commands.hpp"
+#include "render_commands.hpp"
+#include "run_commands.hpp"
+#include "sim_commands.hpp"
+#include "wc_commands.hpp"
+
+namespace visgrab::app {
+
+std::unique_ptr<CommandLine> makeCommandLine() {
+  auto cli = std::make_unique<CommandLine>();
+  addWorkcellCommands(*cli);
+  addSimulationCommands(*cli);
+  addDatabaseCommands(*cli);
+  addRunCommands(*cli);
+  addBaselineCommands(*cli);
+  addRenderCommands(*cli);
+  return cli;
+}
+
+}  // namespace visgrab::app
