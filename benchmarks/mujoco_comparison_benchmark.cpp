@@ -131,10 +131,10 @@ class RatioReporter : public benchmark::ConsoleReporter {
     benchmark::ConsoleReporter::ReportRuns(runs);
     for (const Run& run : runs) {
       const std::string& name = run.run_name.function_name;
-      if (run.run_type == Run::RT_Aggregate) {
-        if (run.aggregate_name == "median") medians_[name] = run.GetAdjustedCPUTime();
-      } else if (!run.error_occurred) {
-        times_[name].push_back(run.GetAdjustedCPUTime());
+      const bool aggregate = run.run_type == Run::RT_Aggregate;
+      if (aggregate && run.aggregate_name == "median") medians_[name] = run.GetAdjustedCPUTime();
+      if (!aggregate && !run.error_occurred) times_[name].push_back(run.GetAdjustedCPUTime());
+      if (!aggregate || run.aggregate_name == "mean") {
         if (const auto it = run.counters.find("sim s/trial"); it != run.counters.end()) {
           simulated_[name] = it->second.value;
         }
@@ -142,7 +142,8 @@ class RatioReporter : public benchmark::ConsoleReporter {
     }
   }
 
-  // Simulated time per trial of a benchmark's last run, s (0 if unknown).
+  // Simulated time per trial of a benchmark (its last run or the mean over repetitions), s; 0 if
+  // unknown.
   double simulated(const std::string& name) const {
     const auto it = simulated_.find(name);
     return it == simulated_.end() ? 0.0 : it->second;
