@@ -238,8 +238,8 @@ MujocoGraspTrial::MujocoGraspTrial(const rwsim::dynamics::DynamicWorkCell& dwc,
     drivenDofs_.push_back(m_->jnt_dofadr[idOf(m_, mjOBJ_JOINT, s)]);
     drivenActuators_.push_back(idOf(m_, mjOBJ_ACTUATOR, s));
   }
-  velocityChange_.assign(drivenDofs_.size(), 0.0);
-  fullM_.assign(static_cast<std::size_t>(m_->nv * m_->nv), 0.0);
+  const auto nv = static_cast<std::size_t>(m_->nv);
+  fullM_.assign(nv * nv, 0.0);
   mj_forward(m_, d_);
   exportedPosition_.resize(n);
   exportedRotation_.resize(n);
@@ -266,7 +266,7 @@ MujocoGraspTrial::~MujocoGraspTrial() {
 // object thus pushes with its force limit, as in the project.
 void MujocoGraspTrial::driveJoints(const rw::math::Q& handVelocity,
                                    const rw::math::Vector3D& baseVelocity) {
-  const int nv = m_->nv;
+  const auto nv = static_cast<std::size_t>(m_->nv);
   const auto n = static_cast<Eigen::Index>(drivenDofs_.size());
   const auto nHand = static_cast<Eigen::Index>(handDofAdr_.size());
   mj_fullM(m_, fullM_.data(), d_->qM);
@@ -276,8 +276,8 @@ void MujocoGraspTrial::driveJoints(const rw::math::Q& handVelocity,
   for (Eigen::Index i = 0; i < n; ++i) {
     const int row = drivenDofs_[static_cast<std::size_t>(i)];
     for (Eigen::Index k = 0; k < n; ++k) {
-      M(i, k) =
-          fullM_[static_cast<std::size_t>(row * nv + drivenDofs_[static_cast<std::size_t>(k)])];
+      M(i, k) = fullM_[static_cast<std::size_t>(row) * nv +
+                       static_cast<std::size_t>(drivenDofs_[static_cast<std::size_t>(k)])];
     }
     bias[i] = d_->qfrc_bias[row] - d_->qfrc_passive[row];
     const double target = i < nHand ? handVelocity[i] : baseVelocity[i - nHand];

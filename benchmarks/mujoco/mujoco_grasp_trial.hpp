@@ -75,19 +75,18 @@ class MujocoGraspTrial {
   rwsim::simulator::GraspTrial placement_;
   mjModel_* m_ = nullptr;
   mjData_* d_ = nullptr;
-  std::vector<int> bodyIds_;            // per dwc body
-  std::vector<int> dwcBodyOf_;          // per MuJoCo body: dwc body index or -1
-  std::vector<int> jointQposAdr_;       // per dwc body: its joint's qpos address or -1
-  std::vector<bool> isHandBody_;        // per dwc body
-  std::vector<int> handQposAdr_;        // per active hand joint
-  std::vector<int> handDofAdr_;         // per active hand joint
-  std::vector<int> handActuators_;      // per active hand joint
-  rw::math::Q restSpeed_;               // per active hand joint (GraspTrial's, by joint type)
-  std::vector<int> slideQposAdr_[3];    // per dwc body, x y z (-1 if none)
-  std::vector<int> drivenDofs_;         // the hand's active joints, then the base's slides
-  std::vector<int> drivenActuators_;    // their motors
-  std::vector<double> velocityChange_;  // per driven dof, scratch
-  std::vector<double> fullM_;           // nv x nv, scratch
+  std::vector<int> bodyIds_;          // per dwc body
+  std::vector<int> dwcBodyOf_;        // per MuJoCo body: dwc body index or -1
+  std::vector<int> jointQposAdr_;     // per dwc body: its joint's qpos address or -1
+  std::vector<bool> isHandBody_;      // per dwc body
+  std::vector<int> handQposAdr_;      // per active hand joint
+  std::vector<int> handDofAdr_;       // per active hand joint
+  std::vector<int> handActuators_;    // per active hand joint
+  rw::math::Q restSpeed_;             // per active hand joint (GraspTrial's, by joint type)
+  std::vector<int> slideQposAdr_[3];  // per dwc body, x y z (-1 if none)
+  std::vector<int> drivenDofs_;       // the hand's active joints, then the base's slides
+  std::vector<int> drivenActuators_;  // their motors
+  std::vector<double> fullM_;         // nv x nv, scratch
   std::vector<rw::math::Vector3D> exportedPosition_;  // per dwc body, at qpos0
   std::vector<Eigen::Matrix3d> exportedRotation_;     // per dwc body, at qpos0
 };
