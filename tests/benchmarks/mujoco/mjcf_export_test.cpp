@@ -216,6 +216,31 @@ TEST(MjcfExport, UnsupportedGeometryIsNamedWithItsFrame) {
   }
 }
 
+TEST(MjcfExport, APlaneOnAMovingBodyIsRefused) {
+  const std::string wc = R"(<WorkCell name="PlaneScene">
+  <Frame name="Raft" refframe="WORLD" type="Movable">
+    <RPY>0 0 0</RPY><Pos>0 0 0.1</Pos>
+    <Drawable name="RaftBox"><RPY>0 0 0</RPY><Pos>0 0 0</Pos><Box x="0.1" y="0.1" z="0.02"/></Drawable>
+    <Drawable name="RaftTop"><RPY>0 0 0</RPY><Pos>0 0 0.01</Pos><Plane/></Drawable>
+  </Frame>
+</WorkCell>)";
+  const std::string dwcXml = R"(<DynamicWorkcell workcell="plane.wc.xml">
+  <Include file="materials.xml"/>
+  <RigidBody frame="Raft"><Mass>0.1</Mass><COG>0 0 0</COG><Inertia>1e-4 0 0 0 1e-4 0 0 0 1e-4</Inertia></RigidBody>
+</DynamicWorkcell>)";
+  const auto dwc = rwsim::loaders::loadDynamicWorkCellFromStrings(
+      dwcXml, wc, visgrab::test::sourceDir() / "scenes/plane.dwc.xml");
+  try {
+    exportMjcf(*dwc);
+    FAIL() << "a plane on a rigid body was exported";
+  } catch (const std::invalid_argument& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("frame 'Raft'"), std::string::npos) << what;
+    EXPECT_NE(what.find("Plane 'RaftTop'"), std::string::npos) << what;
+    EXPECT_NE(what.find("static"), std::string::npos) << what;
+  }
+}
+
 TEST(MjcfExport, TheMujocoTrialHoldsTheBox) {
   const auto& dwc = sdhBox();
   const auto model = exportMjcf(dwc);
