@@ -36,7 +36,8 @@ packages=(build-essential cmake ninja-build pkg-config
   libegl-dev libegl-mesa0 libgl1-mesa-dri libgl-dev
   libcli11-dev python3-jsonschema
   xvfb xauth clang-format python3
-  clang libclang-rt-14-dev)  # the fuzz stage: clang 14 with libFuzzer and the sanitizer runtimes
+  clang libclang-rt-14-dev  # the fuzz stage: clang 14 with libFuzzer and the sanitizer runtimes
+  libmujoco-dev)  # MuJoCo 2.2.2, only for the MuJoCo comparison benchmark; no library or app uses it
 
 install_packages() {
   local missing=()
