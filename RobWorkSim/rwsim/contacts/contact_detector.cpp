@@ -1,8 +1,9 @@
 #include "rwsim/contacts/contact_detector.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
-#include <cstring>
+#include <cstdint>
 #include <limits>
 #include <map>
 #include <stdexcept>
@@ -141,9 +142,15 @@ DetectScratch& threadScratch() {
   return scratch;
 }
 
-/// True when two poses hold the same doubles.
+/// True when two poses hold the same doubles, bit for bit (a -0 is not a +0: the cached
+/// placement must be the one the pose would give).
 bool samePose(const Transform3D& x, const Transform3D& y) {
-  return std::memcmp(x.data(), y.data(), sizeof(Transform3D::MatrixType)) == 0;
+  for (Eigen::Index i = 0; i < x.matrix().size(); ++i) {
+    if (std::bit_cast<std::uint64_t>(x.data()[i]) != std::bit_cast<std::uint64_t>(y.data()[i])) {
+      return false;
+    }
+  }
+  return true;
 }
 
 }  // namespace
