@@ -2,7 +2,9 @@
 // 5 ms step: a box and a can resting, a fingertip hull pressing a box, a hull on a non-convex
 // object mesh. RobWork's SDH fingertip hull and GreenCup mesh are used when RW_COMPAT_DATA is
 // set, otherwise convex and non-convex meshes of similar size made here. With RW_COMPAT_DATA,
-// also ContactDetector::detect on RobWork's SDH test scene (27 hull pairs).
+// also ContactDetector::detect on RobWork's SDH test scene (27 hull pairs). And detect() as the
+// main job calls it: every step of a grasp trial of the project's SDH around an object of a
+// two-object database scene ($VISGRAB_BENCH_DB, else the scene generated at start-up).
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -12,10 +14,13 @@
 #include <numbers>
 #include <vector>
 
+#include "bench_database.hpp"
 #include "rw/geometry/mesh_loader.hpp"
 #include "rw/kinematics/frame_tree.hpp"
+#include "rw/math/rpy.hpp"
 #include "rwsim/contacts/contact_detector.hpp"
 #include "rwsim/loaders/dynamic_workcell_loader.hpp"
+#include "rwsim/simulator/grasp_trial.hpp"
 
 namespace {
 
@@ -213,6 +218,106 @@ void BM_Contacts_SdhSceneDetect(benchmark::State& state) {
   state.counters["touching"] = static_cast<double>(out.size());
 }
 BENCHMARK(BM_Contacts_SdhSceneDetect);
+
+/// The database scene of BM_Contacts_DatabaseTrialDetect: two standing cans side by side.
+constexpr const char* kTrialScene = "plain/double/cocacola_saltcylinder/01";
+
+/// Body poses at every step of one grasp trial in kTrialScene (the SDH with the SDH_CYL
+/// pre-shape pointing down at the first object, its TCP at the centre of the object's box or
+/// the lowest centimetre above it where the open hand is clear), with the scene's dwc.
+struct RecordedTrial {
+  std::unique_ptr<rwsim::dynamics::DynamicWorkCell> dwc;
+  std::vector<std::vector<Transform3D>> steps;
+  std::string outcome;
+};
+
+const RecordedTrial& recordedTrial() {
+  static const RecordedTrial trial = [] {
+    namespace sim = rwsim::simulator;
+    const visgrab::bench::BenchDatabase database({kTrialScene});
+    RecordedTrial out;
+    out.dwc = rwsim::loaders::loadDynamicWorkCell(database.db().scene(kTrialScene).dynamicWorkcell);
+    const auto& dwc = *out.dwc;
+    const auto& wc = dwc.workcell();
+    const rw::kinematics::FKTable fk(wc.frames(), wc.defaultState());
+    // The first rigid body that is not part of the hand: the first object.
+    rw::geometry::Aabb box;
+    for (const auto& body : dwc.bodies()) {
+      if (body.kind != rwsim::dynamics::BodyKind::kRigid ||
+          wc.frames().frame(body.frame).name().starts_with("SchunkHand")) {
+        continue;
+      }
+      for (const auto frame : body.geometryFrames) {
+        const auto* object = wc.findObject(frame);
+        if (object == nullptr) continue;
+        for (const auto& g : object->collision) {
+          const Transform3D X = fk.worldTransform(frame) * g.X_frame_geometry;
+          for (const Vector3D& v : g.geometry->triangles().vertices) box.extend(X * v);
+        }
+      }
+      break;
+    }
+    sim::GraspTrialSetup setup;
+    setup.hand = "SchunkHand";
+    setup.tcpFrame = "SchunkHand.SDHTCP";
+    setup.simulator = sim::optionsFromEngineProperties(dwc);
+    setup.computeGws = false;
+    setup.observer = [&out, &dwc](const sim::Simulator& simulator, std::string_view) {
+      std::vector<Transform3D> poses;
+      for (std::size_t i = 0; i < dwc.bodies().size(); ++i) {
+        poses.push_back(simulator.bodyPose(rwsim::dynamics::BodyId(i)));
+      }
+      out.steps.push_back(std::move(poses));
+    };
+    const sim::GraspTrial grasp(dwc, setup);
+    sim::GraspParameters g;
+    g.qOpen = rw::math::Q(7);
+    g.qOpen << -1.048, 0.174, 0.0, -1.048, 0.174, -1.048, 0.174;
+    g.qClosed = rw::math::Q(7);
+    g.qClosed << 0.0, 0.349, 0.0, 0.0, 0.349, 0.0, 0.349;
+    g.tauMax = rw::math::Q(7);
+    g.tauMax << 2.1, 1.4, 2.1, 1.05, 0.7, 1.05, 0.7;
+    // The TCP at the box's centre, raised by centimetres until the open hand is clear of it.
+    const Vector3D centre = 0.5 * (box.min + box.max);
+    for (int cm = 0; cm <= 20; ++cm) {
+      g.X_W_tcp = rw::math::rpyTransform(Vector3D(0, std::numbers::pi, 0),
+                                         centre + Vector3D(0, 0, 0.01 * cm));
+      if (!grasp.checkPlacement(g, wc.defaultState()).collides) break;
+    }
+    out.outcome = std::string(sim::outcomeName(grasp.run(g, wc.defaultState()).outcome));
+    return out;
+  }();
+  return trial;
+}
+
+void BM_Contacts_DatabaseTrialDetect(benchmark::State& state) {
+  const RecordedTrial& trial = recordedTrial();
+  if (trial.steps.empty()) {
+    state.SkipWithError(
+        ("the trial in " + std::string(kTrialScene) + " took no step (" + trial.outcome + ")")
+            .c_str());
+    return;
+  }
+  const rwsim::contacts::ContactDetector detector(
+      *trial.dwc, rwsim::simulator::optionsFromEngineProperties(*trial.dwc).contacts,
+      rwsim::dynamics::jointConnectedBodyPairs(*trial.dwc));
+  std::vector<rwsim::contacts::BodyContact> out;
+  std::size_t step = 0;
+  std::int64_t points = 0;
+  std::int64_t calls = 0;
+  for (auto _ : state) {
+    detector.detect(trial.steps[step], out);
+    benchmark::DoNotOptimize(out.data());
+    for (const auto& c : out) points += static_cast<std::int64_t>(c.points.size());
+    ++calls;
+    step = step + 1 == trial.steps.size() ? 0 : step + 1;
+  }
+  state.SetLabel(std::string(kTrialScene) + ", " + std::to_string(trial.steps.size()) + " steps, " +
+                 trial.outcome);
+  state.counters["pairs"] = static_cast<double>(detector.candidatePairs().size());
+  state.counters["points/step"] = static_cast<double>(points) / static_cast<double>(calls);
+}
+BENCHMARK(BM_Contacts_DatabaseTrialDetect)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 

@@ -426,26 +426,33 @@ void collideLocal(const ContactShape& a, const ContactShape& b, const Transform3
 }
 
 }  // namespace
+
+void collidePlaced(const ContactShape& a, const Transform3D& X_W_a, const Transform3D& X_a_W,
+                   const ContactShape& b, const Transform3D& X_W_b, const Transform3D& X_b_W,
+                   const ContactOptions& options, Workspace& ws, std::vector<ContactPoint>& out) {
+  const Transform3D X_ab = X_a_W * X_W_b;
+  const bool swapped = swapToCanonical(a.kind(), b.kind(), X_ab);
+  const ContactShape& first = swapped ? b : a;
+  const ContactShape& second = swapped ? a : b;
+  const Transform3D& X_W_first = swapped ? X_W_b : X_W_a;
+  // The pose of the second shape in the first's frame: X_ab itself unless swapped.
+  const Transform3D X_fs = swapped ? Transform3D(X_b_W * X_W_a) : X_ab;
+  const std::size_t begin = out.size();
+  collideLocal(first, second, X_fs, options, ws, out);
+  const double sign = swapped ? -1.0 : 1.0;
+  for (std::size_t i = begin; i < out.size(); ++i) {
+    out[i].position = transformPoint(X_W_first, out[i].position);
+    out[i].normal = sign * (X_W_first.linear() * out[i].normal);
+  }
+}
+
 }  // namespace detail
 
 void collide(const ContactShape& a, const rw::math::Transform3D& X_W_a, const ContactShape& b,
              const rw::math::Transform3D& X_W_b, const ContactOptions& options,
              std::vector<ContactPoint>& out) {
-  using rw::math::Transform3D;
-  const Transform3D X_ab = X_W_a.inverse(Eigen::Isometry) * X_W_b;
-  const bool swapped = detail::swapToCanonical(a.kind(), b.kind(), X_ab);
-  const ContactShape& first = swapped ? b : a;
-  const ContactShape& second = swapped ? a : b;
-  const Transform3D& X_W_first = swapped ? X_W_b : X_W_a;
-  const Transform3D& X_W_second = swapped ? X_W_a : X_W_b;
-  const Transform3D X_fs = X_W_first.inverse(Eigen::Isometry) * X_W_second;
-  const std::size_t begin = out.size();
-  detail::collideLocal(first, second, X_fs, options, detail::threadWorkspace(), out);
-  const double sign = swapped ? -1.0 : 1.0;
-  for (std::size_t i = begin; i < out.size(); ++i) {
-    out[i].position = detail::transformPoint(X_W_first, out[i].position);
-    out[i].normal = sign * (X_W_first.linear() * out[i].normal);
-  }
+  detail::collidePlaced(a, X_W_a, X_W_a.inverse(Eigen::Isometry), b, X_W_b,
+                        X_W_b.inverse(Eigen::Isometry), options, detail::threadWorkspace(), out);
 }
 
 }  // namespace rwsim::contacts

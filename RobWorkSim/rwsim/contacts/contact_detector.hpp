@@ -78,7 +78,11 @@ struct BodyContact {
 
 /// Finds contacts between the bodies of a dynamic workcell: body pairs allowed by the
 /// workcell's proximity setup, never two non-moving bodies, never a body with itself.
-/// Built once; detect() is const and thread-safe.
+/// Built once; detect() is const and thread-safe. detect() places each shape of a candidate
+/// pair once per call (a fixed body's shapes once at construction, reused while the body is
+/// given the pose it had there) and skips body pairs whose boxes (the union of their shapes'
+/// boxes) are farther apart than the margin before looking at their shape pairs; the contacts
+/// are bit for bit those of placing and testing every shape pair on its own.
 class ContactDetector {
  public:
   /// Prepares every body's shapes and the allowed pairs.

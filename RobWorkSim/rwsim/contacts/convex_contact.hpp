@@ -58,6 +58,14 @@ struct Workspace {
 /// The workspace of the calling thread.
 Workspace& threadWorkspace();
 
+/// collide() for a caller that keeps each shape's world pose and its inverse
+/// (X_a_W = X_W_a.inverse(Eigen::Isometry)) and the thread's workspace: the same contacts, bit
+/// for bit, without recomputing the inverses or looking the workspace up per pair.
+void collidePlaced(const ContactShape& a, const rw::math::Transform3D& X_W_a,
+                   const rw::math::Transform3D& X_a_W, const ContactShape& b,
+                   const rw::math::Transform3D& X_W_b, const rw::math::Transform3D& X_b_W,
+                   const ContactOptions& options, Workspace& ws, std::vector<ContactPoint>& out);
+
 /// The feature whose axis separates A and B least (or overlaps them least).
 struct SatResult {
   /// What the axis is.
