@@ -71,6 +71,8 @@ struct Simulator::Impl {
   // (one made by the Simulator excludes them up front; a caller's detector may not).
   std::vector<std::pair<BodyId, BodyId>> connected;
   bool filterConnected = false;
+  // Rows of the last step (see lastStepRows()).
+  std::size_t rows = 0;
   // options.stepMethod decided once.
   bool quickStep = false;
   // Last step's tangential contact force per body pair, to orient friction pyramids.
@@ -203,6 +205,7 @@ Vector3D Simulator::Impl::frictionDirection(const SimBody& a, const SimBody& b,
 
 void Simulator::Impl::createContactJoints() {
   dJointGroupEmpty(ode->contactGroup());
+  rows = 0;
   std::size_t total = 0;
   for (const auto& bc : geometric) total += bc.points.size();
   feedback.assign(total, dJointFeedback{});
@@ -249,6 +252,7 @@ void Simulator::Impl::createContactJoints() {
         c.geom.normal[i] = p.normal[i];  // ODE pushes its first body along the normal: B
       }
       c.geom.depth = depth;
+      rows += pairMu > 0.0 ? 3 : 1;
       const dJointID j = dJointCreateContact(ode->world(), ode->contactGroup(), &c);
       dJointAttach(j, b.id, a.id);
       dJointSetFeedback(j, &feedback[k]);
@@ -261,6 +265,7 @@ void Simulator::Impl::driveMotors() {
   for (auto& dev : ode->devices()) {
     for (const SimJoint& j : dev.joints) {
       if (j.id == nullptr) continue;
+      rows += 5 + (j.forceLimit > 0.0 ? 1 : 0);
       if (j.owner) {
         const SimJoint& o = dev.joints[*j.owner];
         const double err = j.gain * ode->jointPosition(o) + j.offset - ode->jointPosition(j);
@@ -507,6 +512,8 @@ void Simulator::setMotorForceLimits(DeviceId device, const rw::math::Q& limits) 
 }
 
 const std::vector<SolvedBodyContact>& Simulator::contacts() const { return impl_->solved; }
+
+std::size_t Simulator::lastStepRows() const { return impl_->rows; }
 
 const SimulatorOptions& Simulator::options() const { return impl_->options; }
 
