@@ -177,6 +177,9 @@ void Simulator::Impl::stepOnce() {
   }
   createContactJoints();
   driveMotors();
+  for (const auto& dev : ode->devices()) {
+    for (const SimJoint& j : dev.joints) rows += ode->constraintRows(j);
+  }
   driveKinematicBodies();
   if (quickStep) {
     dWorldQuickStep(ode->world(), options.timeStep);
@@ -265,7 +268,6 @@ void Simulator::Impl::driveMotors() {
   for (auto& dev : ode->devices()) {
     for (const SimJoint& j : dev.joints) {
       if (j.id == nullptr) continue;
-      rows += 5 + (j.forceLimit > 0.0 ? 1 : 0);
       if (j.owner) {
         const SimJoint& o = dev.joints[*j.owner];
         const double err = j.gain * ode->jointPosition(o) + j.offset - ode->jointPosition(j);
@@ -405,6 +407,7 @@ void Simulator::reset(const rw::kinematics::State& state) {
   impl_->geometric.clear();
   impl_->solved.clear();
   impl_->lastTangentialForce.clear();
+  impl_->rows = 0;
   detail::takeOdeMessages();
 }
 
