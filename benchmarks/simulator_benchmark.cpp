@@ -3,6 +3,7 @@
 // and whole grasp trials (VisGraB's SDH_CYL pre-shape, hand pointing down at the box centre).
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <memory>
 #include <numbers>
 
@@ -96,7 +97,24 @@ void runTrials(benchmark::State& state, bool computeGws) {
   setup.tcpFrame = "SchunkHand.SDHTCP";
   setup.simulator = sim::optionsFromEngineProperties(dwc);
   setup.computeGws = computeGws;
+  // Per step: the solver's constraint rows and the contact points on the hand and elsewhere.
+  double rows = 0.0;
+  double handPoints = 0.0;
+  double otherPoints = 0.0;
+  double separated = 0.0;
+  std::int64_t steps = 0;
+  const sim::GraspTrial* running = nullptr;
+  setup.observer = [&](const sim::Simulator& s, std::string_view) {
+    rows += static_cast<double>(s.lastStepRows());
+    for (const auto& bc : s.contacts()) {
+      const bool hand = running->isHandBody(bc.bodyA) || running->isHandBody(bc.bodyB);
+      (hand ? handPoints : otherPoints) += static_cast<double>(bc.points.size());
+      for (const auto& p : bc.points) separated += p.point.depth < 0.0 ? 1.0 : 0.0;
+    }
+    ++steps;
+  };
   const sim::GraspTrial trial(dwc, setup);
+  running = &trial;
   const auto initial = dwc.workcell().defaultState();
   std::int64_t trials = 0;
   double simulated = 0.0;
@@ -112,6 +130,11 @@ void runTrials(benchmark::State& state, bool computeGws) {
       benchmark::Counter(static_cast<double>(trials), benchmark::Counter::kIsRate);
   state.counters["sim s/trial"] = simulated / static_cast<double>(trials);
   state.counters["stable"] = static_cast<double>(stable) / static_cast<double>(trials);
+  const double perStep = 1.0 / static_cast<double>(std::max<std::int64_t>(steps, 1));
+  state.counters["rows/step"] = rows * perStep;
+  state.counters["hand pts/step"] = handPoints * perStep;
+  state.counters["other pts/step"] = otherPoints * perStep;
+  state.counters["separated pts/step"] = separated * perStep;
 }
 
 void BM_Sim_SdhGraspTrial(benchmark::State& state) { runTrials(state, true); }

@@ -71,6 +71,8 @@ struct Simulator::Impl {
   // (one made by the Simulator excludes them up front; a caller's detector may not).
   std::vector<std::pair<BodyId, BodyId>> connected;
   bool filterConnected = false;
+  // Rows of the last step (see lastStepRows()).
+  std::size_t rows = 0;
   // options.stepMethod decided once.
   bool quickStep = false;
   // Last step's tangential contact force per body pair, to orient friction pyramids.
@@ -175,6 +177,9 @@ void Simulator::Impl::stepOnce() {
   }
   createContactJoints();
   driveMotors();
+  for (const auto& dev : ode->devices()) {
+    for (const SimJoint& j : dev.joints) rows += ode->constraintRows(j);
+  }
   driveKinematicBodies();
   if (quickStep) {
     dWorldQuickStep(ode->world(), options.timeStep);
@@ -203,6 +208,7 @@ Vector3D Simulator::Impl::frictionDirection(const SimBody& a, const SimBody& b,
 
 void Simulator::Impl::createContactJoints() {
   dJointGroupEmpty(ode->contactGroup());
+  rows = 0;
   std::size_t total = 0;
   for (const auto& bc : geometric) total += bc.points.size();
   feedback.assign(total, dJointFeedback{});
@@ -249,6 +255,7 @@ void Simulator::Impl::createContactJoints() {
         c.geom.normal[i] = p.normal[i];  // ODE pushes its first body along the normal: B
       }
       c.geom.depth = depth;
+      rows += pairMu > 0.0 ? 3 : 1;
       const dJointID j = dJointCreateContact(ode->world(), ode->contactGroup(), &c);
       dJointAttach(j, b.id, a.id);
       dJointSetFeedback(j, &feedback[k]);
@@ -400,6 +407,7 @@ void Simulator::reset(const rw::kinematics::State& state) {
   impl_->geometric.clear();
   impl_->solved.clear();
   impl_->lastTangentialForce.clear();
+  impl_->rows = 0;
   detail::takeOdeMessages();
 }
 
@@ -507,6 +515,8 @@ void Simulator::setMotorForceLimits(DeviceId device, const rw::math::Q& limits) 
 }
 
 const std::vector<SolvedBodyContact>& Simulator::contacts() const { return impl_->solved; }
+
+std::size_t Simulator::lastStepRows() const { return impl_->rows; }
 
 const SimulatorOptions& Simulator::options() const { return impl_->options; }
 

@@ -165,6 +165,45 @@ TEST(SimulatorApi, ForceLimitsBoundTheMotors) {
   EXPECT_NEAR(sim.jointVelocities(DeviceId(0))[1], 0.5, 1e-5);  // 10 N stop 0.5 m/s per step
 }
 
+TEST(SimulatorApi, LastStepRowsCountJointsMotorsAndContacts) {
+  // Two prismatic jaws, each 5 rows of a slider and 1 of its motor; nothing touches.
+  SceneBuilder gripper("rows");
+  gripper.addGripper(at(0, 0, 1), 0.05, 10.0);
+  const auto gripperCell = gripper.build();
+  Simulator jaws(*gripperCell);
+  EXPECT_EQ(jaws.lastStepRows(), 0U);
+  ASSERT_EQ(jaws.step(), StepStatus::kOk);
+  EXPECT_EQ(jaws.lastStepRows(), 12U);
+  // Without force limits the jaws still sit on their lower stops (q = 0): a stop row each.
+  jaws.setMotorForceLimits(DeviceId(0), Eigen::Vector2d(0.0, 0.0));
+  ASSERT_EQ(jaws.step(), StepStatus::kOk);
+  EXPECT_EQ(jaws.lastStepRows(), 12U);
+  // A hinge without stops: 5 rows, and 1 for its motor while it has a force limit.
+  SceneBuilder finger("hinge");
+  finger.addFinger(Transform3D::Identity(), 0.1, 10.0, false);
+  const auto fingerCell = finger.build(0.0);
+  Simulator hinge(*fingerCell);
+  ASSERT_EQ(hinge.step(), StepStatus::kOk);
+  EXPECT_EQ(hinge.lastStepRows(), 6U);
+  hinge.setMotorForceLimits(DeviceId(0), Eigen::VectorXd::Zero(1));
+  ASSERT_EQ(hinge.step(), StepStatus::kOk);
+  EXPECT_EQ(hinge.lastStepRows(), 5U);
+  hinge.reset(fingerCell->workcell().defaultState());
+  EXPECT_EQ(hinge.lastStepRows(), 0U);
+
+  // A box resting on a table: one face-on-face manifold of 4 points, 3 rows each (a normal and
+  // two friction directions).
+  SceneBuilder resting("resting");
+  resting.addTable("Table", at(0, 0, -0.05), Vector3D(1, 1, 0.1));
+  resting.addBox("Box", at(0, 0, 0.05), Vector3D(0.1, 0.1, 0.1), 1.0);
+  const auto restingCell = resting.build();
+  Simulator box(*restingCell);
+  ASSERT_EQ(box.step(), StepStatus::kOk);
+  ASSERT_EQ(box.contacts().size(), 1U);
+  EXPECT_EQ(box.contacts()[0].points.size(), 4U);
+  EXPECT_EQ(box.lastStepRows(), 12U);
+}
+
 TEST(SimulatorApi, RevoluteJointValuesDoNotWrapAtPi) {
   SceneBuilder scene("spin");
   scene.addFinger(Transform3D::Identity(), 0.1, 10.0, false);

@@ -302,4 +302,18 @@ void OdeWorld::setMotor(const SimJoint& joint, double velocity, double forceLimi
   }
 }
 
+std::size_t OdeWorld::constraintRows(const SimJoint& joint) const {
+  if (joint.id == nullptr) return 0;
+  const auto param = [&](int which) {
+    return joint.revolute ? dJointGetHingeParam(joint.id, which)
+                          : dJointGetSliderParam(joint.id, which);
+  };
+  const double pos =
+      joint.revolute ? dJointGetHingeAngle(joint.id) : dJointGetSliderPosition(joint.id);
+  const double lo = param(dParamLoStop);
+  const double hi = param(dParamHiStop);
+  const bool onStop = lo <= hi && (pos <= lo || pos >= hi);
+  return 5 + (param(dParamFMax) > 0.0 || onStop ? 1 : 0);
+}
+
 }  // namespace rwsim::simulator::detail
