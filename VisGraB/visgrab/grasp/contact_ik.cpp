@@ -12,6 +12,7 @@
 #include <Eigen/Cholesky>
 
 #include "rw/kinematics/frame_tree.hpp"
+#include "visgrab/grasp/detail/normal_equations.hpp"
 
 namespace visgrab::grasp {
 
@@ -344,8 +345,8 @@ class Solver {
     double lambda = 1e-3;
     for (int it = 0; it < maxIterations && cost > 1e-16; ++it) {
       if (fresh) {
-        A_.noalias() = J_.transpose() * J_;
-        g_.noalias() = J_.transpose() * r_;
+        detail::gramMatrix(J_, A_);
+        detail::gradient(J_, r_, g_);
         fresh = false;
       }
       damped_ = A_;
