@@ -13,7 +13,7 @@ using Eigen::Index;
 // The orders below are those of Eigen 3.4.0's kernels for doubles in SSE2 packets (two lanes),
 // without fused multiply-add: every product and sum rounded on its own.
 #if EIGEN_VERSION_AT_LEAST(3, 4, 0) && !EIGEN_VERSION_AT_LEAST(3, 4, 1) && \
-    defined(EIGEN_VECTORIZE_SSE2) && !defined(EIGEN_VECTORIZE_AVX) &&    \
+    defined(EIGEN_VECTORIZE_SSE2) && !defined(EIGEN_VECTORIZE_AVX) &&      \
     !defined(EIGEN_VECTORIZE_FMA)
 constexpr bool kKnownKernels = true;
 #else
