@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 
 namespace visgrab::grasp::detail {
 
@@ -27,6 +29,8 @@ constexpr Index kSingleBlock = 48;
 constexpr Index kGemmThreshold = 20;
 
 constexpr Index kMaxSize = kSingleBlock - 1;
+// The exponent bits of a double: all set for infinities and NaNs.
+constexpr std::uint64_t kExponent = 0x7ff0000000000000ULL;
 
 // The non-zero entries of J row by row, in column order (row k's at k * kMaxSize); false if J
 // has a non-finite value.
@@ -38,19 +42,19 @@ struct SparseRows {
   bool gather(const Eigen::MatrixXd& J) {
     const Index m = J.rows();
     std::fill_n(count.begin(), m, 0);
-    double finite = 0.0;  // stays +-0 unless a value is infinite or NaN
+    bool finite = true;  // checked on the exponent bits: no chain of floating-point additions
     for (Index c = 0; c < J.cols(); ++c) {
       const double* values = J.col(c).data();
       for (Index k = 0; k < m; ++k) {
         const double v = values[k];
-        finite += v * 0.0;
+        finite &= (std::bit_cast<std::uint64_t>(v) & kExponent) != kExponent;
         const auto at = static_cast<std::size_t>(k * kMaxSize + count[static_cast<std::size_t>(k)]);
         column[at] = static_cast<int>(c);
         value[at] = v;
         count[static_cast<std::size_t>(k)] += v != 0.0 ? 1 : 0;
       }
     }
-    return finite == 0.0;
+    return finite;
   }
 };
 
