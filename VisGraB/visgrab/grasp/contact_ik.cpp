@@ -116,11 +116,11 @@ class ChainKinematics {
 
   // X_W_f of a frame on an updated path.
   const Transform3D& world(FrameId f) const {
-    return world_[static_cast<std::size_t>(slotOf_[static_cast<std::size_t>(f.index)])];
+    return pose(slotOf_[static_cast<std::size_t>(f.index)]);
   }
   // X_W of fingertip `tip`'s frame (after update(state, tip)).
   const Transform3D& tipWorld(int tip) const {
-    return world_[static_cast<std::size_t>(tipSlot_[static_cast<std::size_t>(tip)])];
+    return pose(tipSlot_[static_cast<std::size_t>(tip)]);
   }
 
  private:
@@ -133,6 +133,11 @@ class ChainKinematics {
     std::uint64_t version = 0;
     std::array<double, 7> inputs{};  // the local transform's state values (joint or movable)
   };
+
+  // The pose of a slot; WORLD (no slot) is the identity.
+  const Transform3D& pose(int slot) const {
+    return slot < 0 ? worldPose_ : world_[static_cast<std::size_t>(slot)];
+  }
 
   // The state values a frame's local transform reads, bit for bit.
   bool sameInputs(const Slot& slot, const rw::kinematics::State& state) const {
