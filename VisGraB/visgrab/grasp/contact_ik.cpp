@@ -1,12 +1,18 @@
 #include "visgrab/grasp/contact_ik.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <numeric>
 #include <stdexcept>
 
+#include <Eigen/Cholesky>
+
 #include "rw/kinematics/frame_tree.hpp"
+#include "visgrab/grasp/detail/normal_equations.hpp"
 
 namespace visgrab::grasp {
 
@@ -55,6 +61,143 @@ struct Target {
   Vector3D direction = Vector3D::UnitZ();
 };
 
+// The world poses the solver needs: the frames on the paths from WORLD to the fingertips,
+// computed exactly as rw::kinematics::FKTable computes them (parent's world pose times the
+// local transform, in id order; a frame attached below a later frame walks up to WORLD), so
+// the doubles are the same. A frame is recomputed only when its local transform's inputs (its
+// joint value or its movable transform) or its parent's pose changed since it was last
+// computed, and only when a fingertip that needs it is asked for.
+class ChainKinematics {
+ public:
+  ChainKinematics(const rw::kinematics::FrameTree& tree, const rw::kinematics::State& state,
+                  const std::vector<FrameId>& tips)
+      : tree_(tree) {
+    std::vector<int> slotOf(tree.size(), -1);
+    // Every frame on a path to a tip, in id order (FKTable's order).
+    std::vector<char> needed(tree.size(), 0);
+    for (const FrameId tip : tips) {
+      for (FrameId f = tip; f.index > 0; f = state.parentOf(f)) {
+        needed[static_cast<std::size_t>(f.index)] = 1;
+      }
+    }
+    std::vector<char> done(tree.size(), 0);
+    done[0] = 1;
+    for (std::size_t i = 1; i < tree.size(); ++i) {
+      const FrameId id{static_cast<std::int32_t>(i)};
+      const FrameId parent = state.parentOf(id);
+      const auto p = static_cast<std::size_t>(parent.index);
+      const bool direct = p < i && done[p];
+      done[i] = direct ? 1 : 0;
+      if (!needed[i]) continue;
+      Slot slot;
+      slot.frame = id;
+      slot.parent = parent.index > 0 ? slotOf[p] : -1;
+      slot.walk = !direct;
+      slotOf[i] = static_cast<int>(slots_.size());
+      slots_.push_back(slot);
+    }
+    world_.assign(slots_.size(), Transform3D::Identity());
+    for (const FrameId tip : tips) {
+      std::vector<int> path;
+      for (FrameId f = tip; f.index > 0; f = state.parentOf(f)) {
+        path.push_back(slotOf[static_cast<std::size_t>(f.index)]);
+      }
+      std::sort(path.begin(), path.end());
+      paths_.push_back(std::move(path));
+      tipSlot_.push_back(slotOf[static_cast<std::size_t>(tip.index)]);
+    }
+    slotOf_ = std::move(slotOf);
+  }
+
+  // Brings the poses on fingertip `tip`'s path up to date with `state`.
+  void update(const rw::kinematics::State& state, int tip) {
+    for (const int s : paths_[static_cast<std::size_t>(tip)]) refresh(state, s);
+  }
+
+  // X_W_f of a frame on an updated path.
+  const Transform3D& world(FrameId f) const {
+    return pose(slotOf_[static_cast<std::size_t>(f.index)]);
+  }
+  // X_W of fingertip `tip`'s frame (after update(state, tip)).
+  const Transform3D& tipWorld(int tip) const {
+    return pose(tipSlot_[static_cast<std::size_t>(tip)]);
+  }
+
+ private:
+  struct Slot {
+    FrameId frame;
+    int parent = -1;    // slot of the parent; -1 for WORLD
+    bool walk = false;  // FKTable's second pass: the pose by walking up to WORLD
+    bool valid = false;
+    std::uint64_t parentVersion = 0;
+    std::uint64_t version = 0;
+    std::array<double, 7> inputs{};  // the local transform's state values (joint or movable)
+  };
+
+  // The pose of a slot; WORLD (no slot) is the identity.
+  const Transform3D& pose(int slot) const {
+    return slot < 0 ? worldPose_ : world_[static_cast<std::size_t>(slot)];
+  }
+
+  // The state values a frame's local transform reads, bit for bit.
+  bool sameInputs(const Slot& slot, const rw::kinematics::State& state) const {
+    const auto& frame = tree_.frame(slot.frame);
+    if (frame.type() == FrameType::kMovable) {
+      return std::memcmp(slot.inputs.data(), state.values().data() + frame.stateOffset(),
+                         7 * sizeof(double)) == 0;
+    }
+    if (frame.isJoint()) {
+      const double q = frame.jointValue(state);
+      return std::memcmp(slot.inputs.data(), &q, sizeof(double)) == 0;
+    }
+    return true;
+  }
+
+  void keepInputs(Slot& slot, const rw::kinematics::State& state) const {
+    const auto& frame = tree_.frame(slot.frame);
+    if (frame.type() == FrameType::kMovable) {
+      std::memcpy(slot.inputs.data(), state.values().data() + frame.stateOffset(),
+                  7 * sizeof(double));
+    } else if (frame.isJoint()) {
+      slot.inputs[0] = frame.jointValue(state);
+    }
+  }
+
+  void refresh(const rw::kinematics::State& state, int index) {
+    Slot& slot = slots_[static_cast<std::size_t>(index)];
+    auto& X = world_[static_cast<std::size_t>(index)];
+    if (slot.walk) {
+      X = rw::kinematics::worldTransform(tree_, state, slot.frame);
+      ++slot.version;
+      return;
+    }
+    const std::uint64_t parentVersion =
+        slot.parent < 0 ? 0 : slots_[static_cast<std::size_t>(slot.parent)].version;
+    if (slot.valid && slot.parentVersion == parentVersion && sameInputs(slot, state)) return;
+    const Transform3D& parent =
+        slot.parent < 0 ? worldPose_ : world_[static_cast<std::size_t>(slot.parent)];
+    X = parent * tree_.frame(slot.frame).localTransform(state);
+    keepInputs(slot, state);
+    slot.parentVersion = parentVersion;
+    slot.valid = true;
+    ++slot.version;
+  }
+
+  const rw::kinematics::FrameTree& tree_;
+  const Transform3D worldPose_ = Transform3D::Identity();
+  std::vector<Slot> slots_;
+  std::vector<Transform3D> world_;
+  std::vector<std::vector<int>> paths_;
+  std::vector<int> tipSlot_;
+  std::vector<int> slotOf_;
+};
+
+std::vector<FrameId> fingertipFrames(const ContactIkSettings& ik) {
+  std::vector<FrameId> out;
+  for (const Fingertip& tip : ik.fingertips) out.push_back(tip.frame);
+  return out;
+}
+
 // The hand's kinematics for the solver: sets the base pose and q, evaluates the residuals.
 class HandModel {
  public:
@@ -62,7 +205,8 @@ class HandModel {
       : setup_(setup),
         ik_(*setup.contactIk()),
         state_(setup.defaultState()),
-        directionWeight_(ik_.directionWeight) {
+        directionWeight_(ik_.directionWeight),
+        fk_(setup.workcell().frames(), state_, fingertipFrames(ik_)) {
     const auto& tree = setup.workcell().frames();
     const FrameId base = setup.device().base();
     X_W_parent_ = rw::kinematics::worldTransform(tree, state_, tree.frame(base).parent());
@@ -83,63 +227,82 @@ class HandModel {
     }
   }
 
-  // Residuals and Jacobian (columns: base v, base w if moveBase, then the free joints).
-  double evaluate(const Transform3D& X_W_base, const Q& q, const std::vector<Target>& targets,
-                  const std::vector<int>& free, const Q& qRef, bool moveBase,
-                  const Vector3D& approach, Eigen::VectorXd& r, Eigen::MatrixXd* J) {
+  // Residuals at the base pose and q (see solveContactIk); keeps the poses for jacobian().
+  double residuals(const Transform3D& X_W_base, const Q& q, const std::vector<Target>& targets,
+                   const std::vector<int>& free, const Q& qRef, bool moveBase,
+                   const Vector3D& approach, Eigen::VectorXd& r) {
     const auto& tree = setup_.workcell().frames();
     tree.frame(setup_.device().base())
         .setMovableTransform(state_, X_W_parent_.inverse() * X_W_base);
     setup_.device().setQ(q, state_);
-    const rw::kinematics::FKTable fk(tree, state_);
-    const int nBase = moveBase ? 6 : 0;
     const int nFree = static_cast<int>(free.size());
     const int rows = 6 * static_cast<int>(targets.size()) + (moveBase ? 3 : 0) + nFree;
     r.setZero(rows);
-    if (J) J->setZero(rows, nBase + nFree);
     const double wd = directionWeight_;
     int row = 0;
     for (const Target& t : targets) {
       const Fingertip& tip = ik_.fingertips[static_cast<std::size_t>(t.fingertip)];
-      const Transform3D& X = fk.worldTransform(tip.frame);
+      fk_.update(state_, t.fingertip);
+      const Transform3D& X = fk_.tipWorld(t.fingertip);
       const Vector3D p = X * tip.point;
       const Vector3D n = X.linear() * tip.normal;
       r.segment<3>(row) = p - t.position;
       r.segment<3>(row + 3) = wd * (n - t.direction);
-      if (J) {
-        if (moveBase) {
-          J->block<3, 3>(row, 0).setIdentity();
-          J->block<3, 3>(row, 3) = -skew(p - X_W_base.translation());
-          J->block<3, 3>(row + 3, 3) = -wd * skew(n);
-        }
-        for (const ChainJoint& c : chains_[static_cast<std::size_t>(t.fingertip)]) {
-          const auto col = std::find(free.begin(), free.end(), c.dof);
-          if (col == free.end()) continue;
-          const int k = nBase + static_cast<int>(col - free.begin());
-          const Transform3D& XJ = fk.worldTransform(c.frame);
-          const Vector3D z = XJ.linear().col(2);
-          if (c.revolute) {
-            J->block<3, 1>(row, k) += c.gain * z.cross(p - XJ.translation());
-            J->block<3, 1>(row + 3, k) += wd * c.gain * z.cross(n);
-          } else {
-            J->block<3, 1>(row, k) += c.gain * z;
-          }
+      row += 6;
+    }
+    if (moveBase) {
+      const Vector3D a = X_W_base.linear() * ik_.approachAxisInBase;
+      r.segment<3>(row) = ik_.approachWeight * (a - approach);
+      row += 3;
+    }
+    for (int k = 0; k < nFree; ++k) {
+      const auto j = static_cast<Eigen::Index>(free[static_cast<std::size_t>(k)]);
+      r[row + k] = kRegularisation * (q[j] - qRef[j]);
+    }
+    return 0.5 * r.squaredNorm();
+  }
+
+  // Jacobian of the residuals at the pose of the last residuals() call (columns: base v, base
+  // w if moveBase, then the free joints).
+  void jacobian(const Transform3D& X_W_base, const std::vector<Target>& targets,
+                const std::vector<int>& free, bool moveBase, Eigen::MatrixXd& J) const {
+    const int nBase = moveBase ? 6 : 0;
+    const int nFree = static_cast<int>(free.size());
+    const int rows = 6 * static_cast<int>(targets.size()) + (moveBase ? 3 : 0) + nFree;
+    J.setZero(rows, nBase + nFree);
+    const double wd = directionWeight_;
+    int row = 0;
+    for (const Target& t : targets) {
+      const Fingertip& tip = ik_.fingertips[static_cast<std::size_t>(t.fingertip)];
+      const Transform3D& X = fk_.tipWorld(t.fingertip);
+      const Vector3D p = X * tip.point;
+      const Vector3D n = X.linear() * tip.normal;
+      if (moveBase) {
+        J.block<3, 3>(row, 0).setIdentity();
+        J.block<3, 3>(row, 3) = -skew(p - X_W_base.translation());
+        J.block<3, 3>(row + 3, 3) = -wd * skew(n);
+      }
+      for (const ChainJoint& c : chains_[static_cast<std::size_t>(t.fingertip)]) {
+        const auto col = std::find(free.begin(), free.end(), c.dof);
+        if (col == free.end()) continue;
+        const int k = nBase + static_cast<int>(col - free.begin());
+        const Transform3D& XJ = fk_.world(c.frame);
+        const Vector3D z = XJ.linear().col(2);
+        if (c.revolute) {
+          J.block<3, 1>(row, k) += c.gain * z.cross(p - XJ.translation());
+          J.block<3, 1>(row + 3, k) += wd * c.gain * z.cross(n);
+        } else {
+          J.block<3, 1>(row, k) += c.gain * z;
         }
       }
       row += 6;
     }
     if (moveBase) {
       const Vector3D a = X_W_base.linear() * ik_.approachAxisInBase;
-      r.segment<3>(row) = ik_.approachWeight * (a - approach);
-      if (J) J->block<3, 3>(row, 3) = -ik_.approachWeight * skew(a);
+      J.block<3, 3>(row, 3) = -ik_.approachWeight * skew(a);
       row += 3;
     }
-    for (int k = 0; k < nFree; ++k) {
-      const auto j = static_cast<Eigen::Index>(free[static_cast<std::size_t>(k)]);
-      r[row + k] = kRegularisation * (q[j] - qRef[j]);
-      if (J) (*J)(row + k, nBase + k) = kRegularisation;
-    }
-    return 0.5 * r.squaredNorm();
+    for (int k = 0; k < nFree; ++k) J(row + k, nBase + k) = kRegularisation;
   }
 
   // Sets the weight of the direction residuals.
@@ -164,10 +327,12 @@ class HandModel {
   rw::kinematics::State state_;
   Transform3D X_W_parent_ = Transform3D::Identity();
   double directionWeight_;
+  ChainKinematics fk_;
   std::vector<std::vector<ChainJoint>> chains_;
 };
 
-// Levenberg-Marquardt over the base pose (if moveBase) and the free joints.
+// Levenberg-Marquardt over the base pose (if moveBase) and the free joints. The buffers are
+// kept between runs; a rejected step reuses the normal equations of the current point.
 class Solver {
  public:
   Solver(HandModel& model, const HandGraspSetup& setup, const Vector3D& approach)
@@ -178,31 +343,37 @@ class Solver {
 
   double solve(Transform3D& X_W_base, Q& q, const std::vector<Target>& targets,
                const std::vector<int>& free, bool moveBase, int maxIterations = kMaxIterations) {
-    const Q qRef = q;
-    Eigen::VectorXd r;
-    Eigen::VectorXd rTry;
-    Eigen::MatrixXd J;
-    double cost = model_.evaluate(X_W_base, q, targets, free, qRef, moveBase, approach_, r, &J);
+    qRef_ = q;
+    double cost = model_.residuals(X_W_base, q, targets, free, qRef_, moveBase, approach_, r_);
+    model_.jacobian(X_W_base, targets, free, moveBase, J_);
+    bool fresh = true;
     double lambda = 1e-3;
     for (int it = 0; it < maxIterations && cost > 1e-16; ++it) {
-      const Eigen::MatrixXd A = J.transpose() * J;
-      const Eigen::VectorXd g = J.transpose() * r;
-      Eigen::MatrixXd damped = A;
-      damped.diagonal() += lambda * (A.diagonal().array() + 1e-9).matrix();
-      Eigen::VectorXd step = damped.ldlt().solve(-g);
-      limitStep(step, moveBase);
+      if (fresh) {
+        detail::gramMatrix(J_, A_);
+        detail::gradient(J_, r_, g_);
+        fresh = false;
+      }
+      damped_ = A_;
+      damped_.diagonal() += lambda * (A_.diagonal().array() + 1e-9).matrix();
+      ldlt_.compute(damped_);
+      step_ = ldlt_.solve(-g_);
+      limitStep(step_, moveBase);
       Transform3D X_try = X_W_base;
-      Q qTry = q;
-      apply(step, free, moveBase, X_try, qTry);
+      qTry_ = q;
+      apply(step_, free, moveBase, X_try, qTry_);
       const double tryCost =
-          model_.evaluate(X_try, qTry, targets, free, qRef, moveBase, approach_, rTry, nullptr);
+          model_.residuals(X_try, qTry_, targets, free, qRef_, moveBase, approach_, rTry_);
       if (tryCost < cost) {
         const double gain = cost - tryCost;
         X_W_base = X_try;
-        q = qTry;
-        cost = model_.evaluate(X_W_base, q, targets, free, qRef, moveBase, approach_, r, &J);
+        q = qTry_;
+        std::swap(r_, rTry_);
+        model_.jacobian(X_W_base, targets, free, moveBase, J_);
+        fresh = true;
+        cost = tryCost;
         lambda = std::max(lambda / 3.0, 1e-9);
-        if (gain < 1e-14 && step.norm() < 1e-9) break;
+        if (gain < 1e-14 && step_.norm() < 1e-9) break;
       } else {
         lambda *= 4.0;
         if (lambda > 1e8) break;
@@ -249,6 +420,16 @@ class Solver {
   Q lower_;
   Q upper_;
   Vector3D approach_;
+  Q qRef_;
+  Q qTry_;
+  Eigen::VectorXd r_;
+  Eigen::VectorXd rTry_;
+  Eigen::MatrixXd J_;
+  Eigen::MatrixXd A_;
+  Eigen::VectorXd g_;
+  Eigen::MatrixXd damped_;
+  Eigen::LDLT<Eigen::MatrixXd> ldlt_;
+  Eigen::VectorXd step_;
 };
 
 // The errors of a solution against its targets.
@@ -498,36 +679,66 @@ ContactIkResult solveContactIk(const HandGraspSetup& setup,
   return contactIkSolutions(setup, contacts, approach, 1).front();
 }
 
-ContactIkResult refitContactIk(const HandGraspSetup& setup,
-                               const std::vector<DesiredContact>& contacts,
-                               const Vector3D& approach, const ContactIkResult& solution,
-                               const Transform3D& X_W_base, double backoff) {
+namespace {
+
+void describeRefit(ContactIkResult& r) {
+  if (r.valid) return;
+  char buffer[160];
+  std::snprintf(buffer, sizeof(buffer),
+                "refitted fingers miss the contacts: fingertip deviation %.1f mm, direction "
+                "%.1f deg, approach %.1f deg",
+                r.positionError * 1e3, r.directionError * rw::math::kRad2Deg,
+                r.approachError * rw::math::kRad2Deg);
+  r.reason = buffer;
+}
+
+const IkGrasp& checkSolution(const HandGraspSetup& setup,
+                             const std::vector<DesiredContact>& contacts, const Vector3D& approach,
+                             const ContactIkResult& solution) {
   checkInput(setup, contacts, approach);
   const ContactIkSettings& ik = *setup.contactIk();
   if (solution.grasp < 0 || static_cast<std::size_t>(solution.grasp) >= ik.grasps.size() ||
       solution.fingerOfContact.size() != contacts.size()) {
     throw std::invalid_argument("refitContactIk: the solution does not belong to these contacts");
   }
+  return ik.grasps[static_cast<std::size_t>(solution.grasp)];
+}
+
+}  // namespace
+
+ContactIkResult refitContactIk(const HandGraspSetup& setup,
+                               const std::vector<DesiredContact>& contacts,
+                               const Vector3D& approach, const ContactIkResult& solution,
+                               const Transform3D& X_W_base, double backoff) {
+  const IkGrasp& g = checkSolution(setup, contacts, approach, solution);
   const Vector3D a = approach.normalized();
   HandModel model(setup);
   Solver solver(model, setup, a);
   const std::vector<Target> targets = targetsOf(contacts, solution.fingerOfContact);
-  const IkGrasp& g = ik.grasps[static_cast<std::size_t>(solution.grasp)];
   Transform3D X = X_W_base;
   Q q = solution.qContact;
   solver.solve(X, q, targets, g.joints, false, kMaxRefitIterations);
   ContactIkResult r = finishResult(model, solver, setup, targets, a, solution.grasp, X_W_base, q,
                                    backoff, kMaxRefitIterations);
   r.attempts = 1;
-  if (!r.valid) {
-    char buffer[160];
-    std::snprintf(buffer, sizeof(buffer),
-                  "refitted fingers miss the contacts: fingertip deviation %.1f mm, direction "
-                  "%.1f deg, approach %.1f deg",
-                  r.positionError * 1e3, r.directionError * rw::math::kRad2Deg,
-                  r.approachError * rw::math::kRad2Deg);
-    r.reason = buffer;
-  }
+  describeRefit(r);
+  return r;
+}
+
+ContactIkResult reopenContactIk(const HandGraspSetup& setup,
+                                const std::vector<DesiredContact>& contacts,
+                                const Vector3D& approach, const ContactIkResult& refitted,
+                                double backoff) {
+  checkSolution(setup, contacts, approach, refitted);
+  const Vector3D a = approach.normalized();
+  HandModel model(setup);
+  Solver solver(model, setup, a);
+  const std::vector<Target> targets = targetsOf(contacts, refitted.fingerOfContact);
+  ContactIkResult r =
+      finishResult(model, solver, setup, targets, a, refitted.grasp, refitted.X_W_base,
+                   refitted.qContact, backoff, kMaxRefitIterations);
+  r.attempts = 1;
+  describeRefit(r);
   return r;
 }
 

@@ -98,4 +98,14 @@ ContactIkResult refitContactIk(const HandGraspSetup& setup,
                                const rw::math::Vector3D& approach, const ContactIkResult& solution,
                                const rw::math::Transform3D& X_W_base, double backoff);
 
+/// `refitted` (a refitContactIk result) with qOpen solved again for another `backoff`: its base
+/// and qContact kept, the errors measured at them. Equal, double for double, to
+/// refitContactIk(setup, contacts, approach, solution, X_W_base, backoff) for the `solution`
+/// and X_W_base that gave `refitted`, without solving the fingers again. Deterministic,
+/// thread-safe. @throws std::invalid_argument as refitContactIk.
+ContactIkResult reopenContactIk(const HandGraspSetup& setup,
+                                const std::vector<DesiredContact>& contacts,
+                                const rw::math::Vector3D& approach, const ContactIkResult& refitted,
+                                double backoff);
+
 }  // namespace visgrab::grasp

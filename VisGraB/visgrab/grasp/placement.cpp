@@ -21,6 +21,7 @@ struct Candidate {
   int opening = 0;
   long errorMm = 0;
   int moves = 0;
+  int placement = 0;  // index of its (solution, roll, back-off) among the refitted bases
   ContactIkResult ik;
 
   auto key() const { return std::tie(errorMm, moves, solution, roll, backoff, opening); }
@@ -91,6 +92,7 @@ Placement placeContactGrasp(const HandGraspSetup& setup,
   const int nSolutions =
       std::min(static_cast<int>(solutions.size()), std::max(1, options.maxSolutions));
   std::vector<Candidate> candidates;
+  int placements = 0;
   for (int s = 0; s < nSolutions; ++s) {
     const ContactIkResult& base = solutions[static_cast<std::size_t>(s)];
     if (!base.valid) continue;
@@ -106,6 +108,7 @@ Placement placeContactGrasp(const HandGraspSetup& setup,
             (r == 0 && b == 0) ? base
                                : refitContactIk(setup, contacts, approach, base, X, ik.backoff);
         if (!fitted.valid || fitted.positionError > limit + 1e-12) continue;
+        const int placement = placements++;
         for (int o = 0; o < static_cast<int>(options.extraOpenings.size()); ++o) {
           Candidate c;
           c.solution = s;
@@ -113,6 +116,7 @@ Placement placeContactGrasp(const HandGraspSetup& setup,
           c.backoff = b;
           c.opening = o;
           c.moves = rollMoves(r) + b + o;
+          c.placement = placement;
           if (c.moves == 0 && s == 0) continue;  // the IK's own choice, tested above
           c.errorMm = static_cast<long>(std::ceil(fitted.positionError * 1e3 - 1e-9));
           c.ik = fitted;
@@ -135,12 +139,20 @@ Placement placeContactGrasp(const HandGraspSetup& setup,
     out.approachBackoff = options.approachBackoffs[static_cast<std::size_t>(c.backoff)];
     out.extraOpening = options.extraOpenings[static_cast<std::size_t>(c.opening)];
   };
+  // The first opening tested of a base placement refits its fingers; the others reuse them.
+  std::vector<const ContactIkResult*> opened(static_cast<std::size_t>(placements), nullptr);
   for (Candidate& c : candidates) {
     if (c.opening > 0) {
       // Same base and fingers at the contacts; only q_open is solved again.
-      c.ik =
-          refitContactIk(setup, contacts, approach, c.ik, c.ik.X_W_base,
-                         ik.backoff + options.extraOpenings[static_cast<std::size_t>(c.opening)]);
+      const double backoff =
+          ik.backoff + options.extraOpenings[static_cast<std::size_t>(c.opening)];
+      const ContactIkResult*& first = opened[static_cast<std::size_t>(c.placement)];
+      if (first == nullptr) {
+        c.ik = refitContactIk(setup, contacts, approach, c.ik, c.ik.X_W_base, backoff);
+        first = &c.ik;
+      } else {
+        c.ik = reopenContactIk(setup, contacts, approach, *first, backoff);
+      }
     }
     const rwsim::simulator::PlacementCheck check = test(c.ik.parameters());
     ++out.tests;

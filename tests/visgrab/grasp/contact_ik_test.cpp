@@ -182,4 +182,28 @@ TEST(ContactIk, DeterministicAcrossThreads) {
   EXPECT_TRUE(sameBytes(t2.get(), first));
 }
 
+// reopenContactIk solves only q_open again: for each back-off it gives the very doubles of a
+// full refitContactIk from the same solution and base (the placement search relies on it).
+TEST(ContactIk, ReopenEqualsRefitWithTheOtherBackoff) {
+  const std::vector<Pad> pads(std::begin(kSdhPads), std::end(kSdhPads));
+  const Transform3D X = pose(0.4, kPi - 0.2, 0.1, 0.05, -0.02, 0.25);
+  const auto contacts = contactsByFk(sdh(), X, makeQ({0.1, 0.6, 0.5, 0.2, 0.3, 0.4, 0.2}), pads);
+  const Vector3D a = X.linear().col(2);
+  const auto solution = solveContactIk(sdh(), contacts, a);
+  ASSERT_TRUE(solution.valid) << solution.reason;
+  Transform3D moved = solution.X_W_base;
+  moved.translation() -= 0.01 * a;  // the fingers must move to reach again
+  const auto first = visgrab::grasp::refitContactIk(sdh(), contacts, a, solution, moved, 0.02);
+  EXPECT_FALSE(first.qContact.isApprox(solution.qContact, 1e-6));
+  for (const double backoff : {0.03, 0.05, 0.07}) {
+    const auto refit = visgrab::grasp::refitContactIk(sdh(), contacts, a, solution, moved, backoff);
+    const auto reopened = visgrab::grasp::reopenContactIk(sdh(), contacts, a, first, backoff);
+    EXPECT_TRUE(sameBytes(reopened, refit)) << backoff;
+    EXPECT_EQ(reopened.qContact, refit.qContact);
+    EXPECT_EQ(reopened.positionError, refit.positionError);
+    EXPECT_EQ(reopened.reason, refit.reason);
+    EXPECT_FALSE(reopened.qOpen.isApprox(first.qOpen, 1e-6)) << backoff;  // opened further
+  }
+}
+
 }  // namespace
