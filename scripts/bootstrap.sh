@@ -2,16 +2,19 @@
 # VisGraB set-up on Debian 12: install the Debian packages, build, then either run the main job
 # or run all tests.
 #
-#   scripts/bootstrap.sh run     install, build and run the main job: `visgrab benchmark` with the
+#   scripts/bootstrap.sh run     install, build the `visgrab` program only (and the libraries it
+#                                links) and run the main job: `visgrab benchmark` with the
 #                                baseline method (database if absent, grasps, trials, report)
 #   scripts/bootstrap.sh test    install, build (warnings as errors) and run every test, plus the
 #                                malformed-input suites again under AddressSanitizer+UBSan, then
 #                                the fuzz stage (scripts/fuzz.sh: every libFuzzer harness for a
 #                                bounded time, clang build in build-fuzz; docs/fuzzing.md)
 #
-# The test builds keep CI fast (docs/performance.md, "CI time"): unity batches and the tests'
-# precompiled header (both on by default), line-table debug info only (-g1), and in the
-# sanitizer build just the targets the "sanitize"-labelled suites need.
+# Both commands configure the build directory alike, so `test` after `run` in the same clone
+# builds only what `run` left out (tests, benchmarks, the viewer). The test builds keep CI fast
+# (docs/performance.md, "CI time"): unity batches and the tests' precompiled header (both on by
+# default), line-table debug info only (-g1), and in the sanitizer build just the targets the
+# "sanitize"-labelled suites need.
 #
 # Environment: BUILD_DIR (default build), JOBS (default: number of cores), VISGRAB_DATABASE
 # (the main job's scene database, generated there when absent, default database/),
@@ -55,21 +58,26 @@ install_packages() {
   DEBIAN_FRONTEND=noninteractive "${sudo[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
 }
 
+# The main build's configuration, the same for both commands (`test` then completes `run`'s
+# build instead of compiling everything again with other flags).
+main_build_flags=(-DCMAKE_BUILD_TYPE=RelWithDebInfo -DVISGRAB_WERROR=ON -DVISGRAB_LINE_DEBUG_INFO=ON)
+
+# configure_and_build DIR TARGET|all CMAKE_ARGS...
 configure_and_build() {
-  local dir=$1
-  shift
+  local dir=$1 target=$2
+  shift 2
   echo "== configuring $dir"
   cmake -S . -B "$dir" -G Ninja "$@"
-  echo "== building $dir with $jobs jobs"
-  cmake --build "$dir" --parallel "$jobs"
+  echo "== building $target in $dir with $jobs jobs"
+  cmake --build "$dir" --parallel "$jobs" --target "$target"
 }
 
 install_packages
 
 if [[ "$mode" == run ]]; then
   # RelWithDebInfo (-O2), as the test build: one build serves both commands, and GCC 12's -O3
-  # false-positive warnings stay out of the way.
-  configure_and_build "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo
+  # false-positive warnings stay out of the way. Only the program the main job runs.
+  configure_and_build "$build" visgrab "${main_build_flags[@]}"
   db=${VISGRAB_DATABASE:-database}
   out=${VISGRAB_RESULTS:-benchmark}
   echo "== main job: visgrab benchmark, baseline method, database $db, output $out (resumable)"
@@ -79,8 +87,7 @@ if [[ "$mode" == run ]]; then
 fi
 
 scripts/check-format.sh
-configure_and_build "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DVISGRAB_WERROR=ON \
-  -DVISGRAB_LINE_DEBUG_INFO=ON
+configure_and_build "$build" all "${main_build_flags[@]}"
 echo "== running all tests"
 (cd "$build" && ctest --output-on-failure --parallel "$jobs")
 

@@ -14,7 +14,9 @@
 #include "progress_reporter.hpp"
 #include "rw/common/diagnostic.hpp"
 #include "rw/common/stop_signals.hpp"
+#include "stage_times.hpp"
 #include "visgrab/analysis/report.hpp"
+#include "visgrab/database/atomic_file.hpp"
 #include "visgrab/database/scene_filter.hpp"
 #include "visgrab/database/scene_set.hpp"
 #include "visgrab/generator/generator.hpp"
@@ -125,9 +127,10 @@ int runAnalyze(const Arguments& a) {
 }
 
 // Generates the database at `dir` (the scenes `filter` selects) unless its index exists.
-void ensureDatabase(const fs::path& dir, const std::string& filter, int threads,
-                    const fs::path& data, bool quiet) {
-  if (fs::exists(dir / "index.xml")) return;
+// Returns what it did, for the stage times.
+std::string ensureDatabase(const fs::path& dir, const std::string& filter, int threads,
+                           const fs::path& data, bool quiet) {
+  if (fs::exists(dir / "index.xml")) return "present";
   std::cerr << "visgrab benchmark: no database at " << dir.string() << "; generating it\n";
   database::SceneFilter parsed;
   try {
@@ -156,6 +159,7 @@ void ensureDatabase(const fs::path& dir, const std::string& filter, int threads,
   reporter.reset();
   for (const auto& f : report.failures) std::cerr << "failed: " << f << "\n";
   if (!report.failures.empty()) throw std::runtime_error("the database could not be generated");
+  return std::to_string(report.generated) + " scenes generated";
 }
 
 int runBenchmarkCommand(const Arguments& a) {
@@ -165,13 +169,16 @@ int runBenchmarkCommand(const Arguments& a) {
   const int threads = threadsOption(a);
   const bool quiet = a.flag("quiet");
   const std::string scenes = scenesFilter(a);
+  StageTimes times;
+  times.start("database");
   try {
-    ensureDatabase(db, scenes, threads, data, quiet);
+    times.stop(ensureDatabase(db, scenes, threads, data, quiet));
   } catch (const rw::common::StopRequested& e) {
     return stoppedBySignal(e, "benchmark");
   }
   std::vector<fs::path> graspSources;
   for (const auto& g : a.values("grasps")) graspSources.emplace_back(g);
+  times.start("baseline");
   if (graspSources.empty()) {
     // No method given: the baseline's grasps, made once (an existing file is complete: it is
     // written atomically) and reused by --resume.
@@ -179,9 +186,14 @@ int runBenchmarkCommand(const Arguments& a) {
     if (!fs::exists(grasps) || !a.flag("resume")) {
       if (!quiet)
         std::cerr << "visgrab benchmark: baseline grasps into " << grasps.string() << "\n";
-      writeBaselineGrasps(db, scenes, grasps, threads, quiet);
+      const int n = writeBaselineGrasps(db, scenes, grasps, threads, quiet);
+      times.stop(std::to_string(n) + " grasps");
+    } else {
+      times.stop("reused " + grasps.string());
     }
     graspSources = {grasps};
+  } else {
+    times.stop("not run (--grasps)");
   }
   runner::RunOptions options;
   options.database = db;
@@ -191,16 +203,25 @@ int runBenchmarkCommand(const Arguments& a) {
   options.scenes = scenes;
   options.threads = threads;
   options.resume = a.flag("resume");
+  times.start("trials");
   const auto done = runStoppable(options, quiet, "benchmark");
   if (!done) return rw::common::stopExitCode(rw::common::stopSignal());
   const runner::RunSummary& summary = *done;
+  times.stop(std::to_string(summary.trials) + " trials run, " + std::to_string(summary.resumed) +
+             " resumed");
   for (const auto& d : summary.rejected) std::cerr << d.format() << "\n";
   std::cout << summary.trials << " trials run, " << summary.resumed << " resumed, "
             << summary.rejected.size() << " grasps rejected\n";
   const fs::path reportDir = fs::path(*out) / "report";
+  times.start("report");
   analysis::writeReport({results::readResults(options.out)}, reportDir, {},
                         pictureDrawer(a, threads, quiet));
+  times.stop(a.flag("no-pictures") ? "without pictures" : "with pictures");
   std::cout << "report in " << (reportDir / "report.html").string() << "\n";
+  // This invocation's stage times (a resumed run's earlier invocations are not in them).
+  const fs::path timesFile = fs::path(*out) / "stages.csv";
+  database::writeFileAtomically(timesFile, times.csv());
+  std::cout << times.table() << "stage times in " << timesFile.string() << "\n";
   return 0;
 }
 
@@ -233,7 +254,8 @@ void addRunCommands(CommandLine& cli) {
       nullptr, "benchmark",
       "Run and analyze in one: generate the database (default ./database) if it is missing, make "
       "the baseline's grasps (DIR/grasps/baseline.csv) unless --grasps gives a method's, run "
-      "them (DIR/results), write the report with its pictures (DIR/report/report.html).",
+      "them (DIR/results), write the report with its pictures (DIR/report/report.html); print "
+      "each stage's wall and CPU time at the end (also in DIR/stages.csv).",
       guarded(runBenchmarkCommand));
   benchmark.add_option("--out", "The folder to write (grasps/, results/, report/)")
       ->required()

@@ -2,7 +2,10 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "support/test_support.hpp"
 
@@ -74,6 +77,33 @@ TEST(DbCli, BenchmarkGeneratesTheDatabaseRunsTheGraspsAndWritesTheReport) {
   EXPECT_TRUE(std::filesystem::is_regular_file(dir.path() / "db/index.xml"));
   EXPECT_TRUE(std::filesystem::is_regular_file(dir.path() / "out/results/trials.csv"));
   EXPECT_TRUE(std::filesystem::is_regular_file(dir.path() / "out/report/report.html"));
+  // Each stage's time at the end, and in OUT/stages.csv.
+  EXPECT_NE(r.output.find("stage times (wall, process CPU):"), std::string::npos) << r.output;
+  std::ifstream csv(dir.path() / "out/stages.csv");
+  std::vector<std::string> stages;
+  std::vector<std::string> notes;
+  std::string line;
+  ASSERT_TRUE(std::getline(csv, line));
+  EXPECT_EQ(line, "stage,wall_s,cpu_s,note");
+  while (std::getline(csv, line)) {
+    std::istringstream fields(line);
+    std::string stage, wall, cpu, note;
+    std::getline(fields, stage, ',');
+    std::getline(fields, wall, ',');
+    std::getline(fields, cpu, ',');
+    std::getline(fields, note);
+    stages.push_back(stage);
+    notes.push_back(note);
+    EXPECT_GE(std::stod(wall), 0.0) << line;
+    EXPECT_GE(std::stod(cpu), 0.0) << line;
+    EXPECT_NE(r.output.find("  " + stage + " "), std::string::npos) << stage << "\n" << r.output;
+  }
+  EXPECT_EQ(stages,
+            (std::vector<std::string>{"database", "baseline", "trials", "report", "total"}));
+  ASSERT_EQ(notes.size(), 5u);
+  EXPECT_EQ(notes[0], "1 scenes generated");
+  EXPECT_EQ(notes[1], "not run (--grasps)");
+  EXPECT_EQ(notes[2], "\"1 trials run, 0 resumed\"");
 }
 
 TEST(DbCli, BadArgumentsAreUsageErrors) {

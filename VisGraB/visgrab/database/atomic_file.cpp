@@ -73,14 +73,20 @@ void writeFileAtomically(const fs::path& file, std::string_view bytes) {
   }
 }
 
-void writeImageAtomically(const fs::path& file, const cv::Mat& image) {
+void writeImageAtomically(const fs::path& file, const cv::Mat& image, PngCompression png) {
   std::vector<uchar> encoded;
   bool ok = false;
   try {
-    // PNG at zlib's best compression: the database's images are written once and read often.
     const std::string ext = file.extension().string();
     std::vector<int> params;
-    if (ext == ".png" || ext == ".PNG") params = {cv::IMWRITE_PNG_COMPRESSION, 9};
+    if (ext == ".png" || ext == ".PNG") {
+      // OpenCV resets the strategy when it reads the level: the strategy must come after it.
+      params = {cv::IMWRITE_PNG_COMPRESSION, 9};
+      if (png == PngCompression::kHuffmanOnly) {
+        params.insert(params.end(),
+                      {cv::IMWRITE_PNG_STRATEGY, cv::IMWRITE_PNG_STRATEGY_HUFFMAN_ONLY});
+      }
+    }
     ok = !image.empty() && cv::imencode(ext, image, encoded, params);
   } catch (const cv::Exception& e) {
     fail(file, "the image cannot be encoded: " + e.msg);

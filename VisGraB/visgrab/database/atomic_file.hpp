@@ -15,8 +15,20 @@ namespace visgrab::database {
 /// reason) if it cannot be written, std::runtime_error naming the file otherwise.
 void writeFileAtomically(const std::filesystem::path& file, std::string_view bytes);
 
+/// How writeImageAtomically compresses a PNG; both are lossless (the same decoded pixels).
+enum class PngCompression {
+  /// zlib level 9: the smallest file for drawings and clean renders.
+  kBest,
+  /// Huffman coding only, no string matching: for images with per-pixel sensor noise (the
+  /// database's stereo pairs), where matching finds next to nothing: about 4 times faster
+  /// than kBest and a few per cent smaller (docs/performance.md).
+  kHuffmanOnly,
+};
+
 /// Encodes `image` in the format given by `file`'s extension (.png, ...) and writes it with
-/// writeFileAtomically. @throws std::runtime_error if it cannot be encoded or written.
-void writeImageAtomically(const std::filesystem::path& file, const cv::Mat& image);
+/// writeFileAtomically; a PNG as `png` says. @throws std::runtime_error if it cannot be
+/// encoded or written.
+void writeImageAtomically(const std::filesystem::path& file, const cv::Mat& image,
+                          PngCompression png = PngCompression::kBest);
 
 }  // namespace visgrab::database

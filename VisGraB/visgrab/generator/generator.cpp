@@ -128,7 +128,9 @@ class SceneRenderer {
     fill.direction_W = Vector3D(-0.6, 0.2, -0.7);
     fill.colour = Eigen::Vector3f(0.2f, 0.21f, 0.23f);
     drawn.lighting.lights = {key, fill};
-    return renderer_.render(drawn, camera);
+    render::RenderOptions options;
+    options.depthAndIds = false;  // the database keeps the colour images only
+    return renderer_.render(drawn, camera, options);
   }
 
  private:
@@ -241,7 +243,9 @@ database::SceneRecord makeScene(const database::SceneConditions& scene, const As
     render::RenderResult image = renderer.render(scene, settled, *camera);
     Random noise(options.seed, record.id + "|" + *file);
     addSensorEffects(image.colour, options.rig, noise);
-    database::writeImageAtomically(writer.path(*file), toBgr(image.colour));
+    // Sensor noise leaves string matching nothing to find: Huffman coding only.
+    database::writeImageAtomically(writer.path(*file), toBgr(image.colour),
+                                   database::PngCompression::kHuffmanOnly);
   }
   database::writeCalibration(writer.path(record.files.calibration), calibration);
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {

@@ -65,6 +65,12 @@ struct ShadowMap {
   int size = 0;
   GLuint framebuffer = 0;
   GLuint texture = 0;
+  /// What the map holds: each item's mesh index and model matrix, the light's direction and
+  /// the size (empty: nothing). The map does not depend on the camera, so a second render of
+  /// the same scene (the other image of a stereo pair) reuses it.
+  std::vector<double> key;
+  /// The world-to-shadow-texture matrix of `key`.
+  Eigen::Matrix4d matrix = Eigen::Matrix4d::Identity();
 };
 
 Eigen::Matrix4f toFloat(const Eigen::Matrix4d& m) { return m.cast<float>(); }
@@ -409,6 +415,7 @@ void GlRenderer::State::ensureShadowMap(int size) {
   glDeleteFramebuffers(1, &shadowMap.framebuffer);
   glDeleteTextures(1, &shadowMap.texture);
   shadowMap.size = size;
+  shadowMap.key.clear();
   glGenTextures(1, &shadowMap.texture);
   glBindTexture(GL_TEXTURE_2D, shadowMap.texture);
   glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT32F, size, size, 0, GL_DEPTH_COMPONENT, GL_FLOAT,
@@ -432,6 +439,17 @@ void GlRenderer::State::ensureShadowMap(int size) {
 Eigen::Matrix4d GlRenderer::State::renderShadowMap(const Scene& scene, const Light& light,
                                                    int size) {
   ensureShadowMap(size);
+  std::vector<double> key;
+  key.reserve(scene.items.size() * 17 + 4);
+  for (const SceneItem& item : scene.items) {
+    key.push_back(static_cast<double>(item.mesh.index));
+    const Eigen::Matrix4d m = modelMatrix(item);
+    key.insert(key.end(), m.data(), m.data() + m.size());
+  }
+  key.insert(key.end(), light.direction_W.data(), light.direction_W.data() + 3);
+  key.push_back(size);
+  if (key == shadowMap.key) return shadowMap.matrix;
+  shadowMap.key.clear();  // until the new map is drawn
   // Bounding sphere of the scene, from the items' spheres.
   Eigen::AlignedBox3d box;
   for (const SceneItem& item : scene.items) {
@@ -485,7 +503,9 @@ Eigen::Matrix4d GlRenderer::State::renderShadowMap(const Scene& scene, const Lig
   Eigen::Matrix4d bias = Eigen::Matrix4d::Identity();
   bias.topLeftCorner<3, 3>() *= 0.5;
   bias.topRightCorner<3, 1>().setConstant(0.5);
-  return bias * clipFromWorld;
+  shadowMap.key = std::move(key);
+  shadowMap.matrix = bias * clipFromWorld;
+  return shadowMap.matrix;
 }
 
 void GlRenderer::State::drawShaded(const Scene& scene, const PinholeCamera& camera,
@@ -621,7 +641,7 @@ RenderResult GlRenderer::render(const Scene& scene, const PinholeCamera& camera,
   const int h = camera.height;
   s.ensureTargets(w, h, samples);
   s.drawShaded(scene, camera, options, s.targets.colourFramebuffer);
-  s.drawDepthAndIds(scene, camera);
+  if (options.depthAndIds) s.drawDepthAndIds(scene, camera);
 
   glBindFramebuffer(GL_READ_FRAMEBUFFER, s.targets.colourFramebuffer);
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, s.targets.resolveFramebuffer);
@@ -645,6 +665,10 @@ RenderResult GlRenderer::render(const Scene& scene, const PinholeCamera& camera,
                 &result.colour.pixels[row * width * 3]);
   }
 
+  if (!options.depthAndIds) {
+    checkGl("GlRenderer: reading the colour image back");
+    return result;
+  }
   std::vector<float> z(width * height);
   std::vector<std::uint16_t> ids(width * height);
   glBindFramebuffer(GL_READ_FRAMEBUFFER, s.targets.idFramebuffer);

@@ -18,6 +18,10 @@ struct RenderOptions {
   int colourSamples = 4;
   /// Side of the square shadow map in texels (used when a light casts shadows).
   int shadowMapSize = 2048;
+  /// False: render() draws and reads back the colour image only (RenderResult::depth and
+  /// instanceIds stay empty), for callers that need no depth or ids (the database's stereo
+  /// pairs). The colour image is the same either way.
+  bool depthAndIds = true;
 };
 
 /// Draws scenes of uploaded meshes with OpenGL 3.3 core. Needs only a current context: an
@@ -50,8 +54,9 @@ class GlRenderer {
   /// Number of uploaded meshes.
   std::size_t meshCount() const;
 
-  /// Renders colour (anti-aliased), depth and instance ids into framebuffers of its own and
-  /// reads them back. Restores the framebuffer bindings it found.
+  /// Renders colour (anti-aliased), depth and instance ids (the latter two unless
+  /// options.depthAndIds is false) into framebuffers of its own and reads them back. Restores the
+  /// framebuffer bindings it found.
   /// @throws std::invalid_argument for an invalid camera, an unknown mesh handle or too many
   ///   lights; std::runtime_error on an OpenGL error.
   RenderResult render(const Scene& scene, const PinholeCamera& camera,

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <iterator>
 #include <opencv2/core.hpp>
 #include <string>
 
@@ -93,6 +94,39 @@ TEST_F(DatabaseTest, ImagesCalibrationAndGroundTruth) {
       truth[1].X_WO,
       rw::math::rpyTransform(Eigen::Vector3d(2.8, 0, 0), Eigen::Vector3d(0.14, 0.02, 0.03)),
       1e-9);  // the index holds 1e-9 degree
+}
+
+std::string fileBytes(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+TEST(WriteImageAtomically, HuffmanOnlyPngKeepsEveryPixel) {
+  test::TempDir dir;
+  DatabaseWriter writer(dir.path(), 7, "test");
+  const SceneConditions c = SceneConditions::single(Texture::kPlain, 5, 1);
+  const SceneFiles files = writer.filesFor(sceneIdOf(c));
+  // Sensor-like noise over a gradient: every pixel its own value.
+  cv::Mat image(48, 64, CV_8UC3);
+  cv::RNG rng(12345);
+  rng.fill(image, cv::RNG::NORMAL, cv::Scalar::all(128), cv::Scalar::all(20));
+  writeImageAtomically(writer.path(files.left), image, PngCompression::kHuffmanOnly);
+  writeImageAtomically(writer.path(files.right), image, PngCompression::kBest);
+  // Another encoding than level 9's (the option reached the encoder) ...
+  EXPECT_NE(fileBytes(writer.path(files.left)), fileBytes(writer.path(files.right)));
+  writeCalibration(
+      writer.path(files.calibration),
+      idealRectifiedRig(10, 10, 31.5, 23.5, 0.1, 64, 48, rw::math::Transform3D::Identity()));
+  writeFileAtomically(writer.path(files.workcell), "<WorkCell name=\"s\"/>\n");
+  writeFileAtomically(writer.path(files.dynamicWorkcell), "<DynamicWorkcell/>\n");
+  writer.addScene({sceneIdOf(c), c, files, {{5, rw::math::Transform3D::Identity()}}});
+  // ... and the same pixels through the database's reader.
+  const Database db = Database::open(dir.path());
+  for (const cv::Mat& read : {db.leftImage(sceneIdOf(c)), db.rightImage(sceneIdOf(c))}) {
+    ASSERT_EQ(read.size(), image.size());
+    ASSERT_EQ(read.type(), image.type());
+    EXPECT_EQ(cv::norm(read, image, cv::NORM_INF), 0.0);
+  }
 }
 
 TEST_F(DatabaseTest, UnknownIdSuggestsClosestIds) {

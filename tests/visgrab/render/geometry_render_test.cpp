@@ -228,6 +228,88 @@ TEST(GeometryRenderTest, NearerObjectWinsWhereTheyOverlap) {
   EXPECT_GT(farOnly, 1000);
 }
 
+TEST(GeometryRenderTest, ColourOnlyRenderGivesTheSameColourAndNoDepthOrIds) {
+  OffscreenRenderer renderer;
+  const MeshHandle cube = renderer.add(makeBox(Eigen::Vector3f(0.15f, 0.1f, 0.2f)));
+  const PinholeCamera camera = test::testCamera();
+  Scene scene = sceneWith({{cube, pose(0.1, 0.2, 0.3, {0.0, 0.0, 0.0}), 1},
+                           {cube, pose(-0.2, 0.1, 0.5, {0.2, 0.1, 0.05}), 2}});
+  Light key;
+  key.direction_W = rw::math::Vector3D(0.35, 0.45, -1.0);
+  key.castsShadows = true;
+  scene.lighting.lights = {key};
+  const RenderResult full = renderer.render(scene, camera);
+  RenderOptions colourOnly;
+  colourOnly.depthAndIds = false;
+  const RenderResult colour = renderer.render(scene, camera, colourOnly);
+  EXPECT_TRUE(colour.depth.values.empty());
+  EXPECT_TRUE(colour.instanceIds.values.empty());
+  ASSERT_EQ(colour.colour.width, camera.width);
+  ASSERT_EQ(colour.colour.height, camera.height);
+  // Not a blank image: the cubes cover part of it, in other colours than the background.
+  std::size_t covered = 0;
+  for (const std::uint16_t id : full.instanceIds.values) covered += id != 0 ? 1 : 0;
+  EXPECT_GT(covered, full.instanceIds.values.size() / 20);
+  const auto& px = full.colour.pixels;
+  std::size_t shaded = 0;
+  for (std::size_t i = 0; i + 2 < px.size(); i += 3) {
+    shaded += px[i] != px[0] || px[i + 1] != px[1] || px[i + 2] != px[2] ? 1 : 0;
+  }
+  EXPECT_GT(shaded, px.size() / 3 / 20);
+  EXPECT_EQ(colour.colour.pixels, full.colour.pixels);
+  // And a full render after it is whole again.
+  const RenderResult again = renderer.render(scene, camera);
+  EXPECT_EQ(again.instanceIds.values, full.instanceIds.values);
+  EXPECT_EQ(again.colour.pixels, full.colour.pixels);
+}
+
+// A box over a ground plate, lit from above at an angle: the box casts a shadow on the plate.
+Scene shadowScene(MeshHandle plate, MeshHandle box, const Eigen::Vector3d& boxAt,
+                  const Eigen::Vector3d& lightDirection) {
+  Scene scene = sceneWith(
+      {{plate, pose(0.0, 0.0, 0.0, {0.0, 0.0, -0.01}), 1}, {box, pose(0.0, 0.0, 0.4, boxAt), 2}});
+  Light key;
+  key.direction_W = lightDirection;
+  key.castsShadows = true;
+  scene.lighting.lights = {key};
+  return scene;
+}
+
+TEST(GeometryRenderTest, ShadowMapIsReusedOnlyForTheSameSceneAndLight) {
+  OffscreenRenderer renderer;
+  const MeshHandle plate = renderer.add(makeBox(Eigen::Vector3f(0.6f, 0.6f, 0.01f)));
+  const MeshHandle box = renderer.add(makeBox(Eigen::Vector3f(0.08f, 0.08f, 0.15f)));
+  const PinholeCamera camera = test::testCamera();
+  PinholeCamera other = camera;
+  other.X_WC = test::lookAt({0.5, -1.6, 1.3}, {0.0, 0.0, 0.0});
+  const Eigen::Vector3d light(0.4, 0.3, -1.0);
+  const Scene first = shadowScene(plate, box, {0.0, 0.0, 0.15}, light);
+  const Scene moved = shadowScene(plate, box, {0.12, -0.05, 0.15}, light);
+  const Scene relit = shadowScene(plate, box, {0.0, 0.0, 0.15}, {-0.5, 0.2, -1.0});
+  RenderOptions colourOnly;
+  colourOnly.depthAndIds = false;
+  // One renderer draws the scene from two cameras (the second reuses the shadow map), then
+  // the box moved, then the light turned; each must match a renderer that draws it first.
+  const auto a = renderer.render(first, camera, colourOnly).colour.pixels;
+  const auto b = renderer.render(first, other, colourOnly).colour.pixels;
+  const auto c = renderer.render(moved, other, colourOnly).colour.pixels;
+  const auto d = renderer.render(relit, other, colourOnly).colour.pixels;
+  const auto fresh = [&](const Scene& scene, const PinholeCamera& cam) {
+    OffscreenRenderer own;
+    own.add(makeBox(Eigen::Vector3f(0.6f, 0.6f, 0.01f)));
+    own.add(makeBox(Eigen::Vector3f(0.08f, 0.08f, 0.15f)));
+    return own.render(scene, cam, colourOnly).colour.pixels;
+  };
+  EXPECT_EQ(a, fresh(first, camera));
+  EXPECT_EQ(b, fresh(first, other));
+  EXPECT_EQ(c, fresh(moved, other));
+  EXPECT_EQ(d, fresh(relit, other));
+  // The three scenes look different from the second camera (the shadow moved with the box and
+  // with the light), so a stale shadow map could not match.
+  EXPECT_NE(b, c);
+  EXPECT_NE(b, d);
+}
+
 TEST(GeometryRenderTest, RejectsBadInput) {
   OffscreenRenderer renderer;
   PinholeCamera camera = test::testCamera();
