@@ -10,51 +10,27 @@
 #include <algorithm>
 #include <cstdio>
 #include <map>
-#include <numbers>
 #include <string>
 #include <vector>
 
 #include "mujoco/mjcf_export.hpp"
 #include "mujoco/mujoco_grasp_trial.hpp"
-#include "rw/math/rpy.hpp"
-#include "rwsim/loaders/dynamic_workcell_loader.hpp"
 #include "rwsim/simulator/grasp_trial.hpp"
+#include "sdh_box_trial.hpp"
 
 namespace {
 
-using rw::math::Q;
-using rw::math::Vector3D;
 namespace sim = rwsim::simulator;
 
 const char* const kProjectWithGws = "BM_Compare_ProjectTrial";
 const char* const kProjectWithoutGws = "BM_Compare_ProjectTrialWithoutGws";
 const char* const kMujoco = "BM_Compare_MujocoTrial";
 
-const rwsim::dynamics::DynamicWorkCell& scene() {
-  static const auto dwc = rwsim::loaders::loadDynamicWorkCell(
-      std::string(VISGRAB_SOURCE_DIR) + "/tests/rwsim/simulator/data/sdh_box.dwc.xml");
-  return *dwc;
-}
-
-// BM_Sim_SdhGraspTrial's grasp (benchmarks/simulator_benchmark.cpp): SDH_CYL over the box centre
-// shifted by x along the world x axis.
-sim::GraspParameters cylinderGrasp(double x) {
-  sim::GraspParameters g;
-  g.X_W_tcp = rw::math::rpyTransform(Vector3D(0, std::numbers::pi, 0), Vector3D(x, 0, 0.05));
-  g.qOpen = Q(7);
-  g.qOpen << -1.048, 0.174, 0.0, -1.048, 0.174, -1.048, 0.174;
-  g.qClosed = Q(7);
-  g.qClosed << 0.0, 0.349, 0.0, 0.0, 0.349, 0.0, 0.349;
-  g.tauMax = Q(7);
-  g.tauMax << 2.1, 1.4, 2.1, 1.05, 0.7, 1.05, 0.7;
-  return g;
-}
-
 sim::GraspTrialSetup trialSetup(bool computeGws) {
   sim::GraspTrialSetup setup;
   setup.hand = "SchunkHand";
   setup.tcpFrame = "SchunkHand.SDHTCP";
-  setup.simulator = sim::optionsFromEngineProperties(scene());
+  setup.simulator = sim::optionsFromEngineProperties(visgrab::bench::sdhBoxScene());
   setup.computeGws = computeGws;
   return setup;
 }
@@ -72,14 +48,15 @@ void noteOutcome(const char* name, sim::GraspOutcome outcome, const std::string&
 }
 
 void projectTrials(benchmark::State& state, bool computeGws) {
-  const auto& dwc = scene();
+  const auto& dwc = visgrab::bench::sdhBoxScene();
   const sim::GraspTrial trial(dwc, trialSetup(computeGws));
   const auto initial = dwc.workcell().defaultState();
   std::int64_t trials = 0;
   double simulated = 0.0;
   int stable = 0;
   for (auto _ : state) {
-    const auto result = trial.run(cylinderGrasp(0.002 * static_cast<double>(trials % 3)), initial);
+    const auto result = trial.run(
+        visgrab::bench::sdhCylinderGrasp(0.002 * static_cast<double>(trials % 3)), initial);
     simulated += result.simulatedTime;
     stable += result.outcome == sim::GraspOutcome::kStable ? 1 : 0;
     noteOutcome(computeGws ? kProjectWithGws : kProjectWithoutGws, result.outcome, result.detail);
@@ -95,7 +72,7 @@ void BM_Compare_ProjectTrial(benchmark::State& state) { projectTrials(state, tru
 void BM_Compare_ProjectTrialWithoutGws(benchmark::State& state) { projectTrials(state, false); }
 
 void BM_Compare_MujocoTrial(benchmark::State& state) {
-  const auto& dwc = scene();
+  const auto& dwc = visgrab::bench::sdhBoxScene();
   static const visgrab::mujoco::MjcfModel model = visgrab::mujoco::exportMjcf(dwc);
   visgrab::mujoco::MujocoGraspTrial trial(dwc, model, trialSetup(false));
   const auto initial = dwc.workcell().defaultState();
@@ -106,7 +83,8 @@ void BM_Compare_MujocoTrial(benchmark::State& state) {
   long rows = 0;
   long iterations = 0;
   for (auto _ : state) {
-    const auto result = trial.run(cylinderGrasp(0.002 * static_cast<double>(trials % 3)), initial);
+    const auto result = trial.run(
+        visgrab::bench::sdhCylinderGrasp(0.002 * static_cast<double>(trials % 3)), initial);
     simulated += result.simulatedTime;
     stable += result.outcome == sim::GraspOutcome::kStable ? 1 : 0;
     steps += result.steps;

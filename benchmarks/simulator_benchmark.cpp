@@ -5,43 +5,21 @@
 
 #include <algorithm>
 #include <memory>
-#include <numbers>
 
 #include "rw/kinematics/frame_tree.hpp"
-#include "rw/math/rpy.hpp"
 #include "rwsim/control/pd_controller.hpp"
-#include "rwsim/loaders/dynamic_workcell_loader.hpp"
 #include "rwsim/simulator/grasp_trial.hpp"
 #include "rwsim/simulator/simulator.hpp"
+#include "sdh_box_trial.hpp"
 
 namespace {
 
-using rw::math::Q;
 using rw::math::Transform3D;
-using rw::math::Vector3D;
 namespace sim = rwsim::simulator;
-
-const rwsim::dynamics::DynamicWorkCell& scene() {
-  static const auto dwc = rwsim::loaders::loadDynamicWorkCell(
-      std::string(VISGRAB_SOURCE_DIR) + "/tests/rwsim/simulator/data/sdh_box.dwc.xml");
-  return *dwc;
-}
-
-sim::GraspParameters cylinderGrasp(double x) {
-  sim::GraspParameters g;
-  g.X_W_tcp = rw::math::rpyTransform(Vector3D(0, std::numbers::pi, 0), Vector3D(x, 0, 0.05));
-  g.qOpen = Q(7);
-  g.qOpen << -1.048, 0.174, 0.0, -1.048, 0.174, -1.048, 0.174;
-  g.qClosed = Q(7);
-  g.qClosed << 0.0, 0.349, 0.0, 0.0, 0.349, 0.0, 0.349;
-  g.tauMax = Q(7);
-  g.tauMax << 2.1, 1.4, 2.1, 1.05, 0.7, 1.05, 0.7;
-  return g;
-}
 
 // The scene's state with the hand at qOpen and its SDHTCP at the grasp pose.
 rw::kinematics::State placedHand(const sim::GraspParameters& g) {
-  const auto& dwc = scene();
+  const auto& dwc = visgrab::bench::sdhBoxScene();
   const auto& tree = dwc.workcell().frames();
   const auto& hand = *dwc.device(dwc.findDevice("SchunkHand")).device;
   rw::kinematics::State state = dwc.workcell().defaultState();
@@ -56,9 +34,9 @@ rw::kinematics::State placedHand(const sim::GraspParameters& g) {
 }
 
 void BM_Sim_SdhStep(benchmark::State& state) {
-  const auto& dwc = scene();
+  const auto& dwc = visgrab::bench::sdhBoxScene();
   const auto hand = dwc.findDevice("SchunkHand");
-  const auto g = cylinderGrasp(0.0);
+  const auto g = visgrab::bench::sdhCylinderGrasp(0.0);
   const auto start = placedHand(g);
   sim::Simulator simulator(dwc, sim::optionsFromEngineProperties(dwc));
   const auto* pdParams = dwc.findController("GraspController");
@@ -91,7 +69,7 @@ void BM_Sim_SdhStep(benchmark::State& state) {
 BENCHMARK(BM_Sim_SdhStep)->Unit(benchmark::kMicrosecond);
 
 void runTrials(benchmark::State& state, bool computeGws) {
-  const auto& dwc = scene();
+  const auto& dwc = visgrab::bench::sdhBoxScene();
   sim::GraspTrialSetup setup;
   setup.hand = "SchunkHand";
   setup.tcpFrame = "SchunkHand.SDHTCP";
@@ -121,7 +99,8 @@ void runTrials(benchmark::State& state, bool computeGws) {
   int stable = 0;
   for (auto _ : state) {
     // Three poses a few millimetres apart so the runs are not all the same.
-    const auto result = trial.run(cylinderGrasp(0.002 * static_cast<double>(trials % 3)), initial);
+    const auto result = trial.run(
+        visgrab::bench::sdhCylinderGrasp(0.002 * static_cast<double>(trials % 3)), initial);
     simulated += result.simulatedTime;
     stable += result.outcome == sim::GraspOutcome::kStable ? 1 : 0;
     ++trials;

@@ -9,6 +9,7 @@
 #include <string>
 #include <utility>
 
+#include "rw/common/strings.hpp"
 #include "rw/geometry/geometry.hpp"
 #include "rw/kinematics/frame_tree.hpp"
 #include "rw/proximity/proximity_filter.hpp"
@@ -36,28 +37,7 @@ std::string num(double v) {
 std::string vec(const Vector3D& v) { return num(v.x()) + " " + num(v.y()) + " " + num(v.z()); }
 
 // MJCF attribute text: XML-escaped.
-std::string attr(const std::string& s) {
-  std::string out;
-  for (const char c : s) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
+std::string attr(const std::string& s) { return rw::common::escapeXml(s); }
 
 // pos="..." quat="..." of X (MuJoCo's quaternion order w x y z).
 std::string poseAttrs(const Transform3D& X) {
