@@ -42,42 +42,49 @@ BodyId idOf(std::size_t k) { return BodyId(k); }
 /// Pairs of body ids.
 using IdPairs = std::vector<std::pair<BodyId, BodyId>>;
 
-/// A floor (fixed, a Plane), a box resting on it (rigid), a kinematic sphere pusher touching
-/// the box's +x face, a fixed wall, and a rigid "dumbbell" of two boxes on two frames resting
-/// on the floor. The rule excludes the box against the wall.
-std::unique_ptr<DynamicWorkCell> scene() {
-  auto wc = std::make_unique<rw::models::WorkCell>("contacts");
-  auto& frames = wc->frames();
-  const auto world = rw::kinematics::FrameTree::kWorld;
-  const auto add = [&](const std::string& name, FrameId parent, FrameType type,
-                       const Transform3D& X) {
+/// Adds frames and their collision geometry to a workcell being built.
+struct FrameAdder {
+  rw::models::WorkCell& wc;
+
+  FrameId add(const std::string& name, FrameId parent, FrameType type, const Transform3D& X) const {
     FrameSpec spec;
     spec.name = name;
     spec.parent = parent;
     spec.type = type;
     spec.transform = X;
-    return frames.add(spec);
-  };
-  const auto geometry = [&](FrameId frame, std::shared_ptr<const Geometry> g,
-                            const Transform3D& X = Transform3D::Identity()) {
+    return wc.frames().add(spec);
+  }
+
+  void geometry(FrameId frame, std::shared_ptr<const Geometry> g,
+                const Transform3D& X = Transform3D::Identity()) const {
     rw::models::GeometryInstance instance;
     instance.name = "g";
     instance.geometry = std::move(g);
     instance.X_frame_geometry = X;
-    wc->objectOf(frame).collision.push_back(instance);
-  };
-  const FrameId floor = add("Floor", world, FrameType::kFixed, pose({0, 0, 0}));
-  geometry(floor, Geometry::plane());
-  const FrameId box = add("Box", world, FrameType::kMovable, pose({0, 0, 0.05 - kPen}, 0.3));
-  geometry(box, Geometry::box(0.1, 0.1, 0.1));
-  const FrameId pusher = add("Pusher", world, FrameType::kMovable, pose({0, 0, 0}));
-  geometry(pusher, Geometry::sphere(0.02), pose({0, 0, 0.05}));
-  const FrameId wall = add("Wall", world, FrameType::kFixed, pose({1, 0, 0.5}));
-  geometry(wall, Geometry::box(0.1, 2, 1));
-  const FrameId bell = add("Dumbbell", world, FrameType::kMovable, pose({0, 0.5, 0.02 - kPen}));
-  geometry(bell, Geometry::box(0.04, 0.04, 0.04), pose({-0.1, 0, 0}));
-  const FrameId end = add("Dumbbell.end", bell, FrameType::kFixed, pose({0.1, 0, 0}));
-  geometry(end, Geometry::box(0.04, 0.04, 0.04));
+    wc.objectOf(frame).collision.push_back(instance);
+  }
+};
+
+/// A floor (fixed, a Plane), a box resting on it (rigid), a kinematic sphere pusher touching
+/// the box's +x face, a fixed wall, and a rigid "dumbbell" of two boxes on two frames resting
+/// on the floor. The rule excludes the box against the wall.
+std::unique_ptr<DynamicWorkCell> scene() {
+  auto wc = std::make_unique<rw::models::WorkCell>("contacts");
+  const auto world = rw::kinematics::FrameTree::kWorld;
+  const FrameAdder adder{*wc};
+  const FrameId floor = adder.add("Floor", world, FrameType::kFixed, pose({0, 0, 0}));
+  adder.geometry(floor, Geometry::plane());
+  const FrameId box = adder.add("Box", world, FrameType::kMovable, pose({0, 0, 0.05 - kPen}, 0.3));
+  adder.geometry(box, Geometry::box(0.1, 0.1, 0.1));
+  const FrameId pusher = adder.add("Pusher", world, FrameType::kMovable, pose({0, 0, 0}));
+  adder.geometry(pusher, Geometry::sphere(0.02), pose({0, 0, 0.05}));
+  const FrameId wall = adder.add("Wall", world, FrameType::kFixed, pose({1, 0, 0.5}));
+  adder.geometry(wall, Geometry::box(0.1, 2, 1));
+  const FrameId bell =
+      adder.add("Dumbbell", world, FrameType::kMovable, pose({0, 0.5, 0.02 - kPen}));
+  adder.geometry(bell, Geometry::box(0.04, 0.04, 0.04), pose({-0.1, 0, 0}));
+  const FrameId end = adder.add("Dumbbell.end", bell, FrameType::kFixed, pose({0.1, 0, 0}));
+  adder.geometry(end, Geometry::box(0.04, 0.04, 0.04));
   wc->proximitySetup().rules.push_back({"Box", "Wall", false});
 
   auto dwc = std::make_unique<DynamicWorkCell>(std::move(wc));
@@ -288,45 +295,29 @@ std::unique_ptr<DynamicWorkCell> clutter() {
   auto wc = std::make_unique<rw::models::WorkCell>("clutter");
   auto& frames = wc->frames();
   const auto world = rw::kinematics::FrameTree::kWorld;
-  const auto add = [&](const std::string& name, FrameId parent, FrameType type,
-                       const Transform3D& X) {
-    FrameSpec spec;
-    spec.name = name;
-    spec.parent = parent;
-    spec.type = type;
-    spec.transform = X;
-    return frames.add(spec);
-  };
-  const auto geometry = [&](FrameId frame, std::shared_ptr<const Geometry> g,
-                            const Transform3D& X = Transform3D::Identity()) {
-    rw::models::GeometryInstance instance;
-    instance.name = "g";
-    instance.geometry = std::move(g);
-    instance.X_frame_geometry = X;
-    wc->objectOf(frame).collision.push_back(instance);
-  };
-  const FrameId table = add("Table", world, FrameType::kFixed, pose({0, 0, 0}));
-  geometry(table, Geometry::box(0.4, 0.4, 0.04), pose({0, 0, -0.02}));
-  const FrameId can = add("Can", world, FrameType::kMovable, pose({0, 0, 0}));
-  geometry(can, Geometry::cylinder(0.03, 0.08), pose({0, 0, 0.04}));
-  geometry(can, Geometry::frustum(0.03, 0.02, 0.02), pose({0, 0, 0.09}));
-  const FrameId brick = add("Brick", world, FrameType::kMovable, pose({0, 0, 0}));
-  geometry(brick, Geometry::box(0.08, 0.04, 0.03), pose({0, 0, 0.015}, 0.4));
-  geometry(brick, Geometry::sphere(0.015), pose({0.04, 0, 0.03}));
-  const FrameId cone = add("Cone", world, FrameType::kMovable, pose({0, 0, 0}));
-  geometry(cone, Geometry::cone(0.03, 0.05), pose({0, 0, 0.025}, 0.3, Vector3D::UnitX()));
-  const FrameId lshape = add("LShape", world, FrameType::kMovable, pose({0, 0, 0}));
+  const FrameAdder adder{*wc};
+  const FrameId table = adder.add("Table", world, FrameType::kFixed, pose({0, 0, 0}));
+  adder.geometry(table, Geometry::box(0.4, 0.4, 0.04), pose({0, 0, -0.02}));
+  const FrameId can = adder.add("Can", world, FrameType::kMovable, pose({0, 0, 0}));
+  adder.geometry(can, Geometry::cylinder(0.03, 0.08), pose({0, 0, 0.04}));
+  adder.geometry(can, Geometry::frustum(0.03, 0.02, 0.02), pose({0, 0, 0.09}));
+  const FrameId brick = adder.add("Brick", world, FrameType::kMovable, pose({0, 0, 0}));
+  adder.geometry(brick, Geometry::box(0.08, 0.04, 0.03), pose({0, 0, 0.015}, 0.4));
+  adder.geometry(brick, Geometry::sphere(0.015), pose({0.04, 0, 0.03}));
+  const FrameId cone = adder.add("Cone", world, FrameType::kMovable, pose({0, 0, 0}));
+  adder.geometry(cone, Geometry::cone(0.03, 0.05), pose({0, 0, 0.025}, 0.3, Vector3D::UnitX()));
+  const FrameId lshape = adder.add("LShape", world, FrameType::kMovable, pose({0, 0, 0}));
   const std::vector<Eigen::Vector2d> l = {{0, 0},       {0.06, 0},    {0.06, 0.03},
                                           {0.03, 0.03}, {0.03, 0.06}, {0, 0.06}};
-  geometry(lshape, test::meshGeometry(test::prism(l, 0, 0.03)));
-  const FrameId ball = add("Ball", world, FrameType::kMovable, pose({0, 0, 0}));
-  geometry(ball, test::meshGeometry(test::uvSphere(0.025, 16, 10)), pose({0, 0, 0.025}));
-  const FrameId ballTop = add("Ball.top", ball, FrameType::kFixed, pose({0, 0, 0.05}));
-  geometry(ballTop, Geometry::box(0.02, 0.02, 0.02));
-  const FrameId finger = add("Finger", world, FrameType::kMovable, pose({0, 0, 0}));
-  geometry(finger, Geometry::box(0.02, 0.02, 0.06), pose({0, 0, 0.03}));
-  geometry(finger, Geometry::cylinder(0.01, 0.02),
-           pose({0, 0, -0.01}, 0.5 * test::kPi, Vector3D::UnitX()));
+  adder.geometry(lshape, test::meshGeometry(test::prism(l, 0, 0.03)));
+  const FrameId ball = adder.add("Ball", world, FrameType::kMovable, pose({0, 0, 0}));
+  adder.geometry(ball, test::meshGeometry(test::uvSphere(0.025, 16, 10)), pose({0, 0, 0.025}));
+  const FrameId ballTop = adder.add("Ball.top", ball, FrameType::kFixed, pose({0, 0, 0.05}));
+  adder.geometry(ballTop, Geometry::box(0.02, 0.02, 0.02));
+  const FrameId finger = adder.add("Finger", world, FrameType::kMovable, pose({0, 0, 0}));
+  adder.geometry(finger, Geometry::box(0.02, 0.02, 0.06), pose({0, 0, 0.03}));
+  adder.geometry(finger, Geometry::cylinder(0.01, 0.02),
+                 pose({0, 0, -0.01}, 0.5 * test::kPi, Vector3D::UnitX()));
 
   auto dwc = std::make_unique<DynamicWorkCell>(std::move(wc));
   dwc->materials().addMaterial("Plastic");
