@@ -6,14 +6,15 @@
 
 #include <cstring>
 #include <memory>
+#include <numbers>
 #include <stdexcept>
 #include <string>
 
 #include "mujoco/mjcf_export.hpp"
 #include "mujoco/mujoco_grasp_trial.hpp"
 #include "rw/kinematics/frame_tree.hpp"
+#include "rw/math/rpy.hpp"
 #include "rwsim/loaders/dynamic_workcell_loader.hpp"
-#include "sdh_box_trial.hpp"
 #include "support/test_support.hpp"
 
 namespace {
@@ -23,7 +24,11 @@ using rw::math::Transform3D;
 using rw::math::Vector3D;
 using visgrab::mujoco::exportMjcf;
 
-const rwsim::dynamics::DynamicWorkCell& sdhBox() { return visgrab::bench::sdhBoxScene(); }
+const rwsim::dynamics::DynamicWorkCell& sdhBox() {
+  static const auto dwc = rwsim::loaders::loadDynamicWorkCell(
+      visgrab::test::sourceDir() / "tests/rwsim/simulator/data/sdh_box.dwc.xml");
+  return *dwc;
+}
 
 struct ModelDeleter {
   void operator()(mjModel* m) const { mj_deleteModel(m); }
@@ -244,7 +249,14 @@ TEST(MjcfExport, TheMujocoTrialHoldsTheBox) {
   setup.tcpFrame = "SchunkHand.SDHTCP";
   setup.computeGws = false;
   visgrab::mujoco::MujocoGraspTrial trial(dwc, model, setup);
-  const auto g = visgrab::bench::sdhCylinderGrasp(0.0);
+  rwsim::simulator::GraspParameters g;
+  g.X_W_tcp = rw::math::rpyTransform(Vector3D(0, std::numbers::pi, 0), Vector3D(0, 0, 0.05));
+  g.qOpen = Q(7);
+  g.qOpen << -1.048, 0.174, 0.0, -1.048, 0.174, -1.048, 0.174;
+  g.qClosed = Q(7);
+  g.qClosed << 0.0, 0.349, 0.0, 0.0, 0.349, 0.0, 0.349;
+  g.tauMax = Q(7);
+  g.tauMax << 2.1, 1.4, 2.1, 1.05, 0.7, 1.05, 0.7;
   const auto result = trial.run(g, dwc.workcell().defaultState());
   EXPECT_EQ(result.outcome, rwsim::simulator::GraspOutcome::kStable) << result.detail;
   EXPECT_LT(result.drift, 0.01);
