@@ -177,9 +177,6 @@ void Simulator::Impl::stepOnce() {
   }
   createContactJoints();
   driveMotors();
-  for (const auto& dev : ode->devices()) {
-    for (const SimJoint& j : dev.joints) rows += ode->constraintRows(j);
-  }
   driveKinematicBodies();
   if (quickStep) {
     dWorldQuickStep(ode->world(), options.timeStep);
@@ -272,9 +269,11 @@ void Simulator::Impl::driveMotors() {
         const SimJoint& o = dev.joints[*j.owner];
         const double err = j.gain * ode->jointPosition(o) + j.offset - ode->jointPosition(j);
         const double v = j.gain * ode->jointVelocity(o) + err / options.timeStep;
-        ode->setMotor(j, v, j.forceLimit);
+        rows += ode->setMotor(j, v, j.forceLimit);
       } else if (j.activeIndex >= 0) {
-        ode->setMotor(j, j.velocityTarget, j.forceLimit);
+        rows += ode->setMotor(j, j.velocityTarget, j.forceLimit);
+      } else {
+        rows += ode->constraintRows(j);  // passive: as created
       }
     }
   }

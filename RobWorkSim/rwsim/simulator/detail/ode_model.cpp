@@ -276,8 +276,8 @@ double OdeWorld::jointVelocity(const SimJoint& joint) const {
   return joint.revolute ? dJointGetHingeAngleRate(joint.id) : dJointGetSliderPositionRate(joint.id);
 }
 
-void OdeWorld::setMotor(const SimJoint& joint, double velocity, double forceLimit) const {
-  if (joint.id == nullptr) return;
+std::size_t OdeWorld::setMotor(const SimJoint& joint, double velocity, double forceLimit) const {
+  if (joint.id == nullptr) return 0;
   // ODE's own (wrapped) joint coordinate, which its stops refer to.
   const double pos =
       joint.revolute ? dJointGetHingeAngle(joint.id) : dJointGetSliderPosition(joint.id);
@@ -300,6 +300,8 @@ void OdeWorld::setMotor(const SimJoint& joint, double velocity, double forceLimi
     dJointSetSliderParam(joint.id, dParamVel, velocity);
     dJointSetSliderParam(joint.id, dParamFMax, forceLimit);
   }
+  const bool onStop = lo <= hi && (pos <= lo || pos >= hi);
+  return 5 + (forceLimit > 0.0 || onStop ? 1 : 0);
 }
 
 std::size_t OdeWorld::constraintRows(const SimJoint& joint) const {

@@ -118,10 +118,11 @@ class OdeWorld {
   double jointVelocity(const SimJoint& joint) const;
   /// Sets a joint motor's velocity target and force limit for the next step (and releases a
   /// stop the joint sits on when the motor drives it away).
-  void setMotor(const SimJoint& joint, double velocity, double forceLimit) const;
+  /// Returns the constraint rows the joint then gives the next step (see constraintRows()).
+  std::size_t setMotor(const SimJoint& joint, double velocity, double forceLimit) const;
   /// Constraint rows the joint gives ODE's next step as its motor and stops are set now: 5 for
   /// the hinge or slider, 1 more when its motor has a force limit above 0 or it sits on a stop
-  /// (0 without a joint).
+  /// (0 without a joint). For joints setMotor() did not set this step (passive ones).
   std::size_t constraintRows(const SimJoint& joint) const;
 
  private:
