@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "rw/common/number_text.hpp"
+
 namespace visgrab::app {
 
 std::string JsonWriter::quoted(std::string_view text) {
@@ -47,10 +49,7 @@ std::string JsonWriter::quoted(std::string_view text) {
 
 std::string JsonWriter::number(double number) {
   if (!std::isfinite(number)) return "null";
-  // The shortest text that reads back as the same double.
-  char buf[32];
-  const auto result = std::to_chars(buf, buf + sizeof buf, number);
-  return std::string(buf, result.ptr);
+  return rw::common::shortestText(number);
 }
 
 void JsonWriter::newline() { *out_ << "\n" << std::string(2 * levels_.size(), ' '); }

@@ -12,6 +12,7 @@
 #include <stdexcept>
 #include <system_error>
 
+#include "rw/common/number_text.hpp"
 #include "rw/common/strings.hpp"
 #include "rw/math/rpy.hpp"
 
@@ -45,9 +46,7 @@ constexpr std::array<std::string_view, 3> kLoaderProperties = {
 // Shortest text that reads back to the same double ("0" for both zeros).
 std::string formatNumber(double v) {
   if (v == 0.0) return "0";
-  std::array<char, 32> buffer{};
-  const auto result = std::to_chars(buffer.data(), buffer.data() + buffer.size(), v);
-  return std::string(buffer.data(), result.ptr);
+  return rw::common::shortestText(v);
 }
 
 // Degrees from radians; values within 1e-12 (relative) of a multiple of 1e-9 degrees are

@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <system_error>
 
+#include "rw/common/number_text.hpp"
+
 namespace visgrab::results {
 
 std::string csvField(std::string_view text, bool alwaysQuote) {
@@ -98,9 +100,7 @@ std::vector<std::string> splitCsvLine(std::string_view line) {
 std::string formatDouble(double value) {
   if (std::isnan(value)) return "nan";
   if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
-  char buffer[64];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
-  return std::string(buffer, result.ptr);
+  return rw::common::shortestText(value);
 }
 
 double parseDouble(std::string_view text) {

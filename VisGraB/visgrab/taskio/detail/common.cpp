@@ -13,14 +13,12 @@
 #include "rw/common/write_error.hpp"
 #include "rw/common/xml_reader.hpp"
 
+#include "rw/common/number_text.hpp"
 namespace visgrab::taskio::detail {
 
 std::string formatNumber(double value) {
   if (value == 0.0) return "0";  // also -0
-  std::array<char, 32> buffer{};
-  const auto [end, ec] = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value);
-  if (ec != std::errc()) return "nan";
-  return std::string(buffer.data(), end);
+  return rw::common::shortestText(value);
 }
 
 std::string formatNumbers(const double* values, std::size_t count) {
