@@ -195,7 +195,8 @@ void writeSceneProducts(const cv::Mat& leftRectified, const cv::Mat& rightRectif
     const cv::Mat stored = encodeDisparity(vision::computeDisparity(
         leftRectified, rightRectified, calibration, vision::StereoOptions{}));
     if (!files.disparity.empty())
-      database::writeImageAtomically(writer.path(files.disparity), stored);
+      database::writeImageAtomically(writer.path(files.disparity), stored,
+                                     database::PngCompression::kRle);
     if (!files.pointCloud.empty()) {
       // From the stored disparities (SGBM's 1/16 pixel steps survive the 1/256 scale exactly;
       // those that do not fit are none in both files).
@@ -211,7 +212,8 @@ void writeSceneProducts(const cv::Mat& leftRectified, const cv::Mat& rightRectif
   }
   if (!files.mask.empty()) {
     database::writeImageAtomically(writer.path(files.mask),
-                                   encodeInstanceMask(truth.instanceIds, tableInstance, objects));
+                                   encodeInstanceMask(truth.instanceIds, tableInstance, objects),
+                                   database::PngCompression::kRle);
   }
   if (!files.poses.empty()) {
     database::writeFileAtomically(writer.path(files.poses), posesYaml(calibration, objects));
