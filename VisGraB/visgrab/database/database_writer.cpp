@@ -21,7 +21,7 @@ DatabaseWriter::DatabaseWriter(fs::path dir, std::uint64_t seed, std::string gen
     if (index_.formatVersion != kIndexFormatVersion) {
       throw std::runtime_error(
           indexFile.string() + ": the database was generated in index format " +
-          std::to_string(index_.formatVersion) + ", which lacks files that " + "format " +
+          std::to_string(index_.formatVersion) + ", which lacks files that format " +
           std::to_string(kIndexFormatVersion) + " has; generate into another folder");
     }
     if (index_.seed != seed) {

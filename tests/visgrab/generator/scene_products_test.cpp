@@ -19,6 +19,7 @@
 #include "support/test_database.hpp"
 #include "support/test_support.hpp"
 #include "visgrab/database/database.hpp"
+#include "visgrab/generator/generator.hpp"
 #include "visgrab/generator/scene_products.hpp"
 #include "visgrab/render/mesh_loader.hpp"
 #include "visgrab/render/offscreen_renderer.hpp"
@@ -285,6 +286,43 @@ TEST(SceneProducts, PosesAgreeWithTheIndexAndTheCalibration) {
       EXPECT_LT((X_TC * X_CO - X_TO).cwiseAbs().maxCoeff(), 1e-12) << entry.id;
     }
   }
+}
+
+std::string bytesOf(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+TEST(SceneProducts, AResumedGenerationRemakesAMissingProductIdentically) {
+  visgrab::test::TempDir tmp;
+  gen::GeneratorOptions options;
+  options.out = tmp.path() / "db";
+  options.objectSpec = visgrab::test::sourceDir() / "scenes/objects/objects.xml";
+  options.handFolder = visgrab::test::sourceDir() / "scenes/hands/sdh";
+  options.materials = visgrab::test::sourceDir() / "scenes/materials.xml";
+  options.seed = 9;
+  const std::vector<db::SceneConditions> scenes{
+      db::SceneConditions::single(db::Texture::kTextured, 11, 1)};
+  ASSERT_EQ(gen::generateDatabase(scenes, options).generated, 1);
+  const fs::path folder = options.out / "scenes" / db::sceneIdOf(scenes[0]);
+  std::map<std::string, std::string> before;
+  for (const char* name : {"disparity.png", "cloud.ply", "depth.png", "mask.png", "poses.yml"}) {
+    before[name] = bytesOf(folder / name);
+    EXPECT_FALSE(before[name].empty()) << name;
+  }
+  // The index of format 2 names the five files, and no raw pair (the ideal rig has none).
+  const std::string index = bytesOf(options.out / "index.xml");
+  EXPECT_NE(index.find("formatVersion=\"2\""), std::string::npos);
+  EXPECT_NE(index.find("pointCloud=\"scenes/textured/single/peachcan/01/cloud.ply\""),
+            std::string::npos)
+      << index;
+  EXPECT_EQ(index.find("rawLeft"), std::string::npos) << index;
+  // A lost point cloud makes the scene incomplete; the next run makes it again, the same.
+  fs::remove(folder / "cloud.ply");
+  const auto resumed = gen::generateDatabase(scenes, options);
+  EXPECT_EQ(resumed.generated, 1);
+  for (const auto& [name, bytes] : before) EXPECT_EQ(bytesOf(folder / name), bytes) << name;
+  EXPECT_EQ(gen::generateDatabase(scenes, options).skipped, 1);
 }
 
 TEST(SceneProducts, EncodersFollowTheDocumentedScales) {
