@@ -213,6 +213,51 @@ TEST_F(DatabaseTest, BadProductFilesNameTheFileAndWhatWasExpected) {
   EXPECT_THROW(db.pointCloud(id), DatabaseError);
 }
 
+TEST(OriginalManifestDatabase, ReadsTheManifestsDisparityAndListsItsFiles) {
+  test::TempDir dir;
+  const fs::path manifest = dir.path() / "benchmark.xml";
+  writeFileAtomically(
+      manifest,
+      "<visgrab><benchmark type=\"GraspUnknownObject\"><scene id=\"cocacola_03\"><info>"
+      "<sceneLocator>textured/cocacola/img_03</sceneLocator><sceneSet>single</sceneSet>"
+      "<sceneSetID>1</sceneSetID><textureCondition>textured</textureCondition></info><input>"
+      "<leftImg>l.png</leftImg><rightImg>r.png</rightImg><disp>d.png</disp>"
+      "<pointCloud>pc.pcd</pointCloud></input><simulator><wc>s.wc.xml</wc><dwc>s.dwc.xml</dwc>"
+      "</simulator></scene></benchmark></visgrab>\n");
+  const Database db = Database::openOriginalManifest(manifest);
+  const SceneEntry& e = db.scene("cocacola_03");
+  EXPECT_EQ(e.disparity, dir.path() / "d.png");
+  EXPECT_EQ(e.pointCloud, dir.path() / "pc.pcd");
+  const std::string details = Database::details(e);
+  EXPECT_NE(details.find("disparity:        " + (dir.path() / "d.png").string() + "  (missing)"),
+            std::string::npos)
+      << details;
+  EXPECT_NE(details.find("point cloud:      " + (dir.path() / "pc.pcd").string()),
+            std::string::npos)
+      << details;
+  // An 8-bit disparity is read as its value, a 16-bit one as value / 256; 0 is none.
+  cv::Mat eight(2, 3, CV_8UC1, cv::Scalar(17));
+  eight.at<std::uint8_t>(1, 2) = 0;
+  writeImageAtomically(dir.path() / "d.png", eight);
+  cv::Mat d = db.disparityImage("cocacola_03");
+  EXPECT_EQ(d.at<float>(0, 0), 17.0f);
+  EXPECT_LT(d.at<float>(1, 2), 0.0f);
+  writeImageAtomically(dir.path() / "d.png", cv::Mat(2, 3, CV_16UC1, cv::Scalar(17 * 256 + 128)));
+  d = db.disparityImage("cocacola_03");
+  EXPECT_EQ(d.at<float>(1, 1), 17.5f);
+  // The original's cloud format is not ours: the error names the file.
+  writeFileAtomically(dir.path() / "pc.pcd", "# .PCD v0.7\nVERSION 0.7\n");
+  try {
+    db.pointCloud("cocacola_03");
+    FAIL();
+  } catch (const DatabaseError& error) {
+    EXPECT_EQ(std::string(error.what()),
+              (dir.path() / "pc.pcd").string() +
+                  ": error: not a PLY file (it must start with the line \"ply\") (point cloud "
+                  "of scene cocacola_03)");
+  }
+}
+
 TEST_F(DatabaseTest, Version1DatabasesHaveNoProductFiles) {
   test::TempDir old;
   writeFileAtomically(old.path() / "index.xml",
