@@ -265,9 +265,8 @@ StereoCalibration Database::calibration(std::string_view id) const {
 
 cv::Mat Database::disparityImage(std::string_view id) const {
   const SceneEntry& e = scene(id);
-  const cv::Mat stored =
-      readSingleChannel(e.disparity, "disparity image", e.id, {CV_8U, CV_16U, CV_32F},
-                        "a single-channel 8-bit, 16-bit or float image");
+  cv::Mat stored = readSingleChannel(e.disparity, "disparity image", e.id, {CV_8U, CV_16U, CV_32F},
+                                     "a single-channel 8-bit, 16-bit or float image");
   if (stored.depth() == CV_32F) return stored;
   cv::Mat disparity;
   stored.convertTo(disparity, CV_32F, stored.depth() == CV_16U ? 1.0 / kDisparityScale : 1.0);

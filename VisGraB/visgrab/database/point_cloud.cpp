@@ -94,7 +94,7 @@ PointCloud parsePointCloud(std::string_view bytes, const std::string& displayPat
     long long n = -1;
     in >> element >> name >> n;
     if (element != "element" || name != "vertex" || !in || n < 0 || (in >> rest)) {
-      fail(where(), "\"" + std::string(line) + "\": expected \"element vertex N\"");
+      fail(where(), "\"" + std::string(line) + R"(": expected "element vertex N")");
     }
     count = static_cast<std::size_t>(n);
   }
@@ -108,7 +108,7 @@ PointCloud parsePointCloud(std::string_view bytes, const std::string& displayPat
   line = nextLine();
   if (line != "end_header") {
     fail(where(), "\"" + std::string(line) +
-                      "\": expected \"end_header\" (one vertex element with six properties)");
+                      R"(": expected "end_header" (one vertex element with six properties))");
   }
   const std::size_t available = bytes.size() - pos;
   if (count > available / kVertexBytes || available != count * kVertexBytes) {

@@ -25,7 +25,7 @@ constexpr int kDenseStep = 2;
 constexpr int kSparseStep = 8;
 
 cv::Mat toCv(const Transform3D& X) {
-  const Eigen::Matrix4d m = X.matrix();
+  const Eigen::Matrix4d& m = X.matrix();
   cv::Mat out;
   cv::eigen2cv(m, out);
   return out;
@@ -65,7 +65,7 @@ cv::Mat encodeDisparity(const cv::Mat& disparity) {
   CV_Assert(disparity.type() == CV_32FC1);
   cv::Mat out(disparity.size(), CV_16UC1, cv::Scalar(0));
   for (int r = 0; r < disparity.rows; ++r) {
-    const float* in = disparity.ptr<float>(r);
+    const auto* in = disparity.ptr<float>(r);
     auto* o = out.ptr<std::uint16_t>(r);
     for (int c = 0; c < disparity.cols; ++c) {
       if (!(in[c] > 0.0f)) continue;  // none (negative or NaN)
@@ -135,7 +135,7 @@ database::PointCloud cloudFromDisparity(const cv::Mat& disparity, const cv::Mat&
       "X_table_camera (row-major 4x4, the frame's pose in the table frame): " +
           matrixText(X_TC.matrix())};
   for (int v = 0; v < disparity.rows; v += kDenseStep) {
-    const float* row = disparity.ptr<float>(v);
+    const auto* row = disparity.ptr<float>(v);
     for (int u = 0; u < disparity.cols; u += kDenseStep) {
       const float d = row[u];
       if (!(d > 0.0f)) continue;
@@ -149,8 +149,8 @@ database::PointCloud cloudFromDisparity(const cv::Mat& disparity, const cv::Mat&
       }
       const bool dense = p_T.z() >= kTableLevel && textured.at<std::uint8_t>(v, u) != 0;
       if (!dense && (u % kSparseStep != 0 || v % kSparseStep != 0)) continue;
-      const cv::Vec3b bgr = leftBgr.at<cv::Vec3b>(v, u);
-      cloud.points.push_back(p_C.cast<float>());
+      const auto& bgr = leftBgr.at<cv::Vec3b>(v, u);
+      cloud.points.emplace_back(p_C.cast<float>());
       cloud.colours.push_back({bgr[2], bgr[1], bgr[0]});
     }
   }
