@@ -141,7 +141,7 @@ void writeFileJson(JsonWriter& j, const char* name, const fs::path& file) {
 
 void printShowJson(const database::SceneEntry& s) {
   JsonWriter j(std::cout);
-  j.beginObject().key("schema").value("visgrab/db-show/1");
+  j.beginObject().key("schema").value("visgrab/db-show/2");
   writeSceneJson(j, s);
   j.key("files").beginObject();
   writeFileJson(j, "left_image", s.leftImage);
@@ -149,8 +149,13 @@ void printShowJson(const database::SceneEntry& s) {
   writeFileJson(j, "calibration", s.calibration);
   writeFileJson(j, "workcell", s.workcell);
   writeFileJson(j, "dynamic_workcell", s.dynamicWorkcell);
+  writeFileJson(j, "raw_left_image", s.rawLeftImage);
+  writeFileJson(j, "raw_right_image", s.rawRightImage);
   writeFileJson(j, "disparity", s.disparity);
   writeFileJson(j, "point_cloud", s.pointCloud);
+  writeFileJson(j, "depth", s.depth);
+  writeFileJson(j, "mask", s.mask);
+  writeFileJson(j, "poses", s.poses);
   writeFileJson(j, "collision_mesh", s.collision);
   j.endObject().key("ground_truth").beginArray();
   for (const database::ObjectPose& o : s.groundTruth) {

@@ -49,6 +49,14 @@ TEST(DbCli, GeneratesListsAndShowsAScene) {
   ASSERT_EQ(show.exitCode, 0) << show.output;
   EXPECT_NE(show.output.find("cocacola"), std::string::npos) << show.output;
   EXPECT_NE(show.output.find("calibration.yml"), std::string::npos) << show.output;
+  // Every file of the scene, the disparity, point cloud and ground truth too.
+  for (const char* file : {"left.png", "right.png", "scene.wc.xml", "scene.dwc.xml",
+                           "disparity.png", "cloud.ply", "depth.png", "mask.png", "poses.yml"}) {
+    EXPECT_NE(show.output.find(std::string("plain/single/cocacola/01/") + file), std::string::npos)
+        << file << " in\n"
+        << show.output;
+  }
+  EXPECT_EQ(show.output.find("(missing)"), std::string::npos) << show.output;
 
   // An unknown id names the id and suggests the scene that exists.
   const RunResult unknown =

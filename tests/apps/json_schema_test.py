@@ -116,7 +116,11 @@ def check_database(binary, store, tmp):
         validate(store, "db-show", show, "db show")
         check(show["id"] == scene, "db show: id")
         check(show["files"]["left_image"]["exists"], "db show: the left image exists")
-        check(show["files"]["disparity"] is None, "db show: a generated scene has no disparity")
+        for name in ["disparity", "point_cloud", "depth", "mask", "poses"]:
+            check(show["files"][name] is not None and show["files"][name]["exists"],
+                  f"db show: the generated scene's {name} exists")
+        check(show["files"]["raw_left_image"] is None, "db show: the ideal rig has no raw pair")
+        check(show["files"]["collision_mesh"] is None, "db show: a generated scene has no mesh")
         truth = show["ground_truth"]
         check(len(truth) == 1 and truth[0]["name"] == "cocacola", f"db show: ground truth {truth}")
         if truth:

@@ -85,6 +85,8 @@ void writeImageAtomically(const fs::path& file, const cv::Mat& image, PngCompres
       if (png == PngCompression::kHuffmanOnly) {
         params.insert(params.end(),
                       {cv::IMWRITE_PNG_STRATEGY, cv::IMWRITE_PNG_STRATEGY_HUFFMAN_ONLY});
+      } else if (png == PngCompression::kRle) {
+        params.insert(params.end(), {cv::IMWRITE_PNG_STRATEGY, cv::IMWRITE_PNG_STRATEGY_RLE});
       }
     }
     ok = !image.empty() && cv::imencode(ext, image, encoded, params);

@@ -23,6 +23,11 @@ enum class PngCompression {
   /// database's stereo pairs), where matching finds next to nothing: about 4 times faster
   /// than kBest and a few per cent smaller (docs/performance.md).
   kHuffmanOnly,
+  /// Run-length matching only (zlib Z_RLE) after PNG's row filters: for images of large flat or
+  /// evenly sloped regions with speckle (a disparity map, an instance mask): about 40 times
+  /// faster than kBest on a 16-bit disparity map and under 10 per cent larger
+  /// (scene_products_benchmark, docs/database-format.md).
+  kRle,
 };
 
 /// Encodes `image` in the format given by `file`'s extension (.png, ...) and writes it with

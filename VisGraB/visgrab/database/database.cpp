@@ -4,6 +4,7 @@
 #include <array>
 #include <cstdint>
 #include <fstream>
+#include <initializer_list>
 #include <iomanip>
 #include <iterator>
 #include <sstream>
@@ -75,6 +76,24 @@ cv::Mat readImage(const fs::path& file, const std::string& what, const std::stri
   return image;
 }
 
+// A single-channel image of the given depth (CV_8U, CV_16U or CV_32F), read unchanged.
+cv::Mat readSingleChannel(const fs::path& file, const std::string& what, const std::string& id,
+                          std::initializer_list<int> depths, const std::string& expected) {
+  cv::Mat image = readImage(file, what, id, cv::IMREAD_UNCHANGED);
+  bool ok = image.channels() == 1;
+  ok = ok && std::find(depths.begin(), depths.end(), image.depth()) != depths.end();
+  if (!ok) {
+    throw DatabaseError(file.string() + ": error: " + what + " of scene " + id + ": expected " +
+                        expected + ", found " + std::to_string(image.channels()) +
+                        " channel(s) of " +
+                        (image.depth() == CV_8U    ? "8-bit"
+                         : image.depth() == CV_16U ? "16-bit"
+                                                   : "other") +
+                        " values");
+  }
+  return image;
+}
+
 std::string fileLine(const char* label, const fs::path& file) {
   std::string line = std::string(label) + file.string();
   std::error_code ec;
@@ -105,6 +124,17 @@ Database Database::open(const fs::path& dir) {
     e.calibration = dir / r.files.calibration;
     e.workcell = dir / r.files.workcell;
     e.dynamicWorkcell = dir / r.files.dynamicWorkcell;
+    // The files of index format 2: empty paths stay empty (the scene has no such file).
+    const auto optional = [&](const std::string& relative) {
+      return relative.empty() ? fs::path() : dir / relative;
+    };
+    e.rawLeftImage = optional(r.files.rawLeft);
+    e.rawRightImage = optional(r.files.rawRight);
+    e.disparity = optional(r.files.disparity);
+    e.pointCloud = optional(r.files.pointCloud);
+    e.depth = optional(r.files.depth);
+    e.mask = optional(r.files.mask);
+    e.poses = optional(r.files.poses);
     e.groundTruth = r.objects;
     db.scenes_.push_back(std::move(e));
   }
@@ -233,6 +263,42 @@ StereoCalibration Database::calibration(std::string_view id) const {
   return readCalibration(e.calibration);
 }
 
+cv::Mat Database::disparityImage(std::string_view id) const {
+  const SceneEntry& e = scene(id);
+  cv::Mat stored = readSingleChannel(e.disparity, "disparity image", e.id, {CV_8U, CV_16U, CV_32F},
+                                     "a single-channel 8-bit, 16-bit or float image");
+  if (stored.depth() == CV_32F) return stored;
+  cv::Mat disparity;
+  stored.convertTo(disparity, CV_32F, stored.depth() == CV_16U ? 1.0 / kDisparityScale : 1.0);
+  disparity.setTo(-1.0f, stored == 0);
+  return disparity;
+}
+
+cv::Mat Database::depthImage(std::string_view id) const {
+  const SceneEntry& e = scene(id);
+  const cv::Mat stored = readSingleChannel(e.depth, "depth image", e.id, {CV_16U},
+                                           "a single-channel 16-bit PNG (0.1 mm units)");
+  cv::Mat depth;
+  stored.convertTo(depth, CV_32F, kDepthUnit);
+  return depth;
+}
+
+cv::Mat Database::instanceMask(std::string_view id) const {
+  const SceneEntry& e = scene(id);
+  return readSingleChannel(e.mask, "instance mask", e.id, {CV_8U},
+                           "a single-channel 8-bit PNG (object ids)");
+}
+
+PointCloud Database::pointCloud(std::string_view id) const {
+  const SceneEntry& e = scene(id);
+  if (e.pointCloud.empty()) throw DatabaseError("scene " + e.id + ": no point cloud is known");
+  try {
+    return readPointCloud(e.pointCloud);
+  } catch (const PointCloudError& error) {
+    throw DatabaseError(std::string(error.what()) + " (point cloud of scene " + e.id + ")");
+  }
+}
+
 const std::vector<ObjectPose>& Database::groundTruth(std::string_view id) const {
   return scene(id).groundTruth;
 }
@@ -258,8 +324,13 @@ std::string Database::details(const SceneEntry& s) {
   if (!s.calibration.empty()) out += fileLine("calibration:      ", s.calibration);
   out += fileLine("workcell:         ", s.workcell);
   out += fileLine("dynamic workcell: ", s.dynamicWorkcell);
+  if (!s.rawLeftImage.empty()) out += fileLine("raw left image:   ", s.rawLeftImage);
+  if (!s.rawRightImage.empty()) out += fileLine("raw right image:  ", s.rawRightImage);
   if (!s.disparity.empty()) out += fileLine("disparity:        ", s.disparity);
   if (!s.pointCloud.empty()) out += fileLine("point cloud:      ", s.pointCloud);
+  if (!s.depth.empty()) out += fileLine("depth (truth):    ", s.depth);
+  if (!s.mask.empty()) out += fileLine("mask (truth):     ", s.mask);
+  if (!s.poses.empty()) out += fileLine("poses (truth):    ", s.poses);
   if (!s.collision.empty()) out += fileLine("collision mesh:   ", s.collision);
   for (const ObjectPose& o : s.groundTruth) {
     const Eigen::Vector3d p = o.X_WO.translation();

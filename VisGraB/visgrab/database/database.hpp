@@ -13,6 +13,7 @@
 
 #include "rw/common/diagnostic.hpp"
 #include "visgrab/database/database_index.hpp"
+#include "visgrab/database/point_cloud.hpp"
 #include "visgrab/database/scene_filter.hpp"
 #include "visgrab/database/scene_set.hpp"
 #include "visgrab/database/stereo_calibration.hpp"
@@ -61,8 +62,26 @@ struct SceneEntry {
   std::filesystem::path dynamicWorkcell;
   /// Ground-truth object poses (generated scenes only).
   std::vector<ObjectPose> groundTruth;
-  /// Original only: disparity image, point cloud and collision mesh (may be empty).
-  std::filesystem::path disparity, pointCloud, collision;
+  /// Disparity image (generated: 16-bit PNG, disparity x 256; original: the manifest's disp).
+  /// Empty when the scene has none (generated databases before index format 2).
+  std::filesystem::path disparity;
+  /// Point cloud (generated: binary PLY, see readPointCloud; original: the manifest's
+  /// pointCloud). Empty when the scene has none.
+  std::filesystem::path pointCloud;
+  /// Original only: collision mesh (may be empty).
+  std::filesystem::path collision;
+  /// Generated only (index format 2): raw left sensor image (Bayer mosaic, distorted,
+  /// unrectified); empty when the scene has none.
+  std::filesystem::path rawLeftImage;
+  /// Raw right sensor image; as rawLeftImage.
+  std::filesystem::path rawRightImage;
+  /// Generated only (index format 2): ground-truth depth of the rectified left view (16-bit
+  /// PNG, 0.1 mm units).
+  std::filesystem::path depth;
+  /// Generated only (index format 2): ground-truth instance mask of the rectified left view.
+  std::filesystem::path mask;
+  /// Generated only (index format 2): ground-truth poses (OpenCV YAML).
+  std::filesystem::path poses;
 };
 
 /// A scene database opened for reading: a generated folder (DIR/index.xml) or an original
@@ -116,6 +135,23 @@ class Database {
   /// The scene's stereo calibration. @throws UnknownSceneError, DatabaseError (none known),
   /// CalibrationError (file missing or invalid, naming file and node).
   StereoCalibration calibration(std::string_view id) const;
+  /// The disparity of the rectified pair: CV_32F pixels, disparity in pixels, negative (-1)
+  /// where there is none. A 16-bit PNG is read as value / 256 (0: none, the database's and
+  /// KITTI's convention), an 8-bit image as its value (0: none), a float image as it is.
+  /// @throws UnknownSceneError, DatabaseError naming the file (none known, missing, corrupt,
+  /// not single-channel).
+  cv::Mat disparityImage(std::string_view id) const;
+  /// The ground-truth depth of the rectified left view: CV_32F camera z in metres, 0 where
+  /// nothing was drawn. @throws UnknownSceneError, DatabaseError naming the file (none known,
+  /// missing, corrupt, not a 16-bit single-channel image).
+  cv::Mat depthImage(std::string_view id) const;
+  /// The ground-truth instance mask of the rectified left view: CV_8U, 0 background, 255
+  /// table, the object id on object pixels. @throws UnknownSceneError, DatabaseError naming
+  /// the file (none known, missing, corrupt, not an 8-bit single-channel image).
+  cv::Mat instanceMask(std::string_view id) const;
+  /// The scene's point cloud (readPointCloud). @throws UnknownSceneError, DatabaseError naming
+  /// the file (none known, missing, not the database's PLY layout, truncated).
+  PointCloud pointCloud(std::string_view id) const;
   /// The ground-truth object poses (empty for original scenes). @throws UnknownSceneError.
   const std::vector<ObjectPose>& groundTruth(std::string_view id) const;
 

@@ -65,12 +65,18 @@ class IndexParser {
     const rw::common::XmlElement& root = top[0];
     DatabaseIndex index;
     const std::string version = root.attributeOr("formatVersion", "1");
-    if (version != std::to_string(kIndexFormatVersion)) {
+    version_ = 0;
+    for (int v = kOldestIndexFormatVersion; v <= kIndexFormatVersion; ++v) {
+      if (version == std::to_string(v)) version_ = v;
+    }
+    if (version_ == 0) {
       sink_.error(root.location, "index format version " + version +
-                                     " is not supported (this program reads version " +
+                                     " is not supported (this program reads versions " +
+                                     std::to_string(kOldestIndexFormatVersion) + " to " +
                                      std::to_string(kIndexFormatVersion) + ")");
       return std::nullopt;
     }
+    index.formatVersion = version_;
     index.seed = std::stoull(root.attributeOr("seed", "0"));
     index.generator = root.attributeOr("generator", "");
     std::map<std::string, int> firstLine;
@@ -145,17 +151,20 @@ class IndexParser {
   }
 
   bool parseFiles(const rw::common::XmlElement& e, SceneFiles& files) {
-    const std::pair<const char*, std::string*> fields[] = {
-        {"left", &files.left},
-        {"right", &files.right},
-        {"calibration", &files.calibration},
-        {"workcell", &files.workcell},
-        {"dynamicWorkcell", &files.dynamicWorkcell}};
-    for (const auto& [name, target] : fields) {
-      *target = e.attributeOr(name, "");
-      const std::string why = checkRelativePath(*target);
+    for (const SceneFileField& field : sceneFileFields()) {
+      std::string& target = files.*field.member;
+      if (!field.required && !e.has(field.attribute)) continue;  // none: empty
+      if (!field.required && version_ < 2) {
+        sink_.error(e.location, "<Files>: " + std::string(field.attribute) +
+                                    " needs index format version 2 (this index says version " +
+                                    std::to_string(version_) + ")");
+        return false;
+      }
+      target = e.attributeOr(field.attribute, "");
+      const std::string why = checkRelativePath(target);
       if (!why.empty()) {
-        sink_.error(e.location, "<Files>: " + std::string(name) + "=\"" + *target + "\": " + why);
+        sink_.error(e.location,
+                    "<Files>: " + std::string(field.attribute) + "=\"" + target + "\": " + why);
         return false;
       }
     }
@@ -188,6 +197,7 @@ class IndexParser {
   }
 
   rw::common::DiagnosticSink& sink_;
+  int version_ = kIndexFormatVersion;
 };
 
 }  // namespace
@@ -208,10 +218,39 @@ std::string checkRelativePath(std::string_view path) {
   return {};
 }
 
+const std::vector<SceneFileField>& sceneFileFields() {
+  static const std::vector<SceneFileField> fields = {
+      {"left", &SceneFiles::left, true},
+      {"right", &SceneFiles::right, true},
+      {"calibration", &SceneFiles::calibration, true},
+      {"workcell", &SceneFiles::workcell, true},
+      {"dynamicWorkcell", &SceneFiles::dynamicWorkcell, true},
+      {"rawLeft", &SceneFiles::rawLeft, false},
+      {"rawRight", &SceneFiles::rawRight, false},
+      {"disparity", &SceneFiles::disparity, false},
+      {"pointCloud", &SceneFiles::pointCloud, false},
+      {"depth", &SceneFiles::depth, false},
+      {"mask", &SceneFiles::mask, false},
+      {"poses", &SceneFiles::poses, false}};
+  return fields;
+}
+
 SceneFiles defaultSceneFiles(std::string_view id) {
   const std::string dir = "scenes/" + std::string(id) + "/";
-  return SceneFiles{dir + "left.png", dir + "right.png", dir + "calibration.yml",
-                    dir + "scene.wc.xml", dir + "scene.dwc.xml"};
+  SceneFiles files;
+  files.left = dir + "left.png";
+  files.right = dir + "right.png";
+  files.calibration = dir + "calibration.yml";
+  files.workcell = dir + "scene.wc.xml";
+  files.dynamicWorkcell = dir + "scene.dwc.xml";
+  files.rawLeft = dir + "raw_left.png";
+  files.rawRight = dir + "raw_right.png";
+  files.disparity = dir + "disparity.png";
+  files.pointCloud = dir + "cloud.ply";
+  files.depth = dir + "depth.png";
+  files.mask = dir + "mask.png";
+  files.poses = dir + "poses.yml";
+  return files;
 }
 
 DatabaseIndex parseIndex(std::string_view text, const std::string& displayPath) {
@@ -255,11 +294,12 @@ std::string indexToXml(const DatabaseIndex& index) {
       throw std::invalid_argument("scene record \"" + s.id + "\" has the conditions of \"" +
                                   expectedId + "\"");
     }
-    for (const std::string* path : {&s.files.left, &s.files.right, &s.files.calibration,
-                                    &s.files.workcell, &s.files.dynamicWorkcell}) {
-      const std::string why = checkRelativePath(*path);
+    for (const SceneFileField& field : sceneFileFields()) {
+      const std::string& path = s.files.*field.member;
+      if (!field.required && path.empty()) continue;
+      const std::string why = checkRelativePath(path);
       if (!why.empty()) {
-        throw std::invalid_argument("scene \"" + s.id + "\": file \"" + *path + "\": " + why);
+        throw std::invalid_argument("scene \"" + s.id + "\": file \"" + path + "\": " + why);
       }
     }
     if (s.objects.size() != s.conditions.objects.size()) {
@@ -273,7 +313,7 @@ std::string indexToXml(const DatabaseIndex& index) {
   });
   std::string out = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
   out += "<!-- VisGraB scene database index; format: docs/database-format.md -->\n";
-  out += "<VisGraBDatabase formatVersion=\"" + std::to_string(index.formatVersion) + "\" seed=\"" +
+  out += "<VisGraBDatabase formatVersion=\"" + std::to_string(kIndexFormatVersion) + "\" seed=\"" +
          std::to_string(index.seed) + "\"";
   if (!index.generator.empty())
     out += " generator=\"" + rw::common::escapeXml(index.generator) + "\"";
@@ -284,11 +324,15 @@ std::string indexToXml(const DatabaseIndex& index) {
            std::string(toString(c.texture)) + "\" kind=\"" + std::string(toString(c.kind)) +
            "\" arrangement=\"" + std::string(toString(c.arrangement())) + "\" pose=\"" +
            std::to_string(c.pose) + "\">\n";
-    out += "    <Files left=\"" + rw::common::escapeXml(s->files.left) + "\" right=\"" +
-           rw::common::escapeXml(s->files.right) + "\"\n           calibration=\"" +
-           rw::common::escapeXml(s->files.calibration) + "\"\n" + "           workcell=\"" +
-           rw::common::escapeXml(s->files.workcell) + "\" dynamicWorkcell=\"" +
-           rw::common::escapeXml(s->files.dynamicWorkcell) + "\"/>\n";
+    // One attribute per line after the first, in sceneFileFields() order.
+    std::string files;
+    for (const SceneFileField& field : sceneFileFields()) {
+      const std::string& path = s->files.*field.member;
+      if (path.empty()) continue;
+      files += (files.empty() ? "    <Files " : "\n           ") + std::string(field.attribute) +
+               "=\"" + rw::common::escapeXml(path) + "\"";
+    }
+    out += files + "/>\n";
     for (std::size_t i = 0; i < s->objects.size(); ++i) {
       const ObjectPose& o = s->objects[i];
       if (o.object != c.objects[i]) {

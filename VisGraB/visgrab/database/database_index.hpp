@@ -11,10 +11,18 @@
 
 namespace visgrab::database {
 
-/// Version of the index format this code reads and writes (attribute formatVersion).
-inline constexpr int kIndexFormatVersion = 1;
+/// Version of the index format this code writes (attribute formatVersion). Version 1 (the
+/// five files left, right, calibration, workcell, dynamicWorkcell) is still read.
+inline constexpr int kIndexFormatVersion = 2;
+/// Oldest index format version this code reads.
+inline constexpr int kOldestIndexFormatVersion = 1;
 /// File name of the index inside a database folder.
 inline constexpr std::string_view kIndexFileName = "index.xml";
+
+/// Metres per unit of the database's depth.png (0.1 mm; Open3D's depth_scale 10000).
+inline constexpr double kDepthUnit = 1e-4;
+/// Disparity units per pixel in the database's disparity.png (KITTI's 256).
+inline constexpr double kDisparityScale = 256.0;
 
 /// Ground truth of one object in a scene.
 struct ObjectPose {
@@ -55,6 +63,21 @@ struct SceneFiles {
   bool operator==(const SceneFiles& other) const = default;
 };
 
+/// One file of SceneFiles with its index attribute name.
+struct SceneFileField {
+  /// Attribute of <Files> in index.xml (and the key of `db show --json`'s files).
+  const char* attribute;
+  /// The member it is stored in.
+  std::string SceneFiles::*member;
+  /// True for the five files every index version has (never empty); false for the files of
+  /// format version 2, empty when a scene has none.
+  bool required;
+};
+
+/// Every file of a scene in index order: left, right, calibration, workcell, dynamicWorkcell,
+/// rawLeft, rawRight, disparity, pointCloud, depth, mask, poses.
+const std::vector<SceneFileField>& sceneFileFields();
+
 /// One scene of a generated database.
 struct SceneRecord {
   /// Scene id (sceneIdOf(conditions)).
@@ -79,12 +102,15 @@ struct DatabaseIndex {
   std::vector<SceneRecord> scenes;
 };
 
-/// The files a generated scene has by default: `scenes/<id>/left.png`, `right.png`,
-/// `calibration.yml`, `scene.wc.xml`, `scene.dwc.xml`.
+/// The files a generated scene has by default, all in `scenes/<id>/`: `raw_left.png`,
+/// `raw_right.png`, `left.png`, `right.png`, `calibration.yml`, `disparity.png`, `cloud.ply`,
+/// `depth.png`, `mask.png`, `poses.yml`, `scene.wc.xml`, `scene.dwc.xml`.
 SceneFiles defaultSceneFiles(std::string_view id);
 
-/// Reads and checks an index file (schema xml/database-index.xsd, then meaning: ids agree with
-/// the conditions, no duplicates, objects agree with the scene, finite poses, relative paths).
+/// Reads and checks an index file of format version 1 or 2 (schema xml/database-index.xsd, then
+/// meaning: ids agree with the conditions, no duplicates, objects agree with the scene, finite
+/// poses, relative paths; the files of version 2 only in version 2, where an absent one is
+/// empty). The result keeps the file's formatVersion.
 /// @throws rw::common::LoadError with file:line diagnostics.
 DatabaseIndex readIndex(const std::filesystem::path& file);
 
@@ -92,8 +118,10 @@ DatabaseIndex readIndex(const std::filesystem::path& file);
 /// @throws rw::common::LoadError.
 DatabaseIndex parseIndex(std::string_view text, const std::string& displayPath);
 
-/// The index as XML text (numbers in shortest round-trip form, scenes in enumerateScenes()
-/// order). @throws std::invalid_argument if a record is invalid (bad id, conditions, paths).
+/// The index as XML text in format version kIndexFormatVersion (whatever index.formatVersion
+/// says; empty optional files are left out; poses with 9 decimals, scenes in
+/// enumerateScenes() order). @throws std::invalid_argument if a record is invalid (bad id,
+/// conditions, paths).
 std::string indexToXml(const DatabaseIndex& index);
 
 /// Writes the index atomically (temporary file, then rename). @throws std::invalid_argument for

@@ -18,6 +18,12 @@ DatabaseWriter::DatabaseWriter(fs::path dir, std::uint64_t seed, std::string gen
   if (fs::exists(indexFile, ec)) {
     index_ = readIndex(indexFile);
     resumed_ = true;
+    if (index_.formatVersion != kIndexFormatVersion) {
+      throw std::runtime_error(
+          indexFile.string() + ": the database was generated in index format " +
+          std::to_string(index_.formatVersion) + ", which lacks files that format " +
+          std::to_string(kIndexFormatVersion) + " has; generate into another folder");
+    }
     if (index_.seed != seed) {
       throw std::runtime_error(indexFile.string() + ": the database was generated with seed " +
                                std::to_string(index_.seed) + ", not " + std::to_string(seed) +
@@ -34,10 +40,11 @@ DatabaseIndex DatabaseWriter::index() const {
 }
 
 bool DatabaseWriter::filesExist(const SceneFiles& files) const {
-  for (const std::string* f :
-       {&files.left, &files.right, &files.calibration, &files.workcell, &files.dynamicWorkcell}) {
+  for (const SceneFileField& field : sceneFileFields()) {
+    const std::string& f = files.*field.member;
+    if (f.empty() && !field.required) continue;
     std::error_code ec;
-    const fs::path p = dir_ / *f;
+    const fs::path p = dir_ / f;
     if (!fs::is_regular_file(p, ec) || fs::file_size(p, ec) == 0 || ec) return false;
   }
   return true;
@@ -65,15 +72,16 @@ void DatabaseWriter::addScene(SceneRecord record) {
     throw std::invalid_argument("scene record \"" + record.id + "\" has the conditions of \"" +
                                 sceneIdOf(record.conditions) + "\"");
   }
-  for (const std::string* f : {&record.files.left, &record.files.right, &record.files.calibration,
-                               &record.files.workcell, &record.files.dynamicWorkcell}) {
-    const std::string why = checkRelativePath(*f);
+  for (const SceneFileField& field : sceneFileFields()) {
+    const std::string& f = record.files.*field.member;
+    if (f.empty() && !field.required) continue;
+    const std::string why = checkRelativePath(f);
     if (!why.empty()) {
-      throw std::invalid_argument("scene " + record.id + ": file \"" + *f + "\": " + why);
+      throw std::invalid_argument("scene " + record.id + ": file \"" + f + "\": " + why);
     }
     std::error_code ec;
-    if (!fs::is_regular_file(dir_ / *f, ec)) {
-      throw std::runtime_error("scene " + record.id + ": " + (dir_ / *f).string() +
+    if (!fs::is_regular_file(dir_ / f, ec)) {
+      throw std::runtime_error("scene " + record.id + ": " + (dir_ / f).string() +
                                " does not exist; write the scene's files before adding it");
     }
   }

@@ -13,15 +13,16 @@
 namespace visgrab::database {
 
 /// Builds a generated database folder one finished scene at a time, and resumes an interrupted
-/// generation: a scene counts as done when the index lists it and all its files exist. Every
+/// generation: a scene counts as done when the index lists it and all the files its record
+/// names (the five required ones and the non-empty optional ones) exist and are not empty. Every
 /// addScene() rewrites DIR/index.xml atomically, so an interruption never leaves a partial
 /// index. Thread-safe: scenes may be added from several threads.
 class DatabaseWriter {
  public:
   /// Opens `dir` for writing, creating it if needed. If DIR/index.xml exists it is read and
-  /// kept (resume); its seed must equal `seed`.
-  /// @throws rw::common::LoadError for a corrupt index, std::runtime_error for a seed mismatch
-  /// or a folder that cannot be created.
+  /// kept (resume); its seed must equal `seed` and its format version kIndexFormatVersion.
+  /// @throws rw::common::LoadError for a corrupt index, std::runtime_error for a seed or
+  /// version mismatch or a folder that cannot be created.
   DatabaseWriter(std::filesystem::path dir, std::uint64_t seed, std::string generator = {});
 
   DatabaseWriter(const DatabaseWriter&) = delete;
@@ -39,7 +40,8 @@ class DatabaseWriter {
   /// `relative` made absolute against directory().
   std::filesystem::path path(std::string_view relative) const { return dir_ / relative; }
 
-  /// True if the index lists scene `id` and all its files exist and are not empty.
+  /// True if the index lists scene `id` and every file its record names exists and is not
+  /// empty.
   bool isComplete(std::string_view id) const;
   /// The scenes of `wanted` that are not complete, in the given order.
   std::vector<SceneConditions> remaining(const std::vector<SceneConditions>& wanted) const;

@@ -17,6 +17,7 @@
 #include "visgrab/database/database_writer.hpp"
 #include "visgrab/database/stereo_calibration.hpp"
 #include "visgrab/generator/scene_model.hpp"
+#include "visgrab/generator/scene_products.hpp"
 #include "visgrab/objects/object_spec.hpp"
 #include "visgrab/objects/object_writer.hpp"
 #include "visgrab/render/offscreen_renderer.hpp"
@@ -107,7 +108,7 @@ class SceneRenderer {
 
   render::RenderResult render(const database::SceneConditions& scene,
                               const std::vector<Transform3D>& X_WO,
-                              const render::PinholeCamera& camera) {
+                              const render::PinholeCamera& camera, bool depthAndIds = false) {
     render::Scene drawn;
     const std::string texture(database::toString(scene.texture));
     drawn.items.push_back({tableHandle(texture), Transform3D::Identity(), kTableInstance});
@@ -129,7 +130,7 @@ class SceneRenderer {
     fill.colour = Eigen::Vector3f(0.2f, 0.21f, 0.23f);
     drawn.lighting.lights = {key, fill};
     render::RenderOptions options;
-    options.depthAndIds = false;  // the database keeps the colour images only
+    options.depthAndIds = depthAndIds;  // the colour image is the same either way
     return renderer_.render(drawn, camera, options);
   }
 
@@ -239,15 +240,32 @@ database::SceneRecord makeScene(const database::SceneConditions& scene, const As
   const auto [left, right] = rigCameras(calibration);
   const std::array<std::pair<const render::PinholeCamera*, const std::string*>, 2> views{
       {{&left, &record.files.left}, {&right, &record.files.right}}};
-  for (const auto& [camera, file] : views) {
-    render::RenderResult image = renderer.render(scene, settled, *camera);
+  // The ideal rig renders the rectified views directly, so the left view's depth and ids are
+  // the ground truth of the rectified left view (R1 = I).
+  std::array<cv::Mat, 2> rectified;
+  render::RenderResult truth;
+  for (std::size_t k = 0; k < views.size(); ++k) {
+    const auto& [camera, file] = views[k];
+    render::RenderResult image = renderer.render(scene, settled, *camera, k == 0);
     Random noise(options.seed, record.id + "|" + *file);
     addSensorEffects(image.colour, options.rig, noise);
+    rectified[k] = toBgr(image.colour);
     // Sensor noise leaves string matching nothing to find: Huffman coding only.
-    database::writeImageAtomically(writer.path(*file), toBgr(image.colour),
+    database::writeImageAtomically(writer.path(*file), rectified[k],
                                    database::PngCompression::kHuffmanOnly);
+    if (k == 0) truth = std::move(image);
   }
   database::writeCalibration(writer.path(record.files.calibration), calibration);
+  record.files.rawLeft.clear();  // no raw sensor pair from the ideal rig
+  record.files.rawRight.clear();
+  std::vector<TruthObject> truthObjects;
+  for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+    truthObjects.push_back({scene.objects[i], names[i],
+                            static_cast<std::uint16_t>(kObjectInstanceBase + scene.objects[i]),
+                            settled[i]});
+  }
+  writeSceneProducts(rectified[0], rectified[1], calibration, truth, kTableInstance, truthObjects,
+                     record.files, writer);
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {
     record.objects.push_back({scene.objects[i], settled[i]});
   }

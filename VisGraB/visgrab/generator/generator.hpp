@@ -80,7 +80,8 @@ struct GenerationReport {
 /// options.out: the shared assets (objects, tables, hand, materials) once, then per scene the
 /// placement, settling (retried with new placements until every object is at rest and
 /// penetrates less than maxPenetration), the scene files with the settled poses, the rendered
-/// rectified stereo pair with sensor effects and the calibration; each finished scene is added
+/// rectified stereo pair with sensor effects, the calibration, and the disparity, point cloud
+/// and ground truth (depth, mask, poses; writeSceneProducts); each finished scene is added
 /// to the index at once, so an interrupted run loses nothing and resumes. The same seed gives
 /// byte-identical files whatever the thread count. A scene that fails is reported, not fatal;
 /// a file that cannot be written (rw::common::WriteError: disk full, folder deleted) is: the

@@ -48,7 +48,9 @@ SceneSegmentation analyzeScene(const database::Database& db, const database::Sce
   const cv::Mat left = db.leftImage(scene.id);
   const cv::Mat right = db.rightImage(scene.id);
   const database::StereoCalibration calibration = db.calibration(scene.id);
-  return segmentScene(stereoCloud(left, right, calibration, options.stereo), options.segmentation);
+  // left.png and right.png are the rectified pair: no second rectification.
+  return segmentScene(stereoCloud(left, right, calibration, options.stereo, StereoPair::kRectified),
+                      options.segmentation);
 }
 
 std::vector<SceneGrasps> baselineGrasps(

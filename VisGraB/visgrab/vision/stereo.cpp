@@ -170,9 +170,22 @@ OrganizedCloud reprojectToTable(const cv::Mat& disparity, const cv::Mat& texture
 
 OrganizedCloud stereoCloud(const cv::Mat& left, const cv::Mat& right,
                            const database::StereoCalibration& calibration,
-                           const StereoOptions& options) {
+                           const StereoOptions& options, StereoPair pair) {
   cv::Mat l, r;
-  rectifyPair(left, right, calibration, l, r);
+  if (pair == StereoPair::kRaw) {
+    rectifyPair(left, right, calibration, l, r);
+  } else {
+    const cv::Size size(calibration.width, calibration.height);
+    if (left.size() != size || right.size() != size) {
+      throw std::invalid_argument("stereo: rectified images are " + std::to_string(left.cols) +
+                                  "x" + std::to_string(left.rows) + " and " +
+                                  std::to_string(right.cols) + "x" + std::to_string(right.rows) +
+                                  ", the calibration expects " + std::to_string(size.width) + "x" +
+                                  std::to_string(size.height));
+    }
+    l = left;
+    r = right;
+  }
   return reprojectToTable(computeDisparity(l, r, calibration, options), textureMask(l, options),
                           calibration, options);
 }

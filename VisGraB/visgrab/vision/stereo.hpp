@@ -111,9 +111,18 @@ OrganizedCloud reprojectToTable(const cv::Mat& disparity, const cv::Mat& texture
                                 const database::StereoCalibration& calibration,
                                 const StereoOptions& options);
 
-/// rectifyPair, computeDisparity and reprojectToTable in one.
+/// What a pair of images given to stereoCloud is.
+enum class StereoPair {
+  /// As the cameras took them (distortion, unrectified): rectified with rectifyPair first.
+  kRaw,
+  /// Already rectified for the calibration's P1, P2 (a database's left.png and right.png):
+  /// matched as they are, whatever the calibration's distortion and R1, R2.
+  kRectified,
+};
+
+/// rectifyPair (for a kRaw pair), computeDisparity and reprojectToTable in one.
 OrganizedCloud stereoCloud(const cv::Mat& left, const cv::Mat& right,
                            const database::StereoCalibration& calibration,
-                           const StereoOptions& options);
+                           const StereoOptions& options, StereoPair pair = StereoPair::kRaw);
 
 }  // namespace visgrab::vision

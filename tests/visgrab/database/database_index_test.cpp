@@ -119,6 +119,73 @@ TEST(DatabaseIndexTest, AcceptsAHandWrittenIndex) {
                         1e-12);
 }
 
+TEST(DatabaseIndexTest, Version1IsReadWithoutTheNewFilesAndRewrittenAsVersion2) {
+  const auto index = parseIndex(indexText(kScene, kFiles + kObject), "i.xml");
+  EXPECT_EQ(index.formatVersion, 1);
+  ASSERT_EQ(index.scenes.size(), 1u);
+  const SceneFiles& f = index.scenes[0].files;
+  EXPECT_EQ(f.left, "l.png");
+  EXPECT_EQ(f.dynamicWorkcell, "s.dwc.xml");
+  for (const std::string* empty :
+       {&f.rawLeft, &f.rawRight, &f.disparity, &f.pointCloud, &f.depth, &f.mask, &f.poses}) {
+    EXPECT_EQ(*empty, "");
+  }
+  const std::string rewritten = indexToXml(index);
+  EXPECT_NE(rewritten.find("formatVersion=\"2\""), std::string::npos) << rewritten;
+  EXPECT_EQ(rewritten.find("rawLeft"), std::string::npos) << rewritten;
+  EXPECT_EQ(parseIndex(rewritten, "i.xml").scenes[0].files, f);
+}
+
+TEST(DatabaseIndexTest, Version2NamesEveryFileAndMayLeaveTheNewOnesOut) {
+  const std::string files =
+      "    <Files left=\"l.png\" right=\"r.png\" calibration=\"c.yml\" workcell=\"s.wc.xml\" "
+      "dynamicWorkcell=\"s.dwc.xml\" disparity=\"d.png\" pointCloud=\"p.ply\" depth=\"z.png\" "
+      "mask=\"m.png\" poses=\"o.yml\"/>\n";
+  const auto index =
+      parseIndex(indexText(kScene, files + kObject, "formatVersion=\"2\" seed=\"7\""), "i.xml");
+  ASSERT_EQ(index.scenes.size(), 1u);
+  const SceneFiles& f = index.scenes[0].files;
+  EXPECT_EQ(f.rawLeft, "");  // no raw pair
+  EXPECT_EQ(f.rawRight, "");
+  EXPECT_EQ(f.disparity, "d.png");
+  EXPECT_EQ(f.pointCloud, "p.ply");
+  EXPECT_EQ(f.depth, "z.png");
+  EXPECT_EQ(f.mask, "m.png");
+  EXPECT_EQ(f.poses, "o.yml");
+  // Round trip: the absent ones stay absent, the others keep their paths.
+  const std::string text = indexToXml(index);
+  EXPECT_EQ(text.find("rawLeft"), std::string::npos) << text;
+  EXPECT_EQ(parseIndex(text, "i.xml").scenes[0].files, f);
+  // defaultSceneFiles names all twelve in the scene's folder.
+  const SceneFiles d = defaultSceneFiles("plain/single/corny/07");
+  EXPECT_EQ(d.rawLeft, "scenes/plain/single/corny/07/raw_left.png");
+  EXPECT_EQ(d.rawRight, "scenes/plain/single/corny/07/raw_right.png");
+  EXPECT_EQ(d.disparity, "scenes/plain/single/corny/07/disparity.png");
+  EXPECT_EQ(d.pointCloud, "scenes/plain/single/corny/07/cloud.ply");
+  EXPECT_EQ(d.depth, "scenes/plain/single/corny/07/depth.png");
+  EXPECT_EQ(d.mask, "scenes/plain/single/corny/07/mask.png");
+  EXPECT_EQ(d.poses, "scenes/plain/single/corny/07/poses.yml");
+  EXPECT_EQ(sceneFileFields().size(), 12u);
+}
+
+TEST(DatabaseIndexTest, NewFilesAreCheckedAndBelongToVersion2) {
+  const std::string v1WithDepth =
+      "    <Files left=\"l.png\" right=\"r.png\" calibration=\"c.yml\" workcell=\"s.wc.xml\" "
+      "dynamicWorkcell=\"s.dwc.xml\" depth=\"z.png\"/>\n";
+  EXPECT_EQ(errorOf(indexText(kScene, v1WithDepth + kObject)),
+            "db/index.xml:4:5: error: <Files>: depth needs index format version 2 (this index "
+            "says version 1)");
+  const std::string badCloud =
+      "    <Files left=\"l.png\" right=\"r.png\" calibration=\"c.yml\" workcell=\"s.wc.xml\" "
+      "dynamicWorkcell=\"s.dwc.xml\" pointCloud=\"../p.ply\"/>\n";
+  EXPECT_EQ(errorOf(indexText(kScene, badCloud + kObject, "formatVersion=\"2\" seed=\"7\"")),
+            "db/index.xml:4:5: error: <Files>: pointCloud=\"../p.ply\": the path must not contain "
+            "\"..\"");
+  DatabaseIndex index = sampleIndex();
+  index.scenes[0].files.mask = "/abs/mask.png";
+  EXPECT_THROW(indexToXml(index), std::invalid_argument);
+}
+
 TEST(DatabaseIndexTest, MalformedIndexesGiveOneErrorWithFileAndLine) {
   EXPECT_EQ(errorOf(""),
             "db/index.xml: error: no <VisGraBDatabase> element: not a VisGraB "
@@ -139,9 +206,9 @@ TEST(DatabaseIndexTest, MalformedIndexesGiveOneErrorWithFileAndLine) {
                 .find("db/index.xml:2:1: error: <VisGraBDatabase>"),
             std::string::npos);
   // Meaning: version, id, conditions, duplicates, objects, numbers, paths.
-  EXPECT_EQ(errorOf(indexText(kScene, kFiles + kObject, "formatVersion=\"2\" seed=\"7\"")),
-            "db/index.xml:2:1: error: index format version 2 is not supported (this program "
-            "reads version 1)");
+  EXPECT_EQ(errorOf(indexText(kScene, kFiles + kObject, "formatVersion=\"3\" seed=\"7\"")),
+            "db/index.xml:2:1: error: index format version 3 is not supported (this program "
+            "reads versions 1 to 2)");
   EXPECT_EQ(
       errorOf(indexText("id=\"textured/single/pepsi/03\" texture=\"textured\" kind=\"single\" "
                         "arrangement=\"standing\" pose=\"3\"",

@@ -31,6 +31,25 @@ void addFakeScene(DatabaseWriter& writer, const SceneConditions& c, int shade) {
                                      rw::math::makeTranslation(Eigen::Vector3d(0, -0.5, 0.6))));
   writeFileAtomically(writer.path(files.workcell), "<WorkCell name=\"s\"/>\n");
   writeFileAtomically(writer.path(files.dynamicWorkcell), "<DynamicWorkcell/>\n");
+  // The files of index format 2, with values the tests below know.
+  cv::Mat raw(6, 8, CV_8UC1, cv::Scalar(shade));
+  writeImageAtomically(writer.path(files.rawLeft), raw);
+  writeImageAtomically(writer.path(files.rawRight), raw);
+  cv::Mat disparity(6, 8, CV_16UC1, cv::Scalar(0));
+  disparity.at<std::uint16_t>(1, 2) = 40 * 256 + 64;  // 40.25 px
+  writeImageAtomically(writer.path(files.disparity), disparity);
+  cv::Mat depth(6, 8, CV_16UC1, cv::Scalar(6543));  // 0.6543 m
+  depth.at<std::uint16_t>(0, 0) = 0;                // nothing drawn
+  writeImageAtomically(writer.path(files.depth), depth);
+  cv::Mat mask(6, 8, CV_8UC1, cv::Scalar(255));
+  mask.at<std::uint8_t>(3, 4) = static_cast<std::uint8_t>(c.objects[0]);
+  writeImageAtomically(writer.path(files.mask), mask);
+  PointCloud cloud;
+  cloud.points = {Eigen::Vector3f(0.1f, -0.2f, 0.65f), Eigen::Vector3f(0, 0, 1)};
+  cloud.colours = {{1, 2, 3}, {255, 0, static_cast<std::uint8_t>(shade)}};
+  cloud.comments = {"test cloud"};
+  writeFileAtomically(writer.path(files.pointCloud), pointCloudToPly(cloud));
+  writeFileAtomically(writer.path(files.poses), "%YAML:1.0\n---\nobjects: []\n");
   SceneRecord record{id, c, files, {}};
   for (int object : c.objects) {
     record.objects.push_back(
@@ -96,6 +115,182 @@ TEST_F(DatabaseTest, ImagesCalibrationAndGroundTruth) {
       1e-9);  // the index holds 1e-9 degree
 }
 
+std::string fileBytes(const fs::path& file);
+
+TEST_F(DatabaseTest, DisparityDepthMaskAndPointCloud) {
+  const Database db = Database::open(dir_.path());
+  const std::string id = "textured/double/cocacola_saltcylinder/07";
+  const SceneEntry& e = db.scene(id);
+  const fs::path folder = dir_.path() / "scenes" / id;
+  EXPECT_EQ(e.rawLeftImage, folder / "raw_left.png");
+  EXPECT_EQ(e.rawRightImage, folder / "raw_right.png");
+  EXPECT_EQ(e.disparity, folder / "disparity.png");
+  EXPECT_EQ(e.pointCloud, folder / "cloud.ply");
+  EXPECT_EQ(e.depth, folder / "depth.png");
+  EXPECT_EQ(e.mask, folder / "mask.png");
+  EXPECT_EQ(e.poses, folder / "poses.yml");
+
+  const cv::Mat disparity = db.disparityImage(id);
+  ASSERT_EQ(disparity.type(), CV_32FC1);
+  ASSERT_EQ(disparity.size(), cv::Size(8, 6));
+  EXPECT_EQ(disparity.at<float>(1, 2), 40.25f);
+  EXPECT_LT(disparity.at<float>(0, 0), 0.0f);  // none
+  const cv::Mat depth = db.depthImage(id);
+  ASSERT_EQ(depth.type(), CV_32FC1);
+  EXPECT_NEAR(depth.at<float>(5, 7), 0.6543, 1e-7);
+  EXPECT_EQ(depth.at<float>(0, 0), 0.0f);
+  const cv::Mat mask = db.instanceMask(id);
+  ASSERT_EQ(mask.type(), CV_8UC1);
+  EXPECT_EQ(mask.at<std::uint8_t>(3, 4), 5);
+  EXPECT_EQ(mask.at<std::uint8_t>(0, 0), 255);
+  const PointCloud cloud = db.pointCloud(id);
+  ASSERT_EQ(cloud.points.size(), 2u);
+  EXPECT_EQ(cloud.points[0], Eigen::Vector3f(0.1f, -0.2f, 0.65f));
+  EXPECT_EQ(cloud.colours[1], (std::array<std::uint8_t, 3>{255, 0, 3}));
+  EXPECT_EQ(cloud.comments, std::vector<std::string>{"test cloud"});
+}
+
+TEST_F(DatabaseTest, ShowListsEveryFile) {
+  const Database db = Database::open(dir_.path());
+  const std::string details = Database::details(db.scene("plain/single/cocacola/06"));
+  for (const char* name : {"raw_left.png", "raw_right.png", "left.png", "right.png",
+                           "calibration.yml", "disparity.png", "cloud.ply", "depth.png", "mask.png",
+                           "poses.yml", "scene.wc.xml", "scene.dwc.xml"}) {
+    EXPECT_NE(details.find(std::string("/plain/single/cocacola/06/") + name + "\n"),
+              std::string::npos)
+        << name << " in\n"
+        << details;
+  }
+  fs::remove(dir_.path() / "scenes/plain/single/cocacola/06/cloud.ply");
+  EXPECT_NE(Database::details(db.scene("plain/single/cocacola/06"))
+                .find("point cloud:      " +
+                      (dir_.path() / "scenes/plain/single/cocacola/06/cloud.ply").string() +
+                      "  (missing)\n"),
+            std::string::npos);
+}
+
+TEST_F(DatabaseTest, BadProductFilesNameTheFileAndWhatWasExpected) {
+  const Database db = Database::open(dir_.path());
+  const std::string id = "textured/single/cocacola/03";
+  const fs::path folder = dir_.path() / "scenes" / id;
+  // An 8-bit depth image and a 16-bit mask are the wrong types.
+  writeImageAtomically(folder / "depth.png", cv::Mat(6, 8, CV_8UC1, cv::Scalar(3)));
+  try {
+    db.depthImage(id);
+    FAIL();
+  } catch (const DatabaseError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              (folder / "depth.png").string() + ": error: depth image of scene " + id +
+                  ": expected a single-channel 16-bit PNG (0.1 mm units), found 1 channel(s) of "
+                  "8-bit values");
+  }
+  writeImageAtomically(folder / "mask.png", cv::Mat(6, 8, CV_16UC1, cv::Scalar(3)));
+  try {
+    db.instanceMask(id);
+    FAIL();
+  } catch (const DatabaseError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              (folder / "mask.png").string() + ": error: instance mask of scene " + id +
+                  ": expected a single-channel 8-bit PNG (object ids), found 1 channel(s) of "
+                  "16-bit values");
+  }
+  writeImageAtomically(folder / "disparity.png", cv::Mat(6, 8, CV_8UC3, cv::Scalar(3)));
+  EXPECT_THROW(db.disparityImage(id), DatabaseError);
+  // A truncated point cloud.
+  const std::string ply = fileBytes(folder / "cloud.ply");
+  writeFileAtomically(folder / "cloud.ply", std::string_view(ply).substr(0, ply.size() - 4));
+  try {
+    db.pointCloud(id);
+    FAIL();
+  } catch (const DatabaseError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              (folder / "cloud.ply").string() +
+                  ": error: the header announces 2 vertices of 15 bytes (30 bytes) but 26 bytes "
+                  "follow it (truncated) (point cloud of scene " +
+                  id + ")");
+  }
+  fs::remove(folder / "cloud.ply");
+  EXPECT_THROW(db.pointCloud(id), DatabaseError);
+}
+
+TEST(OriginalManifestDatabase, ReadsTheManifestsDisparityAndListsItsFiles) {
+  test::TempDir dir;
+  const fs::path manifest = dir.path() / "benchmark.xml";
+  writeFileAtomically(
+      manifest,
+      "<visgrab><benchmark type=\"GraspUnknownObject\"><scene id=\"cocacola_03\"><info>"
+      "<sceneLocator>textured/cocacola/img_03</sceneLocator><sceneSet>single</sceneSet>"
+      "<sceneSetID>1</sceneSetID><textureCondition>textured</textureCondition></info><input>"
+      "<leftImg>l.png</leftImg><rightImg>r.png</rightImg><disp>d.png</disp>"
+      "<pointCloud>pc.pcd</pointCloud></input><simulator><wc>s.wc.xml</wc><dwc>s.dwc.xml</dwc>"
+      "</simulator></scene></benchmark></visgrab>\n");
+  const Database db = Database::openOriginalManifest(manifest);
+  const SceneEntry& e = db.scene("cocacola_03");
+  EXPECT_EQ(e.disparity, dir.path() / "d.png");
+  EXPECT_EQ(e.pointCloud, dir.path() / "pc.pcd");
+  const std::string details = Database::details(e);
+  EXPECT_NE(details.find("disparity:        " + (dir.path() / "d.png").string() + "  (missing)"),
+            std::string::npos)
+      << details;
+  EXPECT_NE(details.find("point cloud:      " + (dir.path() / "pc.pcd").string()),
+            std::string::npos)
+      << details;
+  // An 8-bit disparity is read as its value, a 16-bit one as value / 256; 0 is none.
+  cv::Mat eight(2, 3, CV_8UC1, cv::Scalar(17));
+  eight.at<std::uint8_t>(1, 2) = 0;
+  writeImageAtomically(dir.path() / "d.png", eight);
+  cv::Mat d = db.disparityImage("cocacola_03");
+  EXPECT_EQ(d.at<float>(0, 0), 17.0f);
+  EXPECT_LT(d.at<float>(1, 2), 0.0f);
+  writeImageAtomically(dir.path() / "d.png", cv::Mat(2, 3, CV_16UC1, cv::Scalar(17 * 256 + 128)));
+  d = db.disparityImage("cocacola_03");
+  EXPECT_EQ(d.at<float>(1, 1), 17.5f);
+  // The original's cloud format is not ours: the error names the file.
+  writeFileAtomically(dir.path() / "pc.pcd", "# .PCD v0.7\nVERSION 0.7\n");
+  try {
+    db.pointCloud("cocacola_03");
+    FAIL();
+  } catch (const DatabaseError& error) {
+    EXPECT_EQ(std::string(error.what()),
+              (dir.path() / "pc.pcd").string() +
+                  ": error: not a PLY file (it must start with the line \"ply\") (point cloud "
+                  "of scene cocacola_03)");
+  }
+}
+
+TEST_F(DatabaseTest, Version1DatabasesHaveNoProductFiles) {
+  test::TempDir old;
+  writeFileAtomically(old.path() / "index.xml",
+                      "<VisGraBDatabase formatVersion=\"1\" seed=\"4\">\n"
+                      "  <Scene id=\"plain/single/corny/07\" texture=\"plain\" kind=\"single\" "
+                      "arrangement=\"lying\" pose=\"7\">\n"
+                      "    <Files left=\"l.png\" right=\"r.png\" calibration=\"c.yml\" "
+                      "workcell=\"s.wc.xml\" dynamicWorkcell=\"s.dwc.xml\"/>\n"
+                      "    <Object id=\"6\" name=\"corny\"><Pos>0 0 0</Pos><RPY>0 0 0</RPY>"
+                      "</Object>\n  </Scene>\n</VisGraBDatabase>\n");
+  const Database db = Database::open(old.path());
+  const SceneEntry& e = db.scene("plain/single/corny/07");
+  EXPECT_TRUE(e.disparity.empty());
+  EXPECT_TRUE(e.pointCloud.empty());
+  EXPECT_TRUE(e.depth.empty());
+  EXPECT_TRUE(e.rawLeftImage.empty());
+  EXPECT_EQ(Database::details(e).find("depth"), std::string::npos);
+  try {
+    db.depthImage(e.id);
+    FAIL();
+  } catch (const DatabaseError& error) {
+    EXPECT_EQ(std::string(error.what()), "scene plain/single/corny/07: no depth image is known");
+  }
+  // A writer does not resume it: its scenes lack the new files.
+  try {
+    DatabaseWriter writer(old.path(), 4);
+    FAIL();
+  } catch (const std::runtime_error& error) {
+    EXPECT_NE(std::string(error.what()).find("generated in index format 1"), std::string::npos)
+        << error.what();
+  }
+}
+
 std::string fileBytes(const fs::path& file) {
   std::ifstream in(file, std::ios::binary);
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
@@ -105,7 +300,10 @@ TEST(WriteImageAtomically, HuffmanOnlyPngKeepsEveryPixel) {
   test::TempDir dir;
   DatabaseWriter writer(dir.path(), 7, "test");
   const SceneConditions c = SceneConditions::single(Texture::kPlain, 5, 1);
-  const SceneFiles files = writer.filesFor(sceneIdOf(c));
+  SceneFiles files = writer.filesFor(sceneIdOf(c));
+  // The five files of format version 1 only.
+  files.rawLeft = files.rawRight = files.disparity = files.pointCloud = files.depth = files.mask =
+      files.poses = "";
   // Sensor-like noise over a gradient: every pixel its own value.
   cv::Mat image(48, 64, CV_8UC3);
   cv::RNG rng(12345);
@@ -225,6 +423,20 @@ TEST_F(DatabaseTest, WriterResumesAndKnowsCompleteScenes) {
   addFakeScene(writer, SceneConditions::single(Texture::kPlain, 5, 6), 9);
   EXPECT_EQ(writer.index().scenes.size(), 3u);
   EXPECT_TRUE(writer.isComplete("plain/single/cocacola/06"));
+  EXPECT_EQ(Database::open(dir_.path()).list().front().disparity.filename(), "disparity.png");
+  // Every file the record names counts, the new ones too; an empty optional one does not.
+  fs::remove(dir_.path() / "scenes/plain/single/cocacola/06/mask.png");
+  EXPECT_FALSE(writer.isComplete("plain/single/cocacola/06"));
+  record = writer.index().scenes.at(0);
+  ASSERT_EQ(record.id, "plain/single/cocacola/06");
+  record.files.mask.clear();
+  writer.addScene(record);
+  EXPECT_TRUE(writer.isComplete("plain/single/cocacola/06"));
+  EXPECT_EQ(Database::open(dir_.path()).scene("plain/single/cocacola/06").mask, fs::path());
+  fs::remove(dir_.path() / "scenes/plain/single/cocacola/06/cloud.ply");
+  EXPECT_FALSE(writer.isComplete("plain/single/cocacola/06"));
+  record.files.pointCloud = "scenes/plain/single/cocacola/06/missing.ply";
+  EXPECT_THROW(writer.addScene(record), std::runtime_error);
   // Another seed cannot resume this folder.
   EXPECT_THROW(DatabaseWriter(dir_.path(), 43), std::runtime_error);
   // An invalid record is refused.
