@@ -210,8 +210,13 @@ std::string checkRelativePath(std::string_view path) {
 
 SceneFiles defaultSceneFiles(std::string_view id) {
   const std::string dir = "scenes/" + std::string(id) + "/";
-  return SceneFiles{dir + "left.png", dir + "right.png", dir + "calibration.yml",
-                    dir + "scene.wc.xml", dir + "scene.dwc.xml"};
+  SceneFiles files;
+  files.left = dir + "left.png";
+  files.right = dir + "right.png";
+  files.calibration = dir + "calibration.yml";
+  files.workcell = dir + "scene.wc.xml";
+  files.dynamicWorkcell = dir + "scene.dwc.xml";
+  return files;
 }
 
 DatabaseIndex parseIndex(std::string_view text, const std::string& displayPath) {
