@@ -136,8 +136,8 @@ std::vector<Vector3D> hullPoints(const std::vector<Triangle>& soup) {
   capPoints.erase(std::unique(capPoints.begin(), capPoints.end()), capPoints.end());
   const std::size_t surface = points.size();
   for (const Vector3D& p : capPoints) {
-    if (std::binary_search(points.begin(), points.begin() + static_cast<std::ptrdiff_t>(surface),
-                           p, lexLess)) {
+    if (std::binary_search(points.begin(), points.begin() + static_cast<std::ptrdiff_t>(surface), p,
+                           lexLess)) {
       continue;
     }
     if (windingNumber(soup, p) > 1e-3) points.push_back(p);
@@ -145,11 +145,15 @@ std::vector<Vector3D> hullPoints(const std::vector<Triangle>& soup) {
   return points;
 }
 
-Part makePart(std::vector<Triangle> triangles) {
+// A part with its volume and its hull's volume. `exact`: the hull of hullPoints(); else of the
+// surface points only (cheaper, for ranking candidate cuts: it leaves out the rare points
+// where three cuts meet inside the mesh).
+Part makePart(std::vector<Triangle> triangles, bool exact) {
   Part part;
   part.triangles = std::move(triangles);
   part.volume = soupVolume(part.triangles);
-  part.hullVolume = hullVolumeOf(hullPoints(part.triangles), part.volume);
+  part.hullVolume =
+      hullVolumeOf(exact ? hullPoints(part.triangles) : surfacePoints(part.triangles), part.volume);
   return part;
 }
 
@@ -187,8 +191,8 @@ bool split(const Part& part, const DecompositionOptions& options, double minVolu
     const Vector3D n = Vector3D::Unit(axis);
     for (const double d :
          cutPositions(points, axis, box.min[axis], box.max[axis], options.cutsPerAxis)) {
-      Part a = makePart(clip(part.triangles, n, d));
-      Part b = makePart(clip(part.triangles, -n, -d));
+      Part a = makePart(clip(part.triangles, n, d), false);
+      Part b = makePart(clip(part.triangles, -n, -d), false);
       if (a.volume < minVolume || b.volume < minVolume) continue;
       const double concavity = (a.hullVolume - a.volume) + (b.hullVolume - b.volume);
       if (concavity < best - 1e-9 * part.volume) {  // ties: the first candidate
@@ -198,6 +202,10 @@ bool split(const Part& part, const DecompositionOptions& options, double minVolu
         found = true;
       }
     }
+  }
+  if (found) {
+    lower = makePart(std::move(lower.triangles), true);
+    upper = makePart(std::move(upper.triangles), true);
   }
   return found;
 }
@@ -220,7 +228,7 @@ ConvexDecomposition decomposeConvex(const rw::geometry::TriMesh& mesh,
   const double minVolume = 1e-3 * result.meshVolume;
   const double smallExcess = 2e-3 * result.meshVolume;
   std::vector<Part> parts;
-  parts.push_back(makePart(std::move(soup)));
+  parts.push_back(makePart(std::move(soup), true));
   while (static_cast<int>(parts.size()) < std::max(1, options.maxPieces)) {
     // The part with the largest excess that is still worth cutting.
     std::size_t worst = parts.size();

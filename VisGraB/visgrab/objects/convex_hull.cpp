@@ -78,9 +78,9 @@ rw::geometry::TriMesh convexHull(const std::vector<Vector3D>& input) {
   ErrorText errors;
   auto qh = std::make_unique<qhT>();
   qh_zero(qh.get(), errors.file());
-  const int exitCode = qh_new_qhull(qh.get(), 3, static_cast<int>(points.size()),
-                                    coordinates.data(), False, options.data(), nullptr,
-                                    errors.file());
+  const int exitCode =
+      qh_new_qhull(qh.get(), 3, static_cast<int>(points.size()), coordinates.data(), False,
+                   options.data(), nullptr, errors.file());
   rw::geometry::TriMesh mesh;
   if (exitCode == qh_ERRnone) {
     std::map<int, std::uint32_t> index;  // Qhull point id -> mesh vertex

@@ -57,8 +57,7 @@ std::map<Edge, int> directedEdges(const rw::geometry::TriMesh& mesh) {
 // The file's coordinates in the mesh frame before the object frame is placed: scaled, turned.
 Transform3D fileTransform(const MeshShapeSpec& shape) {
   Transform3D X = Transform3D::Identity();
-  X.linear() = rw::math::rpyToRotation(shape.rpyDegrees * (std::numbers::pi / 180.0)) *
-               shape.scale;
+  X.linear() = rw::math::rpyToRotation(shape.rpyDegrees * (std::numbers::pi / 180.0)) * shape.scale;
   return X;
 }
 
@@ -176,7 +175,8 @@ void wrapTexture(const ObjectSpec& spec, std::vector<visual::VisualMesh>& meshes
         u[i] = static_cast<float>(std::atan2(p.y(), p.x()) / (2.0 * std::numbers::pi) + 0.5);
       }
       // A triangle across the seam: its small u values continue past 1 (the texture repeats).
-      const float span = *std::max_element(u.begin(), u.end()) - *std::min_element(u.begin(), u.end());
+      const float span =
+          *std::max_element(u.begin(), u.end()) - *std::min_element(u.begin(), u.end());
       for (std::size_t i = 0; i < 3; ++i) {
         if (span > 0.5f && u[i] < 0.5f) u[i] += 1.0f;
         const float z = body.positions[base + i].z();
@@ -194,8 +194,8 @@ void wrapTexture(const ObjectSpec& spec, std::vector<visual::VisualMesh>& meshes
   detail::Random random(0x0B1EC7ULL * 1000003ULL + a.seed);
   const detail::PixelRect all{0, 0, canvas.width(), canvas.height()};
   if (a.pattern == PatternKind::kPlainPlastic) {
-    detail::paintMaterial(canvas, all, detail::kObjectTexelsPerMetre, a.bodyMaterial, ground,
-                          false, random);
+    detail::paintMaterial(canvas, all, detail::kObjectTexelsPerMetre, a.bodyMaterial, ground, false,
+                          random);
     body.specular = detail::materialSpecular(a.bodyMaterial);
   } else {
     std::vector<Eigen::Vector3f> palette;
@@ -262,21 +262,23 @@ int fillHoles(rw::geometry::TriMesh& mesh) {
   }
   int loops = 0;
   while (!next.empty()) {
-    const auto start = next.begin();
-    std::vector<std::uint32_t> loop{start->first};
-    std::uint32_t at = start->second;
-    next.erase(start);
-    while (at != loop.front()) {
-      loop.push_back(at);
-      const auto it = next.find(at);
-      if (it == next.end()) break;  // not a loop (cannot happen for a manifold boundary)
-      at = it->second;
+    // Walk along the boundary; whenever the walk meets itself, the part since then is a loop
+    // (a vertex where two holes touch is thus split into two loops, not one figure eight).
+    std::vector<std::uint32_t> path{next.begin()->first};
+    for (auto it = next.find(path.back()); it != next.end(); it = next.find(path.back())) {
+      const std::uint32_t to = it->second;
       next.erase(it);
+      const auto seen = std::find(path.begin(), path.end(), to);
+      if (seen == path.end()) {
+        path.push_back(to);
+        continue;
+      }
+      for (auto v = seen + 1; v + 1 < path.end(); ++v) {
+        mesh.triangles.push_back({*seen, *v, *(v + 1)});
+      }
+      ++loops;
+      path.erase(seen + 1, path.end());
     }
-    for (std::size_t i = 1; i + 1 < loop.size(); ++i) {
-      mesh.triangles.push_back({loop[0], loop[i], loop[i + 1]});
-    }
-    ++loops;
   }
   return loops;
 }
@@ -397,8 +399,7 @@ ObjectModel generateMeshObject(const ObjectSpec& spec) {
   addVisual(spec, X_OF, model);
   std::vector<Vector3D> points;
   for (const auto& piece : model.collision) {
-    points.insert(points.end(), piece.triangles->vertices.begin(),
-                  piece.triangles->vertices.end());
+    points.insert(points.end(), piece.triangles->vertices.begin(), piece.triangles->vertices.end());
   }
   model.restingPoses = hullRestingPoses(convexHull(points), model.mass.cog);
   return model;

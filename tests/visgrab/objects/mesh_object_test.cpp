@@ -40,10 +40,11 @@ TEST(MeshObject, BoxMassPropertiesMatchTheFormulas) {
   // A 40 x 60 x 100 mm box written in millimetres, away from the file's origin.
   writeObj(dir.path() / "spec" / "meshes" / "box.obj",
            boxMesh({300.0, -200.0, 50.0}, {40.0, 60.0, 100.0}));
-  const auto model = generateOnly(writeSpec(
-      dir, "density=\"800\"", "<Mesh file=\"meshes/box.obj\" scale=\"0.001\"/>\n"
-                              "<Appearance pattern=\"plain-plastic\" seed=\"3\" body=\"0.2 0.4 "
-                              "0.6\"/>"));
+  const auto model =
+      generateOnly(writeSpec(dir, "density=\"800\"",
+                             "<Mesh file=\"meshes/box.obj\" scale=\"0.001\"/>\n"
+                             "<Appearance pattern=\"plain-plastic\" seed=\"3\" body=\"0.2 0.4 "
+                             "0.6\"/>"));
   const double a = 0.04;
   const double b = 0.06;
   const double c = 0.1;
@@ -113,8 +114,8 @@ TEST(MeshObject, RpyTurnsTheFileIntoTheObjectFrame) {
   // Long along the file's y axis; rpy 0 0 90 (RobWork's order: about z, y, x) turns it about x,
   // y into z (standing).
   writeObj(dir.path() / "spec" / "bar.obj", boxMesh({0, 0, 0}, {0.02, 0.15, 0.03}));
-  const auto model = generateOnly(
-      writeSpec(dir, "mass=\"0.1\"", "<Mesh file=\"bar.obj\" rpy=\"0 0 90\"/>"));
+  const auto model =
+      generateOnly(writeSpec(dir, "mass=\"0.1\"", "<Mesh file=\"bar.obj\" rpy=\"0 0 90\"/>"));
   const auto bounds = model.collisionBounds();
   EXPECT_NEAR(bounds.max.z() - bounds.min.z(), 0.15, 1e-7);
   EXPECT_NEAR(bounds.max.y() - bounds.min.y(), 0.03, 1e-7);
@@ -127,10 +128,10 @@ TEST(MeshObject, GivenCollisionPiecesAreKeptOrReplacedByTheirHulls) {
   // An L-shaped prism: not convex, so its hull (a pentagonal prism) is used.
   writeObj(dir.path() / "spec" / "upper.obj",
            prismMesh({{0, 0}, {0.1, 0}, {0.1, 0.05}, {0.05, 0.05}, {0.05, 0.1}, {0, 0.1}}, 0.1));
-  const auto model = generateOnly(
-      writeSpec(dir, "mass=\"1\"",
-                "<Mesh file=\"box.obj\"/>\n<CollisionPiece file=\"lower.obj\"/>\n"
-                "<CollisionPiece file=\"upper.obj\"/>"));
+  const auto model =
+      generateOnly(writeSpec(dir, "mass=\"1\"",
+                             "<Mesh file=\"box.obj\"/>\n<CollisionPiece file=\"lower.obj\"/>\n"
+                             "<CollisionPiece file=\"upper.obj\"/>"));
   ASSERT_EQ(model.collision.size(), 2u);
   EXPECT_NEAR(visgrab::objects::meshVolume(*model.collision[0].triangles), 0.1 * 0.1 * 0.05, 1e-9);
   EXPECT_NEAR(visgrab::objects::meshVolume(*model.collision[1].triangles),
