@@ -19,10 +19,11 @@ namespace visgrab::database {
 class DatabaseWriter {
  public:
   /// Opens `dir` for writing, creating it if needed. If DIR/index.xml exists it is read and
-  /// kept (resume); its seed must equal `seed`.
-  /// @throws rw::common::LoadError for a corrupt index, std::runtime_error for a seed mismatch
-  /// or a folder that cannot be created.
-  DatabaseWriter(std::filesystem::path dir, std::uint64_t seed, std::string generator = {});
+  /// kept (resume); its seed must equal `seed` and its objects must be `catalog`'s.
+  /// @throws rw::common::LoadError for a corrupt index, std::runtime_error for a seed mismatch,
+  /// other objects, or a folder that cannot be created.
+  DatabaseWriter(std::filesystem::path dir, std::uint64_t seed, std::string generator = {},
+                 const ObjectCatalog& catalog = ObjectCatalog::benchmark());
 
   DatabaseWriter(const DatabaseWriter&) = delete;
   DatabaseWriter& operator=(const DatabaseWriter&) = delete;
