@@ -130,7 +130,11 @@ class SpecReader {
         pairs.push_back(&e);
       }
     }
-    readPairs(pairs, spec);
+    std::vector<std::string> allNames;  // also of objects with errors (already reported)
+    for (const XmlElement& e : root.children) {
+      if (e.name == "Object") allNames.push_back(e.attributeOr("name", ""));
+    }
+    readPairs(pairs, allNames, spec);
     return spec;
   }
 
@@ -403,15 +407,17 @@ class SpecReader {
     return true;
   }
 
-  void readPairs(const std::vector<const XmlElement*>& elements, ObjectDatabaseSpec& spec) {
+  void readPairs(const std::vector<const XmlElement*>& elements,
+                 const std::vector<std::string>& allNames, ObjectDatabaseSpec& spec) {
     std::map<std::pair<std::string, std::string>, int> seen;
     for (const XmlElement* e : elements) {
       PairSpec pair{e->attributeOr("a", ""), e->attributeOr("b", ""), e->location.line};
       bool ok = true;
       for (const std::string* name : {&pair.a, &pair.b}) {
-        if (spec.findObject(*name) == nullptr) {
+        if (spec.findObject(*name) != nullptr) continue;
+        ok = false;
+        if (std::find(allNames.begin(), allNames.end(), *name) == allNames.end()) {
           error(*e, "no object named " + inQuotes(*name) + " in this file");
-          ok = false;
         }
       }
       if (!ok) continue;

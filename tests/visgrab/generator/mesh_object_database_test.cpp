@@ -30,8 +30,8 @@ double lowestPoint(const visgrab::objects::ObjectModel& model, const rw::math::T
 }
 
 // RobWork's green cup (an STL with two small holes: fillHoles) and jam jar (both with their axis
-// along y: rpy turns them up), read where RW_COMPAT_DATA points, never copied: a 4-scene database of them,
-// standing and lying, on both tables, through generateDatabase.
+// along y: rpy turns them up), read where RW_COMPAT_DATA points, never copied: a 4-scene database
+// of them, standing and lying, on both tables, through generateDatabase.
 TEST(MeshObjectDatabase, RobWorkMeshesGenerateSettledScenes) {
   REQUIRE_COMPAT_DATA(data);
   const fs::path cup = data / "objects" / "GreenCup_5k_tex.stl";
@@ -42,17 +42,21 @@ TEST(MeshObjectDatabase, RobWorkMeshesGenerateSettledScenes) {
       dir.path() / "spec" / "objects.xml",
       "<ObjectDatabase>\n"
       "  <Object id=\"101\" name=\"rwcup\" mass=\"0.09\">\n"
-      "    <Mesh file=\"" + cup.string() + "\" rpy=\"0 0 90\" fillHoles=\"true\"/>\n"
-      "    <Appearance pattern=\"plain-plastic\" seed=\"7\" body=\"0.1 0.45 0.12\"/>\n"
-      "  </Object>\n"
-      "  <Object id=\"102\" name=\"rwjam\" density=\"900\">\n"
-      "    <Mesh file=\"" + jam.string() + "\" rpy=\"0 0 90\"/>\n"
-      "    <Appearance pattern=\"label-band\" seed=\"8\" body=\"0.9 0.5 0.1\">\n"
-      "      <Colour rgb=\"0.9 0.5 0.1\"/><Colour rgb=\"0.15 0.2 0.6\"/>\n"
-      "    </Appearance>\n"
-      "  </Object>\n"
-      "  <Pair a=\"rwcup\" b=\"rwjam\"/>\n"
-      "</ObjectDatabase>\n");
+      "    <Mesh file=\"" +
+          cup.string() +
+          "\" rpy=\"0 0 90\" fillHoles=\"true\"/>\n"
+          "    <Appearance pattern=\"plain-plastic\" seed=\"7\" body=\"0.1 0.45 0.12\"/>\n"
+          "  </Object>\n"
+          "  <Object id=\"102\" name=\"rwjam\" density=\"900\">\n"
+          "    <Mesh file=\"" +
+          jam.string() +
+          "\" rpy=\"0 0 90\"/>\n"
+          "    <Appearance pattern=\"label-band\" seed=\"8\" body=\"0.9 0.5 0.1\">\n"
+          "      <Colour rgb=\"0.9 0.5 0.1\"/><Colour rgb=\"0.15 0.2 0.6\"/>\n"
+          "    </Appearance>\n"
+          "  </Object>\n"
+          "  <Pair a=\"rwcup\" b=\"rwjam\"/>\n"
+          "</ObjectDatabase>\n");
   const auto spec = visgrab::objects::loadObjectSpecs(specFile);
   visgrab::generator::GeneratorOptions options;
   options.out = dir.path() / "db";
@@ -63,11 +67,10 @@ TEST(MeshObjectDatabase, RobWorkMeshesGenerateSettledScenes) {
   options.catalog = visgrab::generator::objectCatalog(spec);
   options.seed = 5;
   options.threads = 2;
-  const std::vector<SceneConditions> scenes{
-      SceneConditions::single(Texture::kPlain, 101, 1),
-      SceneConditions::single(Texture::kTextured, 101, 5),
-      SceneConditions::single(Texture::kTextured, 102, 2),
-      SceneConditions::single(Texture::kPlain, 102, 6)};
+  const std::vector<SceneConditions> scenes{SceneConditions::single(Texture::kPlain, 101, 1),
+                                            SceneConditions::single(Texture::kTextured, 101, 5),
+                                            SceneConditions::single(Texture::kTextured, 102, 2),
+                                            SceneConditions::single(Texture::kPlain, 102, 6)};
   const auto report = visgrab::generator::generateDatabase(scenes, options);
   ASSERT_TRUE(report.failures.empty()) << report.failures.front();
   EXPECT_EQ(report.generated, 4);
@@ -105,8 +108,8 @@ TEST(MeshObjectDatabase, RobWorkMeshesGenerateSettledScenes) {
   }
   // The object files of the mesh objects, with what was done to the meshes noted.
   std::string example;
-  ASSERT_TRUE(
-      rw::common::readTextFile(options.out / "objects" / "rwcup" / "rwcup.wc.xml", example).empty());
+  ASSERT_TRUE(rw::common::readTextFile(options.out / "objects" / "rwcup" / "rwcup.wc.xml", example)
+                  .empty());
   EXPECT_NE(example.find("filled 2 holes bounded by 6 open edges"), std::string::npos) << example;
   EXPECT_NE(example.find("automatic convex decomposition"), std::string::npos) << example;
 }
