@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -10,6 +11,7 @@
 #include "visgrab/objects/mesh_object.hpp"
 #include "visgrab/objects/object_model.hpp"
 #include "visgrab/objects/object_spec.hpp"
+#include "visgrab/objects/object_writer.hpp"
 
 namespace {
 
@@ -140,6 +142,42 @@ TEST(MeshObject, GivenCollisionPiecesAreKeptOrReplacedByTheirHulls) {
   EXPECT_NE(model.notes[0].find("lower.obj: convex"), std::string::npos) << model.notes[0];
   EXPECT_NE(model.notes[1].find("upper.obj: not convex"), std::string::npos) << model.notes[1];
   EXPECT_NE(model.notes[1].find("replaced by its convex hull"), std::string::npos);
+}
+
+TEST(MeshObject, ATexturedMeshKeepsItsOwnTexture) {
+  TempDir dir;
+  // A box OBJ with texture coordinates and an MTL naming a 5 x 3 PNG.
+  const auto box = boxMesh({0, 0, 0}, {0.05, 0.05, 0.05});
+  std::string obj = "mtllib box.mtl\nusemtl painted\n";
+  for (const auto& v : box.vertices) {
+    obj += "v " + std::to_string(v.x()) + " " + std::to_string(v.y()) + " " +
+           std::to_string(v.z()) + "\n";
+  }
+  obj += "vt 0 0\nvt 1 0\nvt 1 1\n";
+  for (const auto& t : box.triangles) {
+    obj += "f " + std::to_string(t[0] + 1) + "/1 " + std::to_string(t[1] + 1) + "/2 " +
+           std::to_string(t[2] + 1) + "/3\n";
+  }
+  writeFile(dir.path() / "spec" / "box.obj", obj);
+  writeFile(dir.path() / "spec" / "box.mtl", "newmtl painted\nKd 1 1 1\nmap_Kd box.png\n");
+  visgrab::visual::RgbImage image;
+  image.width = 5;
+  image.height = 3;
+  image.pixels.assign(5 * 3 * 3, 200);
+  visgrab::objects::writePng(image, dir.path() / "spec" / "box.png");
+  // The Appearance is not used: the file brings its texture.
+  const auto model =
+      generateOnly(writeSpec(dir, "mass=\"0.1\"",
+                             "<Mesh file=\"box.obj\"/>\n<Appearance pattern=\"plain-plastic\" "
+                             "seed=\"1\" body=\"1 0 0\"/>"));
+  ASSERT_EQ(model.visual.size(), 1u);
+  ASSERT_TRUE(model.visual[0].mesh.texture);
+  EXPECT_EQ(model.visual[0].mesh.texture->width, 5);
+  EXPECT_EQ(model.visual[0].mesh.texture->height, 3);
+  // The visual mesh is in the object frame too: lowest point at z = 0.
+  float lowest = 1.0f;
+  for (const auto& p : model.visual[0].mesh.positions) lowest = std::min(lowest, p.z());
+  EXPECT_NEAR(lowest, 0.0f, 1e-6f);
 }
 
 TEST(MeshObject, FillHolesClosesAnOpenMesh) {
