@@ -17,6 +17,8 @@
 #include "visgrab/database/scene_filter.hpp"
 #include "visgrab/database/scene_set.hpp"
 #include "visgrab/generator/generator.hpp"
+#include "visgrab/generator/scene_model.hpp"
+#include "visgrab/objects/object_spec.hpp"
 
 namespace visgrab::app {
 
@@ -35,15 +37,21 @@ database::SceneFilter parseFilter(const Arguments& a) {
 int runGenerate(const Arguments& a) {
   const auto out = a.option("out");
   const database::SceneFilter filter = parseFilter(a);
-  std::vector<database::SceneConditions> scenes;
-  for (const auto& s : database::enumerateScenes()) {
-    if (filter.matches(database::sceneIdOf(s), &s)) scenes.push_back(s);
-  }
-  if (scenes.empty()) throw UsageError("--scenes selects no scene");
   generator::GeneratorOptions options;
-  options.out = *out;
   const fs::path data = dataFolder(a);
   options.objectSpec = data / "objects" / "objects.xml";
+  if (const auto spec = a.option("objects")) {
+    // Your own objects: their scenes, the tables from the spec or else the benchmark's.
+    options.catalog = generator::objectCatalog(objects::loadObjectSpecs(*spec));
+    options.tableSpec = options.objectSpec;
+    options.objectSpec = *spec;
+  }
+  std::vector<database::SceneConditions> scenes;
+  for (const auto& s : database::enumerateScenes(options.catalog)) {
+    if (filter.matches(database::sceneIdOf(s, options.catalog), &s)) scenes.push_back(s);
+  }
+  if (scenes.empty()) throw UsageError("--scenes selects no scene");
+  options.out = *out;
   options.handFolder = data / "hands" / "sdh";
   options.materials = data / "materials.xml";
   options.threads = threadsOption(a);
@@ -80,7 +88,8 @@ database::Database openDatabase(const Arguments& a) {
 }
 
 // A scene's conditions as JSON (null when unknown).
-void writeConditionsJson(JsonWriter& j, const database::SceneEntry& s) {
+void writeConditionsJson(JsonWriter& j, const database::SceneEntry& s,
+                         const database::ObjectCatalog& catalog) {
   j.key("conditions");
   if (!s.conditions) {
     j.null();
@@ -93,16 +102,17 @@ void writeConditionsJson(JsonWriter& j, const database::SceneEntry& s) {
   j.key("objects").beginArray();
   for (const int o : c.objects) {
     j.beginObject().key("id").value(o);
-    j.key("name").value(std::string(database::objectName(o))).endObject();
+    j.key("name").value(std::string(catalog.name(o))).endObject();
   }
   j.endArray().key("pose").value(c.pose);
-  j.key("description").value(database::describe(c)).endObject();
+  j.key("description").value(database::describe(c, catalog)).endObject();
 }
 
 // One scene of `db list --json` (and the start of `db show --json`'s).
-void writeSceneJson(JsonWriter& j, const database::SceneEntry& s) {
+void writeSceneJson(JsonWriter& j, const database::SceneEntry& s,
+                    const database::ObjectCatalog& catalog) {
   j.key("id").value(s.id).key("original_id").value(s.originalId);
-  writeConditionsJson(j, s);
+  writeConditionsJson(j, s, catalog);
 }
 
 int runList(const Arguments& a) {
@@ -116,12 +126,14 @@ int runList(const Arguments& a) {
     j.key("total").value(db.list().size()).key("scenes").beginArray();
     for (const auto* s : scenes) {
       j.beginObject();
-      writeSceneJson(j, *s);
+      writeSceneJson(j, *s, db.catalog());
       j.endObject();
     }
     j.endArray().endObject().finish();
   } else {
-    for (const auto* s : scenes) std::cout << database::Database::summaryLine(*s) << "\n";
+    for (const auto* s : scenes) {
+      std::cout << database::Database::summaryLine(*s, db.catalog()) << "\n";
+    }
   }
   std::cerr << scenes.size() << " of " << db.list().size() << " scenes\n";
   return 0;
@@ -139,10 +151,10 @@ void writeFileJson(JsonWriter& j, const char* name, const fs::path& file) {
   j.key("exists").value(fs::exists(file, ec)).endObject();
 }
 
-void printShowJson(const database::SceneEntry& s) {
+void printShowJson(const database::SceneEntry& s, const database::ObjectCatalog& catalog) {
   JsonWriter j(std::cout);
   j.beginObject().key("schema").value("visgrab/db-show/2");
-  writeSceneJson(j, s);
+  writeSceneJson(j, s, catalog);
   j.key("files").beginObject();
   writeFileJson(j, "left_image", s.leftImage);
   writeFileJson(j, "right_image", s.rightImage);
@@ -163,7 +175,7 @@ void printShowJson(const database::SceneEntry& s) {
     const Eigen::Quaterniond q(o.X_WO.linear());
     const Eigen::Vector3d rpy = rw::math::rotationToRpy(o.X_WO.linear());
     j.beginObject().key("object").value(o.object);
-    j.key("name").value(std::string(database::objectName(o.object)));
+    j.key("name").value(std::string(catalog.name(o.object)));
     j.key("position").numbers({p.x(), p.y(), p.z()});
     j.key("quaternion").numbers({q.w(), q.x(), q.y(), q.z()});
     j.key("rpy").numbers({rpy.x(), rpy.y(), rpy.z()}).endObject();
@@ -175,9 +187,9 @@ int runShow(const Arguments& a) {
   const database::Database db = openDatabase(a);
   const database::SceneEntry& scene = db.scene(a.positionals().at(0));
   if (a.flag("json")) {
-    printShowJson(scene);
+    printShowJson(scene, db.catalog());
   } else {
-    std::cout << database::Database::details(scene);
+    std::cout << database::Database::details(scene, db.catalog());
   }
   return 0;
 }
@@ -196,6 +208,11 @@ void addDatabaseCommands(CommandLine& cli) {
       ->type_name("DIR");
   addScenesOption(generate);
   addThreadsOption(generate);
+  generate
+      .add_option("--objects",
+                  "Your own object spec (meshes, pairs; docs/database-format.md, \"Your own "
+                  "objects\"): a database of its objects and pairs instead of the benchmark's")
+      ->type_name("SPEC");
   generate.add_option("--seed", "Seed of the scenes' random placements")
       ->type_name("S")
       ->default_str("1")

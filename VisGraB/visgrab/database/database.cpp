@@ -114,11 +114,13 @@ Database Database::open(const fs::path& dir) {
   db.source_ = Source::kGenerated;
   db.root_ = dir;
   db.seed_ = index.seed;
+  db.catalog_ = index.catalog;
   for (const SceneRecord& r : index.scenes) {
     SceneEntry e;
     e.id = r.id;
     e.conditions = r.conditions;
-    e.originalId = originalIdOf(r.conditions);
+    // Your own objects have no scene in the original database's layout.
+    e.originalId = index.catalog.isBenchmark() ? originalIdOf(r.conditions) : r.id;
     e.leftImage = dir / r.files.left;
     e.rightImage = dir / r.files.right;
     e.calibration = dir / r.files.calibration;
@@ -138,8 +140,8 @@ Database Database::open(const fs::path& dir) {
     e.groundTruth = r.objects;
     db.scenes_.push_back(std::move(e));
   }
-  std::stable_sort(db.scenes_.begin(), db.scenes_.end(), [](const auto& a, const auto& b) {
-    return sceneIndex(*a.conditions) < sceneIndex(*b.conditions);
+  std::stable_sort(db.scenes_.begin(), db.scenes_.end(), [&index](const auto& a, const auto& b) {
+    return sceneIndex(*a.conditions, index.catalog) < sceneIndex(*b.conditions, index.catalog);
   });
   db.buildLookup();
   return db;
@@ -303,19 +305,19 @@ const std::vector<ObjectPose>& Database::groundTruth(std::string_view id) const 
   return scene(id).groundTruth;
 }
 
-std::string Database::summaryLine(const SceneEntry& s) {
+std::string Database::summaryLine(const SceneEntry& s, const ObjectCatalog& catalog) {
   std::ostringstream out;
   out << std::left << std::setw(44) << s.id << "  ";
-  out << (s.conditions ? describe(*s.conditions) : std::string("(conditions unknown)"));
+  out << (s.conditions ? describe(*s.conditions, catalog) : std::string("(conditions unknown)"));
   return out.str();
 }
 
-std::string Database::details(const SceneEntry& s) {
+std::string Database::details(const SceneEntry& s, const ObjectCatalog& catalog) {
   std::string out = "id:               " + s.id + "\n";
   if (s.originalId != s.id) out += "original id:      " + s.originalId + "\n";
   if (s.conditions) {
-    out += "canonical id:     " + sceneIdOf(*s.conditions) + "\n";
-    out += "conditions:       " + describe(*s.conditions) + "\n";
+    out += "canonical id:     " + sceneIdOf(*s.conditions, catalog) + "\n";
+    out += "conditions:       " + describe(*s.conditions, catalog) + "\n";
   } else {
     out += "conditions:       unknown (not derivable from the manifest)\n";
   }
@@ -337,7 +339,7 @@ std::string Database::details(const SceneEntry& s) {
     const Eigen::Vector3d rpy = rw::math::rotationToRpy(o.X_WO.linear()) * rw::math::kRad2Deg;
     std::ostringstream line;
     line << std::fixed << std::setprecision(4) << "object " << o.object << " "
-         << objectName(o.object) << ": position " << p.x() << " " << p.y() << " " << p.z()
+         << catalog.name(o.object) << ": position " << p.x() << " " << p.y() << " " << p.z()
          << " m, RPY " << std::setprecision(2) << rpy.x() << " " << rpy.y() << " " << rpy.z()
          << " deg (table frame)\n";
     out += line.str();

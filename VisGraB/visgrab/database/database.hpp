@@ -155,11 +155,16 @@ class Database {
   /// The ground-truth object poses (empty for original scenes). @throws UnknownSceneError.
   const std::vector<ObjectPose>& groundTruth(std::string_view id) const;
 
-  /// One line for `visgrab db list`: id and conditions.
-  static std::string summaryLine(const SceneEntry& scene);
+  /// The objects of the scenes: the benchmark's, or a database of your own objects' (its index).
+  const ObjectCatalog& catalog() const { return catalog_; }
+
+  /// One line for `visgrab db list`: id and conditions (object names from `catalog`).
+  static std::string summaryLine(const SceneEntry& scene,
+                                 const ObjectCatalog& catalog = ObjectCatalog::benchmark());
   /// Several lines for `visgrab db show`: ids, conditions, files (marked when missing),
-  /// ground truth.
-  static std::string details(const SceneEntry& scene);
+  /// ground truth (object names from `catalog`).
+  static std::string details(const SceneEntry& scene,
+                             const ObjectCatalog& catalog = ObjectCatalog::benchmark());
 
  private:
   Database() = default;
@@ -169,6 +174,7 @@ class Database {
   Source source_ = Source::kGenerated;
   std::filesystem::path root_;
   std::uint64_t seed_ = 0;
+  ObjectCatalog catalog_ = ObjectCatalog::benchmark();
   std::vector<SceneEntry> scenes_;
   std::map<std::string, std::size_t, std::less<>> byId_;
   std::map<std::string, std::size_t, std::less<>> byAlias_;

@@ -1,5 +1,6 @@
 #include "visgrab/database/database_index.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <limits>
 #include <map>
@@ -79,6 +80,10 @@ class IndexParser {
     index.formatVersion = version_;
     index.seed = std::stoull(root.attributeOr("seed", "0"));
     index.generator = root.attributeOr("generator", "");
+    const auto catalog = readCatalog(root);
+    if (!catalog) return std::nullopt;
+    index.catalog = *catalog;
+    catalog_ = &index.catalog;
     std::map<std::string, int> firstLine;
     for (const rw::common::XmlElement& scene : root.children) {
       auto record = parseScene(scene);
@@ -96,10 +101,59 @@ class IndexParser {
   }
 
  private:
+  // The objects named by the <Object> elements and the pairs of the two-object scenes: the
+  // benchmark's catalog when they agree with it, else a catalog of the database's own objects.
+  std::optional<ObjectCatalog> readCatalog(const rw::common::XmlElement& root) {
+    std::map<int, std::pair<std::string, int>> names;  // id -> name, first line
+    std::vector<std::pair<int, int>> pairs;
+    bool ok = true;
+    for (const rw::common::XmlElement& scene : root.children) {
+      std::vector<int> ids;
+      for (const rw::common::XmlElement& child : scene.children) {
+        if (child.name != "Object") continue;
+        const auto id = rw::common::XmlValueReader(sink_).integer(child, "id", 1,
+                                                                  std::numeric_limits<int>::max());
+        if (!id) return std::nullopt;
+        const std::string name = child.attributeOr("name", "");
+        const auto [it, inserted] =
+            names.emplace(static_cast<int>(*id), std::pair{name, child.location.line});
+        if (!inserted && it->second.first != name) {
+          sink_.error(child.location, child.describe() + ": object " + std::to_string(*id) +
+                                          " is called \"" + it->second.first + "\" at line " +
+                                          std::to_string(it->second.second) + ", not \"" + name +
+                                          "\"");
+          ok = false;
+        }
+        ids.push_back(static_cast<int>(*id));
+      }
+      if (ids.size() == 2 &&
+          std::find(pairs.begin(), pairs.end(), std::pair{ids[0], ids[1]}) == pairs.end()) {
+        pairs.emplace_back(ids[0], ids[1]);
+      }
+    }
+    if (!ok) return std::nullopt;
+    // The benchmark's database when every scene id is one of the benchmark's (the objects are
+    // then checked against it).
+    const bool benchmark = std::all_of(
+        root.children.begin(), root.children.end(), [](const rw::common::XmlElement& scene) {
+          return parseSceneId(scene.attributeOr("id", "")).has_value();
+        });
+    if (benchmark) return ObjectCatalog::benchmark();
+    std::vector<ObjectCatalog::Object> objects;
+    for (const auto& [id, name] : names) objects.push_back({id, name.first});
+    try {
+      return ObjectCatalog::make(std::move(objects), std::move(pairs));
+    } catch (const std::invalid_argument& e) {
+      sink_.error(root.location,
+                  root.describe() + ": the scenes' objects do not form a database: " + e.what());
+      return std::nullopt;
+    }
+  }
+
   std::optional<SceneRecord> parseScene(const rw::common::XmlElement& e) {
     SceneRecord record;
     record.id = e.attributeOr("id", "");
-    const auto parsed = parseSceneId(record.id);
+    const auto parsed = parseSceneId(record.id, *catalog_);
     if (!parsed) {
       sink_.error(e.location, e.describe() + ": \"" + record.id +
                                   "\" is not a scene id (expected <plain|textured>/<single|"
@@ -178,7 +232,7 @@ class IndexParser {
     if (!id) return std::nullopt;
     pose.object = static_cast<int>(*id);
     const std::string name = e.attributeOr("name", "");
-    if (name != objectName(pose.object)) {
+    if (catalog_->isBenchmark() && name != objectName(pose.object)) {
       sink_.error(e.location, e.describe() + ": object " + std::to_string(pose.object) +
                                   " is called \"" + std::string(objectName(pose.object)) +
                                   "\", not \"" + name + "\"");
@@ -198,6 +252,7 @@ class IndexParser {
 
   rw::common::DiagnosticSink& sink_;
   int version_ = kIndexFormatVersion;
+  const ObjectCatalog* catalog_ = nullptr;
 };
 
 }  // namespace
@@ -289,7 +344,7 @@ DatabaseIndex readIndex(const std::filesystem::path& file) {
 std::string indexToXml(const DatabaseIndex& index) {
   std::vector<const SceneRecord*> ordered;
   for (const SceneRecord& s : index.scenes) {
-    const std::string expectedId = sceneIdOf(s.conditions);
+    const std::string expectedId = sceneIdOf(s.conditions, index.catalog);
     if (s.id != expectedId) {
       throw std::invalid_argument("scene record \"" + s.id + "\" has the conditions of \"" +
                                   expectedId + "\"");
@@ -308,9 +363,10 @@ std::string indexToXml(const DatabaseIndex& index) {
     }
     ordered.push_back(&s);
   }
-  std::stable_sort(ordered.begin(), ordered.end(), [](const SceneRecord* a, const SceneRecord* b) {
-    return sceneIndex(a->conditions) < sceneIndex(b->conditions);
-  });
+  std::stable_sort(
+      ordered.begin(), ordered.end(), [&index](const SceneRecord* a, const SceneRecord* b) {
+        return sceneIndex(a->conditions, index.catalog) < sceneIndex(b->conditions, index.catalog);
+      });
   std::string out = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
   out += "<!-- VisGraB scene database index; format: docs/database-format.md -->\n";
   out += "<VisGraBDatabase formatVersion=\"" + std::to_string(kIndexFormatVersion) + "\" seed=\"" +
@@ -346,7 +402,7 @@ std::string indexToXml(const DatabaseIndex& index) {
         throw std::invalid_argument("scene \"" + s->id + "\": non-finite object pose");
       }
       out += "    <Object id=\"" + std::to_string(o.object) + "\" name=\"" +
-             std::string(objectName(o.object)) + "\">\n";
+             rw::common::escapeXml(std::string(index.catalog.name(o.object))) + "\">\n";
       out += "      <Pos>" + fixed(p.x()) + " " + fixed(p.y()) + " " + fixed(p.z()) + "</Pos>\n";
       out +=
           "      <RPY>" + fixed(rpy.x()) + " " + fixed(rpy.y()) + " " + fixed(rpy.z()) + "</RPY>\n";

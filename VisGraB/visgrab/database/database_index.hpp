@@ -98,8 +98,11 @@ struct DatabaseIndex {
   std::uint64_t seed = 0;
   /// Free text naming the generator (may be empty).
   std::string generator;
-  /// Scenes in enumerateScenes() order.
+  /// Scenes in enumerateScenes(catalog) order.
   std::vector<SceneRecord> scenes;
+  /// The objects the scenes are made of: the benchmark's, or (a database of your own objects)
+  /// the ids and names its <Object> elements give and the pairs of its double scenes.
+  ObjectCatalog catalog = ObjectCatalog::benchmark();
 };
 
 /// The files a generated scene has by default, all in `scenes/<id>/`: `raw_left.png`,

@@ -9,7 +9,8 @@ namespace visgrab::database {
 
 namespace fs = std::filesystem;
 
-DatabaseWriter::DatabaseWriter(fs::path dir, std::uint64_t seed, std::string generator)
+DatabaseWriter::DatabaseWriter(fs::path dir, std::uint64_t seed, std::string generator,
+                               const ObjectCatalog& catalog)
     : dir_(std::move(dir)) {
   std::error_code ec;
   fs::create_directories(dir_, ec);
@@ -29,7 +30,14 @@ DatabaseWriter::DatabaseWriter(fs::path dir, std::uint64_t seed, std::string gen
                                std::to_string(index_.seed) + ", not " + std::to_string(seed) +
                                "; use the same seed to resume, or another folder");
     }
+    for (const SceneRecord& r : index_.scenes) {
+      if (!validate(r.conditions, catalog).empty() || sceneIdOf(r.conditions, catalog) != r.id) {
+        throw std::runtime_error(indexFile.string() + ": scene " + r.id +
+                                 " is not one of the objects being generated; use another folder");
+      }
+    }
   }
+  index_.catalog = catalog;
   index_.seed = seed;
   if (!generator.empty()) index_.generator = std::move(generator);
 }
@@ -62,15 +70,16 @@ std::vector<SceneConditions> DatabaseWriter::remaining(
     const std::vector<SceneConditions>& wanted) const {
   std::vector<SceneConditions> out;
   for (const SceneConditions& c : wanted) {
-    if (!isComplete(sceneIdOf(c))) out.push_back(c);
+    if (!isComplete(sceneIdOf(c, index_.catalog))) out.push_back(c);
   }
   return out;
 }
 
 void DatabaseWriter::addScene(SceneRecord record) {
-  if (record.id != sceneIdOf(record.conditions)) {
+  const std::string expected = sceneIdOf(record.conditions, index_.catalog);
+  if (record.id != expected) {
     throw std::invalid_argument("scene record \"" + record.id + "\" has the conditions of \"" +
-                                sceneIdOf(record.conditions) + "\"");
+                                expected + "\"");
   }
   for (const SceneFileField& field : sceneFileFields()) {
     const std::string& f = record.files.*field.member;
@@ -94,10 +103,10 @@ void DatabaseWriter::addScene(SceneRecord record) {
   } else {
     next.scenes.push_back(std::move(record));
   }
-  std::stable_sort(next.scenes.begin(), next.scenes.end(),
-                   [](const SceneRecord& a, const SceneRecord& b) {
-                     return sceneIndex(a.conditions) < sceneIndex(b.conditions);
-                   });
+  std::stable_sort(
+      next.scenes.begin(), next.scenes.end(), [&next](const SceneRecord& a, const SceneRecord& b) {
+        return sceneIndex(a.conditions, next.catalog) < sceneIndex(b.conditions, next.catalog);
+      });
   writeIndex(dir_ / kIndexFileName, next);  // throws before index_ changes
   index_ = std::move(next);
 }

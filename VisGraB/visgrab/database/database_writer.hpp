@@ -20,10 +20,12 @@ namespace visgrab::database {
 class DatabaseWriter {
  public:
   /// Opens `dir` for writing, creating it if needed. If DIR/index.xml exists it is read and
-  /// kept (resume); its seed must equal `seed` and its format version kIndexFormatVersion.
+  /// kept (resume); its seed must equal `seed`, its format version kIndexFormatVersion and its
+  /// objects `catalog`'s.
   /// @throws rw::common::LoadError for a corrupt index, std::runtime_error for a seed or
-  /// version mismatch or a folder that cannot be created.
-  DatabaseWriter(std::filesystem::path dir, std::uint64_t seed, std::string generator = {});
+  /// version mismatch, other objects, or a folder that cannot be created.
+  DatabaseWriter(std::filesystem::path dir, std::uint64_t seed, std::string generator = {},
+                 const ObjectCatalog& catalog = ObjectCatalog::benchmark());
 
   DatabaseWriter(const DatabaseWriter&) = delete;
   DatabaseWriter& operator=(const DatabaseWriter&) = delete;

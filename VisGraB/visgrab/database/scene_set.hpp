@@ -103,24 +103,75 @@ struct SceneConditions {
   static SceneConditions pairScene(Texture texture, char letter, int pose);
 };
 
+/// The objects and pairs a database is made of: the benchmark's (kObjectNames, kObjectPairs) or
+/// those of a user's object spec (`visgrab db generate --objects SPEC`). The functions below
+/// without a catalog use ObjectCatalog::benchmark().
+struct ObjectCatalog {
+  /// One object: its id and lower-case name (letters, digits, '_').
+  struct Object {
+    /// Positive id.
+    int id = 0;
+    /// Name used in scene ids.
+    std::string name;
+    /// Equal when both fields are.
+    bool operator==(const Object& other) const = default;
+  };
+  /// Objects in ascending id order (ids and names unique).
+  std::vector<Object> objects;
+  /// Pairs, letters 'a', 'b', ... in order; a user catalog orders them by (first, second).
+  std::vector<ObjectPair> pairs;
+
+  /// The benchmark's 18 objects and 9 pairs.
+  static const ObjectCatalog& benchmark();
+  /// A catalog of `objects` (any order) and `pairs` (object ids, first then second; any
+  /// order): sorted, pair letters assigned 'a'...
+  /// @throws std::invalid_argument for duplicate ids, names or pairs, a bad name, a pair of
+  /// unknown objects or of one object, more than 26 pairs.
+  static ObjectCatalog make(std::vector<Object> objects, std::vector<std::pair<int, int>> pairs);
+  /// True for the benchmark's catalog (equal content).
+  bool isBenchmark() const { return benchmark_; }
+  /// The name of object `id`. @throws std::out_of_range for an unknown id.
+  std::string_view name(int id) const;
+  /// The id of the object called `name`; nullopt if there is none.
+  std::optional<int> idByName(std::string_view name) const;
+  /// The pair made of `a` and `b` (either order); nullopt if they are not a pair.
+  std::optional<ObjectPair> pairOf(int a, int b) const;
+  /// Equal when objects and pairs are.
+  bool operator==(const ObjectCatalog& other) const;
+
+ private:
+  bool benchmark_ = false;  // set by benchmark() and make() when the content is the benchmark's
+};
+
 /// Why `conditions` do not describe a scene of the database (empty string when they do).
 std::string validate(const SceneConditions& conditions);
+/// Same, for a database of `catalog`'s objects.
+std::string validate(const SceneConditions& conditions, const ObjectCatalog& catalog);
 
 /// All 432 scenes in the fixed order: plain then textured; within each, the single scenes
 /// (object 1..18, pose 1..8) then the double scenes (pair a..i, placement 1..8).
 std::vector<SceneConditions> enumerateScenes();
+/// The scenes of a database of `catalog`'s objects in the same order (plain, textured; the
+/// objects by id, 8 poses each; the pairs in catalog order, 8 placements each).
+std::vector<SceneConditions> enumerateScenes(const ObjectCatalog& catalog);
 
 /// Position of valid `conditions` in enumerateScenes() (0..431). @throws std::invalid_argument
 /// for invalid conditions.
 int sceneIndex(const SceneConditions& conditions);
+/// Position of `conditions` in enumerateScenes(catalog). @throws std::invalid_argument.
+int sceneIndex(const SceneConditions& conditions, const ObjectCatalog& catalog);
 
 /// The scene id, `<texture>/<kind>/<subject>/<NN>`: e.g. `textured/single/cocacola/03`,
 /// `plain/double/cocacola_saltcylinder/06` (subject of a pair = both names joined by '_', in
 /// pair order; NN = pose, two digits). @throws std::invalid_argument for invalid conditions.
 std::string sceneIdOf(const SceneConditions& conditions);
+/// The scene id with `catalog`'s object names. @throws std::invalid_argument.
+std::string sceneIdOf(const SceneConditions& conditions, const ObjectCatalog& catalog);
 
 /// Inverse of sceneIdOf (exact spelling only); nullopt if `id` is not a scene id.
 std::optional<SceneConditions> parseSceneId(std::string_view id);
+/// Inverse of sceneIdOf(conditions, catalog); nullopt if `id` is not a scene id of `catalog`.
+std::optional<SceneConditions> parseSceneId(std::string_view id, const ObjectCatalog& catalog);
 
 /// The id of the scene in the original database's folder layout (ExtendVisGrabTask):
 /// `<textured|non-textured>/<objdir>/img_<NN>`, e.g. `textured/cocacola/img_03`,
@@ -134,5 +185,7 @@ std::optional<SceneConditions> parseOriginalId(std::string_view id);
 /// A one-line, human-readable description: "textured, single, standing, object 5 cocacola,
 /// pose 3" or "plain, double, close, pair e: 5 cocacola + 14 saltcylinder, placement 6".
 std::string describe(const SceneConditions& conditions);
+/// The same description with `catalog`'s names (a user pair: "pair a: 40 mug + 41 jar").
+std::string describe(const SceneConditions& conditions, const ObjectCatalog& catalog);
 
 }  // namespace visgrab::database

@@ -7,6 +7,7 @@
 #include <mutex>
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
+#include <optional>
 #include <stdexcept>
 
 #include "rw/common/stop_signals.hpp"
@@ -55,6 +56,7 @@ void copyFile(const fs::path& from, const fs::path& to) {
 Assets prepareAssets(const std::vector<database::SceneConditions>& scenes,
                      const GeneratorOptions& options, const AssetLayout& layout) {
   const objects::ObjectDatabaseSpec spec = objects::loadObjectSpecs(options.objectSpec);
+  std::optional<objects::ObjectDatabaseSpec> tableSpec;  // read when `spec` lacks a table
   Assets assets;
   for (const auto& scene : scenes) {
     for (const int id : scene.objects) {
@@ -74,12 +76,16 @@ Assets prepareAssets(const std::vector<database::SceneConditions>& scenes,
     }
     const std::string texture(database::toString(scene.texture));
     if (assets.tables.count(texture) == 0) {
-      const objects::TableSpec* tableSpec = spec.findTable(texture);
-      if (tableSpec == nullptr) {
+      const objects::TableSpec* tableSpecOf = spec.findTable(texture);
+      if (tableSpecOf == nullptr && !options.tableSpec.empty()) {
+        if (!tableSpec) tableSpec = objects::loadObjectSpecs(options.tableSpec);
+        tableSpecOf = tableSpec->findTable(texture);
+      }
+      if (tableSpecOf == nullptr) {
         throw std::runtime_error(options.objectSpec.string() + ": no table named \"" + texture +
                                  "\"");
       }
-      objects::TableModel table = objects::generateTable(*tableSpec);
+      objects::TableModel table = objects::generateTable(*tableSpecOf);
       objects::writeTableFiles(table, options.out / layout.tables);
       assets.tableMeshes[texture] = std::make_shared<const visual::VisualMesh>(table.surface);
       assets.tables.emplace(texture, std::move(table));
@@ -177,7 +183,7 @@ database::SceneRecord makeScene(const database::SceneConditions& scene, const As
                                 const GeneratorOptions& options, const AssetLayout& layout,
                                 database::DatabaseWriter& writer, SceneRenderer& renderer) {
   database::SceneRecord record;
-  record.id = database::sceneIdOf(scene);
+  record.id = database::sceneIdOf(scene, options.catalog);
   record.conditions = scene;
   record.files = writer.filesFor(record.id);
   const fs::path wcFile = writer.path(record.files.workcell);
@@ -278,7 +284,8 @@ GenerationReport generateDatabase(const std::vector<database::SceneConditions>& 
                                   const GeneratorOptions& options,
                                   const std::function<void(const GenerationProgress&)>& progress) {
   const auto start = std::chrono::steady_clock::now();
-  database::DatabaseWriter writer(options.out, options.seed, "visgrab db generate");
+  database::DatabaseWriter writer(options.out, options.seed, "visgrab db generate",
+                                  options.catalog);
   const std::vector<database::SceneConditions> todo = writer.remaining(scenes);
   GenerationReport report;
   report.skipped = static_cast<int>(scenes.size() - todo.size());
@@ -307,7 +314,7 @@ GenerationReport generateDatabase(const std::vector<database::SceneConditions>& 
         } catch (const rw::common::WriteError&) {
           throw;  // disk full, folder gone: the other scenes would fail the same way
         } catch (const std::exception& e) {
-          failure = database::sceneIdOf(todo[i]) + ": " + e.what();
+          failure = database::sceneIdOf(todo[i], options.catalog) + ": " + e.what();
         }
         const std::lock_guard lock(mutex);
         if (failure.empty()) {
@@ -316,7 +323,7 @@ GenerationReport generateDatabase(const std::vector<database::SceneConditions>& 
           report.failures.push_back(failure);
         }
         ++state.done;
-        state.lastId = database::sceneIdOf(todo[i]);
+        state.lastId = database::sceneIdOf(todo[i], options.catalog);
         state.elapsed =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         if (progress) progress(state);

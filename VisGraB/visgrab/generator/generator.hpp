@@ -18,8 +18,13 @@ namespace visgrab::generator {
 struct GeneratorOptions {
   /// The database folder to write (created; an existing generation with the same seed resumes).
   std::filesystem::path out;
-  /// The object spec (scenes/objects/objects.xml).
+  /// The object spec (scenes/objects/objects.xml, or your own: `db generate --objects SPEC`).
   std::filesystem::path objectSpec;
+  /// Where the table surfaces come from when objectSpec has no <Table> of the name (empty:
+  /// objectSpec only).
+  std::filesystem::path tableSpec;
+  /// The objects and pairs of the scenes (objectCatalog(spec) for your own objects).
+  database::ObjectCatalog catalog = database::ObjectCatalog::benchmark();
   /// The hand's folder (scenes/hands/sdh), copied into the database.
   std::filesystem::path handFolder;
   /// The material map (scenes/materials.xml), copied into the database.

@@ -87,6 +87,16 @@ double distanceBetween(const objects::ObjectModel& a, const Transform3D& X_TA,
   return best;
 }
 
+std::string sceneIdOf(const database::SceneConditions& scene,
+                      const std::vector<const objects::ObjectModel*>& models) {
+  std::string subject;
+  for (const auto* model : models) subject += (subject.empty() ? "" : "_") + model->name;
+  const std::string pose = std::to_string(scene.pose);
+  return std::string(database::toString(scene.texture)) + "/" +
+         std::string(database::toString(scene.kind)) + "/" + subject + "/" +
+         (pose.size() < 2 ? "0" : "") + pose;
+}
+
 Random::Random(std::uint64_t seed, std::string_view key) : state_(mix(seed)) {
   // FNV-1a of the key, mixed into the seed.
   std::uint64_t h = 0xcbf29ce484222325ULL;
@@ -136,7 +146,7 @@ Placement placeObjects(const database::SceneConditions& scene,
       std::any_of(models.begin(), models.end(), [](const auto* m) { return m == nullptr; })) {
     throw std::invalid_argument("placeObjects: one model per object of the scene is needed");
   }
-  Random random(seed, database::sceneIdOf(scene) + "#" + std::to_string(attempt));
+  Random random(seed, sceneIdOf(scene, models) + "#" + std::to_string(attempt));
   const int k = scene.pose;
   Placement placement;
   const double x = random.uniform(-options.spread, options.spread);

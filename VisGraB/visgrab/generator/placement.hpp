@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -62,6 +63,11 @@ struct PlacementOptions {
 Placement placeObjects(const database::SceneConditions& scene,
                        const std::vector<const objects::ObjectModel*>& models, std::uint64_t seed,
                        int attempt = 0, const PlacementOptions& options = {});
+
+/// The scene id of `scene` spelled with the models' names (sceneIdOf(scene) for the benchmark's
+/// objects; works for your own objects too).
+std::string sceneIdOf(const database::SceneConditions& scene,
+                      const std::vector<const objects::ObjectModel*>& models);
 
 /// Lowest and highest extent of a model's collision geometry along unit direction `d` in the
 /// table frame, for the model at X_TO.

@@ -7,6 +7,7 @@
 #include "rw/math/types.hpp"
 #include "visgrab/database/scene_set.hpp"
 #include "visgrab/objects/object_model.hpp"
+#include "visgrab/objects/object_spec.hpp"
 
 namespace visgrab::generator {
 
@@ -60,6 +61,10 @@ std::string sceneDynamicsXml(const database::SceneConditions& scene,
                              const std::vector<const objects::ObjectModel*>& models,
                              const std::string& workcellFile, const std::string& toDatabase,
                              const AssetLayout& layout = {}, double objectDamping = 0.0);
+
+/// The catalog of a spec's objects (ids, names) and pairs (<Pair a b>, ids in that order), for
+/// GeneratorOptions::catalog. @throws std::invalid_argument as ObjectCatalog::make does.
+database::ObjectCatalog objectCatalog(const objects::ObjectDatabaseSpec& spec);
 
 /// The relative path from folder `from` to folder `to` with '/' separators ("." if equal).
 std::string relativeFolder(const std::filesystem::path& from, const std::filesystem::path& to);

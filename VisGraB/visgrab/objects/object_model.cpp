@@ -7,6 +7,7 @@
 
 #include "visgrab/objects/detail/mesh_builder.hpp"
 #include "visgrab/objects/detail/texture_painter.hpp"
+#include "visgrab/objects/mesh_object.hpp"
 
 namespace visgrab::objects {
 
@@ -19,19 +20,7 @@ using detail::Random;
 using rw::math::Rotation3D;
 using rw::math::Vector3D;
 
-float materialSpecular(SurfaceMaterial m) {
-  switch (m) {
-    case SurfaceMaterial::kMetal:
-      return 0.6f;
-    case SurfaceMaterial::kGlass:
-      return 0.5f;
-    case SurfaceMaterial::kPlastic:
-      return 0.3f;
-    case SurfaceMaterial::kCardboard:
-      return 0.05f;
-  }
-  return 0.1f;
-}
+using detail::materialSpecular;
 
 int texels(double metres) {
   return std::max(8, static_cast<int>(std::ceil(metres * kObjectTexelsPerMetre)));
@@ -272,6 +261,7 @@ rw::geometry::Aabb ObjectModel::collisionBounds() const {
 }
 
 ObjectModel generateObject(const ObjectSpec& spec) {
+  if (spec.kind == ShapeKind::kMesh) return generateMeshObject(spec);
   validate(spec);
   ObjectModel model;
   model.id = spec.id;

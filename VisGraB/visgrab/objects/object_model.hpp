@@ -67,6 +67,9 @@ struct ObjectModel {
   rw::geometry::BodyMassProperties mass;
   /// Standing first, then the lying poses.
   std::vector<RestingPose> restingPoses;
+  /// Mesh objects: what was done to the input (holes filled, pieces replaced by their hulls,
+  /// the automatic decomposition's piece count and volume), one line each.
+  std::vector<std::string> notes;
 
   /// Bounding box of the collision pieces' triangles in the object frame (exact for the round
   /// pieces in x, y and z: their polygons have vertices on the axes).
@@ -86,8 +89,9 @@ struct TableModel {
 };
 
 /// Generates the object described by `spec` (deterministic: the same spec gives the same
-/// meshes and textures, bit for bit).
-/// @throws std::invalid_argument if `spec` breaks the rules loadObjectSpecs checks.
+/// meshes and textures, bit for bit); a mesh object through generateMeshObject.
+/// @throws std::invalid_argument if `spec` breaks the rules loadObjectSpecs checks;
+/// rw::common::LoadError (spec file and line) for a mesh object's unusable files.
 ObjectModel generateObject(const ObjectSpec& spec);
 
 /// Generates a table surface (deterministic).

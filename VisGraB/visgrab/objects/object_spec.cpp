@@ -56,7 +56,7 @@ using rw::common::ValueKind;
 
 // Typed attributes (the schema says xs:double, xs:positiveInteger, ...), for a precise message on
 // a schema datatype error.
-constexpr std::array<AttributeRule, 20> kValueRules{{
+constexpr std::array<AttributeRule, 25> kValueRules{{
     {"x"},
     {"y"},
     {"z"},
@@ -72,6 +72,11 @@ constexpr std::array<AttributeRule, 20> kValueRules{{
     {"labelBottom"},
     {"labelTop"},
     {"lidBottom"},
+    {"density"},
+    {"scale"},
+    {"concavity"},
+    {"maxPieces", ValueKind::kInteger, 0, {}, 1},
+    {"rpy", ValueKind::kNumbers, 3, "roll pitch yaw (degrees, about z, y, x)"},
     {"id", ValueKind::kInteger, 0, {}, 1},
     {"seed", ValueKind::kInteger, 0, {}, 0},
     {"rgb", ValueKind::kNumbers, 3, "red green blue"},
@@ -88,13 +93,15 @@ std::string explainValueError(const XmlElement& element) {
 // The semantic pass: reads the validated tree into the spec, reporting meaning errors.
 class SpecReader {
  public:
-  explicit SpecReader(DiagnosticSink& sink) : read_(sink) {}
+  SpecReader(DiagnosticSink& sink, std::filesystem::path file)
+      : read_(sink), file_(std::move(file)) {}
 
   ObjectDatabaseSpec read(const XmlElement& root) {
     ObjectDatabaseSpec spec;
     std::map<int, int> ids;
     std::map<std::string, int> names;
     std::map<std::string, int> tables;
+    std::vector<const XmlElement*> pairs;
     for (const XmlElement& e : root.children) {
       if (e.name == "Table") {
         TableSpec t;
@@ -119,8 +126,15 @@ class SpecReader {
           continue;
         }
         spec.objects.push_back(std::move(o));
+      } else if (e.name == "Pair") {
+        pairs.push_back(&e);
       }
     }
+    std::vector<std::string> allNames;  // also of objects with errors (already reported)
+    for (const XmlElement& e : root.children) {
+      if (e.name == "Object") allNames.push_back(e.attributeOr("name", ""));
+    }
+    readPairs(pairs, allNames, spec);
     return spec;
   }
 
@@ -187,7 +201,7 @@ class SpecReader {
     o.id = static_cast<int>(read_.integer(e, "id", 1, std::numeric_limits<int>::max()).value_or(0));
     o.name = e.attributeOr("name", "");
     o.product = e.attributeOr("product", "");
-    o.mass = number(e, "mass");
+    o.specFile = file_.lexically_normal().string();
     if (o.name.empty() || !std::all_of(o.name.begin(), o.name.end(), [](char c) {
           return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_';
         })) {
@@ -195,18 +209,36 @@ class SpecReader {
             "attribute name must be lower-case letters, digits and '_', got " + inQuotes(o.name));
       return false;
     }
-    if (!positive(e, "mass", o.mass)) return false;
     const XmlElement* appearance = nullptr;
     for (const XmlElement& c : e.children) {
       if (c.name == "Box" && !readBox(c, o)) return false;
       if (c.name == "Cylinder" && !readCylinder(c, o)) return false;
       if (c.name == "Lathe" && !readLathe(c, o)) return false;
+      if (c.name == "Mesh" && !readMesh(c, o)) return false;
       if (c.name == "Appearance") appearance = &c;
     }
+    if (!readMassOrDensity(e, o)) return false;
     for (const XmlElement& c : e.children) {
       if (c.name == "Handle" && !readHandle(c, o)) return false;
+      if (c.name == "CollisionPiece") {
+        if (o.kind != ShapeKind::kMesh) {
+          error(c, "<CollisionPiece> needs a <Mesh> shape");
+          return false;
+        }
+        const auto piece = meshFile(c, "collision piece");
+        if (!piece) return false;
+        o.meshShape->collisionPieces.push_back(*piece);
+      }
     }
-    return appearance != nullptr && readAppearance(*appearance, o);
+    if (appearance == nullptr) {
+      if (o.kind != ShapeKind::kMesh) {
+        error(e, "missing <Appearance> (only a <Mesh> object may leave it out)");
+        return false;
+      }
+      o.hasAppearance = false;
+      return true;
+    }
+    return readAppearance(*appearance, o);
   }
 
   bool readBox(const XmlElement& e, ObjectSpec& o) {
@@ -262,8 +294,8 @@ class SpecReader {
   }
 
   bool readHandle(const XmlElement& e, ObjectSpec& o) {
-    if (o.kind == ShapeKind::kBox) {
-      error(e, "a handle needs a Cylinder or Lathe body, not a Box");
+    if (o.kind == ShapeKind::kBox || o.kind == ShapeKind::kMesh) {
+      error(e, "a handle needs a Cylinder or Lathe body, not a Box or Mesh");
       return false;
     }
     HandleSpec h{number(e, "z"), number(e, "span"), number(e, "reach"), number(e, "thickness")};
@@ -316,8 +348,10 @@ class SpecReader {
     }
     a.pattern = *kind;
     const bool isBox = o.kind == ShapeKind::kBox;
-    if ((a.pattern == PatternKind::kPrintedBox && !isBox) ||
-        ((a.pattern == PatternKind::kLabelBand || a.pattern == PatternKind::kMetalCan) && isBox)) {
+    const bool isMesh = o.kind == ShapeKind::kMesh;  // any pattern, wrapped around z
+    if ((!isMesh && a.pattern == PatternKind::kPrintedBox && !isBox) ||
+        (!isMesh && (a.pattern == PatternKind::kLabelBand || a.pattern == PatternKind::kMetalCan) &&
+         isBox)) {
       error(e, "pattern " + inQuotes(pattern) + " does not fit a " +
                    (isBox ? "Box (use printed-box or plain-plastic)"
                           : "lathe (use label-band, metal-can or plain-plastic)"));
@@ -350,7 +384,7 @@ class SpecReader {
     const auto bottom = optionalNumber(e, "labelBottom");
     const auto top = optionalNumber(e, "labelTop");
     const auto lid = optionalNumber(e, "lidBottom");
-    if ((bottom || top || lid) && isBox) {
+    if ((bottom || top || lid) && (isBox || isMesh)) {
       error(e, "labelBottom, labelTop and lidBottom apply to lathes only");
       return false;
     }
@@ -373,7 +407,105 @@ class SpecReader {
     return true;
   }
 
+  void readPairs(const std::vector<const XmlElement*>& elements,
+                 const std::vector<std::string>& allNames, ObjectDatabaseSpec& spec) {
+    std::map<std::pair<std::string, std::string>, int> seen;
+    for (const XmlElement* e : elements) {
+      PairSpec pair{e->attributeOr("a", ""), e->attributeOr("b", ""), e->location.line};
+      bool ok = true;
+      for (const std::string* name : {&pair.a, &pair.b}) {
+        if (spec.findObject(*name) != nullptr) continue;
+        ok = false;
+        if (std::find(allNames.begin(), allNames.end(), *name) == allNames.end()) {
+          error(*e, "no object named " + inQuotes(*name) + " in this file");
+        }
+      }
+      if (!ok) continue;
+      if (pair.a == pair.b) {
+        error(*e, "a pair needs two different objects, got " + inQuotes(pair.a) + " twice");
+        continue;
+      }
+      const auto key = std::minmax(pair.a, pair.b);
+      const auto [it, inserted] = seen.emplace(key, e->location.line);
+      if (!inserted) {
+        error(*e, "duplicate pair (first at line " + std::to_string(it->second) + ")");
+        continue;
+      }
+      spec.pairs.push_back(std::move(pair));
+    }
+  }
+
+  // A mesh file named by attribute "file", resolved against the spec's folder; reports a
+  // missing file.
+  std::optional<MeshFileSpec> meshFile(const XmlElement& e, std::string_view what) {
+    MeshFileSpec m;
+    m.written = e.attributeOr("file", "");
+    m.line = e.location.line;
+    const std::filesystem::path written(m.written);
+    m.file = written.is_absolute() ? written : file_.parent_path() / written;
+    m.file = m.file.lexically_normal();
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(m.file, ec)) {
+      error(e, std::string(what) + " file " + inQuotes(m.written) + " not found (looked for " +
+                   m.file.string() + ")");
+      return std::nullopt;
+    }
+    return m;
+  }
+
+  bool readMesh(const XmlElement& e, ObjectSpec& o) {
+    o.kind = ShapeKind::kMesh;
+    MeshShapeSpec shape;
+    const auto mesh = meshFile(e, "mesh");
+    if (!mesh) return false;
+    shape.mesh = *mesh;
+    shape.scale = optionalNumber(e, "scale").value_or(1.0);
+    if (!positive(e, "scale", shape.scale)) return false;
+    if (e.has("rpy")) {
+      const auto rpy =
+          read_.optionalNumberList(e, "rpy", 3, "roll pitch yaw (degrees, about z, y, x)");
+      if (!rpy) return false;
+      shape.rpyDegrees = Eigen::Vector3d((*rpy)[0], (*rpy)[1], (*rpy)[2]);
+    }
+    const auto fill = read_.optionalBoolean(e, "fillHoles");
+    if (e.has("fillHoles") && !fill) return false;
+    shape.fillHoles = fill.value_or(false);
+    if (e.has("maxPieces")) {
+      const auto pieces = read_.integer(e, "maxPieces", 1, 256);
+      if (!pieces) return false;
+      shape.maxPieces = static_cast<int>(*pieces);
+    }
+    shape.concavity = optionalNumber(e, "concavity").value_or(shape.concavity);
+    if (!(shape.concavity > 0.0 && shape.concavity < 1.0)) {
+      error(e, "attribute concavity must be in (0, 1), got " + format(shape.concavity));
+      return false;
+    }
+    o.meshShape = std::move(shape);
+    return true;
+  }
+
+  bool readMassOrDensity(const XmlElement& e, ObjectSpec& o) {
+    const auto mass = optionalNumber(e, "mass");
+    const auto density = optionalNumber(e, "density");
+    if (mass.has_value() == density.has_value()) {
+      error(e, mass ? "give either mass or density, not both"
+                    : "missing attribute mass (kg) or density (kg/m^3)");
+      return false;
+    }
+    if (density && o.kind != ShapeKind::kMesh) {
+      error(e, "attribute density needs a <Mesh> shape; give the mass of a Box, Cylinder or Lathe");
+      return false;
+    }
+    if (mass) {
+      o.mass = *mass;
+      return positive(e, "mass", o.mass);
+    }
+    o.density = *density;
+    return positive(e, "density", *density);
+  }
+
   rw::common::XmlValueReader read_;
+  std::filesystem::path file_;
 };
 
 ObjectDatabaseSpec load(std::string_view text, const std::filesystem::path& file,
@@ -388,7 +520,7 @@ ObjectDatabaseSpec load(std::string_view text, const std::filesystem::path& file
     sink.error(rw::common::SourceLocation{source, 1, 1}, "expected one <ObjectDatabase> element");
     return {};
   }
-  return SpecReader(sink).read(elements->front());
+  return SpecReader(sink, file).read(elements->front());
 }
 
 ObjectDatabaseSpec loadOrThrow(std::string_view text, const std::filesystem::path& file,
@@ -430,6 +562,7 @@ std::optional<SurfaceMaterial> surfaceMaterialFromName(std::string_view name) {
 
 double ObjectSpec::height() const {
   if (kind == ShapeKind::kBox) return boxSize.z();
+  if (kind == ShapeKind::kMesh) return 0.0;
   return profile.empty() ? 0.0 : profile.back().z;
 }
 

@@ -19,6 +19,7 @@ enum class ShapeKind {
   kBox,       ///< A box, optionally with rounded edges in the visual mesh.
   kCylinder,  ///< A straight cylinder (a lathe with two profile points of equal radius).
   kLathe,     ///< A body of revolution given by a radius profile.
+  kMesh,      ///< A closed triangle mesh read from a file (OBJ, STL, PLY through assimp).
 };
 
 /// How an object's surface is textured.
@@ -95,6 +96,36 @@ struct AppearanceSpec {
   float specular = 0.1f;
 };
 
+/// A mesh file named by an object spec (`<Mesh>` or `<CollisionPiece>`).
+struct MeshFileSpec {
+  /// The file, resolved against the spec file's folder.
+  std::filesystem::path file;
+  /// The file name as written in the spec.
+  std::string written;
+  /// Line of the element in the spec file.
+  int line = 0;
+};
+
+/// The shape of a mesh object: `<Mesh file scale rpy fillHoles maxPieces concavity>`.
+struct MeshShapeSpec {
+  /// The mesh (its visual appearance too, when it has a texture).
+  MeshFileSpec mesh;
+  /// Factor from the file's units to metres (e.g. 0.001 for millimetres).
+  double scale = 1.0;
+  /// Rotation applied to the file's coordinates, RobWork's RPY in degrees as in workcell files
+  /// (R = Rz(r) Ry(p) Rx(y)), before the object frame is placed.
+  Eigen::Vector3d rpyDegrees = Eigen::Vector3d::Zero();
+  /// Close small holes (each boundary loop gets a fan of triangles) instead of rejecting an
+  /// open mesh.
+  bool fillHoles = false;
+  /// Automatic decomposition: at most this many convex pieces.
+  int maxPieces = 16;
+  /// Automatic decomposition: a part's hull may exceed its volume by this fraction.
+  double concavity = 0.03;
+  /// Convex collision pieces given in files (empty: automatic decomposition).
+  std::vector<MeshFileSpec> collisionPieces;
+};
+
 /// One benchmark object as described in objects.xml.
 struct ObjectSpec {
   /// Number in the paper's tables (1..18).
@@ -103,8 +134,10 @@ struct ObjectSpec {
   std::string name;
   /// The everyday product it models (free text, for documentation).
   std::string product;
-  /// Mass in kg.
+  /// Mass in kg (0 for a mesh object given by its density).
   double mass = 0.0;
+  /// Mesh objects: density in kg/m^3 instead of a mass.
+  std::optional<double> density;
   /// Shape kind.
   ShapeKind kind = ShapeKind::kBox;
   /// Box: full edge lengths x, y, z (z up when standing).
@@ -115,8 +148,14 @@ struct ObjectSpec {
   std::vector<ProfilePoint> profile;
   /// Optional handle (lathes and cylinders only).
   std::optional<HandleSpec> handle;
-  /// Look.
+  /// The mesh and collision files of a kMesh object.
+  std::optional<MeshShapeSpec> meshShape;
+  /// Look (for a mesh object: used when the mesh file brings no texture).
   AppearanceSpec appearance;
+  /// False for a mesh object without <Appearance> (it keeps the file's own materials).
+  bool hasAppearance = true;
+  /// The spec file the object was read from (for messages).
+  std::string specFile;
   /// Line of the <Object> element in its file.
   int line = 0;
 
@@ -152,12 +191,24 @@ struct TableSpec {
   std::uint32_t seed = 0;
 };
 
+/// A pair of objects for the double-object scenes: `<Pair a="name" b="name"/>`.
+struct PairSpec {
+  /// Name of the first object.
+  std::string a;
+  /// Name of the second object.
+  std::string b;
+  /// Line of the element.
+  int line = 0;
+};
+
 /// The content of objects.xml.
 struct ObjectDatabaseSpec {
   /// Objects in file order.
   std::vector<ObjectSpec> objects;
   /// Table surfaces in file order.
   std::vector<TableSpec> tables;
+  /// Object pairs in file order (objects.xml has none: the benchmark's pairs are fixed).
+  std::vector<PairSpec> pairs;
   /// The object with this name, or nullptr.
   const ObjectSpec* findObject(std::string_view name) const;
   /// The object with this id, or nullptr.
@@ -172,7 +223,9 @@ inline constexpr double kMaxCornerRadius = 0.004;
 
 /// Reads an object spec file: checks it against xml/objects.xsd (compiled in), then the meaning
 /// (positive sizes, monotonic profiles, handles on the body, unique ids and names, colours in
-/// [0, 1], known patterns and materials).
+/// [0, 1], known patterns and materials; mesh objects: the mesh and piece files exist, exactly
+/// one of mass and density, positive; pairs name two different objects of the file). The mesh
+/// content (closed, positive volume) is checked by generateObject.
 /// @throws rw::common::LoadError with every error found, each at file:line:column.
 ObjectDatabaseSpec loadObjectSpecs(const std::filesystem::path& file);
 

@@ -143,6 +143,19 @@ std::string shapeXml(const CollisionPiece& piece, const std::string& file) {
   }
 }
 
+// A mesh object's notes (holes filled, pieces replaced by hulls, the decomposition) as comments.
+std::string notesXml(const ObjectModel& model) {
+  std::string text;
+  for (const std::string& note : model.notes) {
+    std::string safe = note;
+    for (std::size_t i = safe.find("--"); i != std::string::npos; i = safe.find("--")) {
+      safe.replace(i, 2, "- ");
+    }
+    text += "<!-- " + safe + " -->\n";
+  }
+  return text;
+}
+
 }  // namespace
 
 std::string objectFrameXml(const ObjectModel& model, const std::string& meshPrefix,
@@ -248,10 +261,11 @@ ObjectFiles writeObjectFiles(const ObjectModel& model, const fs::path& dir) {
     writeBinaryStl(*model.collision[k].triangles, files.hulls.back());
   }
   files.workcell = files.folder / (model.name + ".wc.xml");
-  writeText(files.workcell,
-            "<!-- Example workcell of object " + std::to_string(model.id) + " \"" + model.name +
-                "\" (written by visgrab::objects::writeObjectFiles). -->\n" + "<WorkCell name=\"" +
-                model.name + "_example\">\n" + objectFrameXml(model, "") + "</WorkCell>\n");
+  writeText(files.workcell, "<!-- Example workcell of object " + std::to_string(model.id) + " \"" +
+                                model.name +
+                                "\" (written by visgrab::objects::writeObjectFiles). -->\n" +
+                                notesXml(model) + "<WorkCell name=\"" + model.name +
+                                "_example\">\n" + objectFrameXml(model, "") + "</WorkCell>\n");
   files.dynamics = files.folder / (model.name + ".dwc.xml");
   writeText(files.dynamics, exampleDynamics(model));
   return files;

@@ -24,7 +24,8 @@ struct ObjectFiles {
   /// One binary STL per mesh collision piece (box, handle), `<name>_hull<k>.stl` with k the
   /// piece's index in ObjectModel::collision; round pieces have no file.
   std::vector<std::filesystem::path> hulls;
-  /// Example workcell holding just the object on WORLD, `<name>.wc.xml`.
+  /// Example workcell holding just the object on WORLD, `<name>.wc.xml` (a mesh object's
+  /// ObjectModel::notes as comments at its top).
   std::filesystem::path workcell;
   /// Example dynamic workcell for it, `<name>.dwc.xml`.
   std::filesystem::path dynamics;

@@ -6,6 +6,20 @@
 
 namespace visgrab::objects::detail {
 
+float materialSpecular(SurfaceMaterial m) {
+  switch (m) {
+    case SurfaceMaterial::kMetal:
+      return 0.6f;
+    case SurfaceMaterial::kGlass:
+      return 0.5f;
+    case SurfaceMaterial::kPlastic:
+      return 0.3f;
+    case SurfaceMaterial::kCardboard:
+      return 0.05f;
+  }
+  return 0.1f;
+}
+
 namespace {
 
 std::uint64_t mix(std::uint64_t z) {

@@ -59,6 +59,9 @@ class Canvas {
 /// A rectangle of texels: left, top, width, height.
 using PixelRect = std::array<int, 4>;
 
+/// Specular strength of a plain surface material (cardboard 0.05 ... metal 0.6).
+float materialSpecular(SurfaceMaterial material);
+
 /// sRGB encoding of a linear colour.
 Eigen::Vector3f linearToSrgb(const Eigen::Vector3f& linear);
 
