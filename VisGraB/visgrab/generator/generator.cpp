@@ -7,6 +7,7 @@
 #include <mutex>
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
+#include <optional>
 #include <stdexcept>
 
 #include "rw/common/stop_signals.hpp"
@@ -16,6 +17,7 @@
 #include "visgrab/database/atomic_file.hpp"
 #include "visgrab/database/database_writer.hpp"
 #include "visgrab/database/stereo_calibration.hpp"
+#include "visgrab/generator/camera_model.hpp"
 #include "visgrab/generator/scene_model.hpp"
 #include "visgrab/objects/object_spec.hpp"
 #include "visgrab/objects/object_writer.hpp"
@@ -39,6 +41,8 @@ struct Assets {
   std::map<std::string, objects::TableModel> tables;
   /// The same meshes as shared pointers, for uploading.
   std::map<int, std::vector<std::shared_ptr<const visual::VisualMesh>>> objectMeshes;
+  /// Each mesh's material class (VisualPart::material), parallel to objectMeshes.
+  std::map<int, std::vector<std::optional<objects::SurfaceMaterial>>> objectMaterials;
   std::map<std::string, std::shared_ptr<const visual::VisualMesh>> tableMeshes;
 };
 
@@ -66,8 +70,10 @@ Assets prepareAssets(const std::vector<database::SceneConditions>& scenes,
       objects::ObjectModel model = objects::generateObject(*objectSpec);
       objects::writeObjectFiles(model, options.out / layout.objects);
       auto& meshes = assets.objectMeshes[id];
+      auto& materials = assets.objectMaterials[id];
       for (const auto& part : model.visual) {
         meshes.push_back(std::make_shared<const visual::VisualMesh>(part.mesh));
+        materials.push_back(part.material);
       }
       assets.objects.emplace(id, std::move(model));
     }
@@ -103,19 +109,30 @@ Assets prepareAssets(const std::vector<database::SceneConditions>& scenes,
 /// One worker's renderer with the meshes it has uploaded.
 class SceneRenderer {
  public:
-  explicit SceneRenderer(const Assets& assets) : assets_(&assets) {}
+  SceneRenderer(const Assets& assets, const CameraProfile& profile)
+      : assets_(&assets), profile_(&profile) {}
 
+  /// Renders the scene; `depthAndIds` also the ground truth (the colour is the same either way).
   render::RenderResult render(const database::SceneConditions& scene,
                               const std::vector<Transform3D>& X_WO,
-                              const render::PinholeCamera& camera) {
+                              const render::PinholeCamera& camera, bool depthAndIds) {
     render::Scene drawn;
     const std::string texture(database::toString(scene.texture));
     drawn.items.push_back({tableHandle(texture), Transform3D::Identity(), kTableInstance});
     for (std::size_t i = 0; i < scene.objects.size(); ++i) {
       const int id = scene.objects[i];
-      for (const auto handle : objectHandles(id)) {
-        drawn.items.push_back(
-            {handle, X_WO[i], static_cast<std::uint16_t>(kObjectInstanceBase + id)});
+      const auto& handles = objectHandles(id);
+      const auto& materials = assets_->objectMaterials.at(id);
+      for (std::size_t k = 0; k < handles.size(); ++k) {
+        render::SceneItem item{handles[k], X_WO[i],
+                               static_cast<std::uint16_t>(kObjectInstanceBase + id)};
+        for (const MaterialFinish& finish : profile_->materials) {
+          if (materials[k] == finish.material) {
+            item.specular = finish.specular;
+            item.shininess = finish.shininess;
+          }
+        }
+        drawn.items.push_back(item);
       }
     }
     drawn.background = Eigen::Vector3f(0.55f, 0.57f, 0.6f);  // a grey lab wall
@@ -128,8 +145,15 @@ class SceneRenderer {
     fill.direction_W = Vector3D(-0.6, 0.2, -0.7);
     fill.colour = Eigen::Vector3f(0.2f, 0.21f, 0.23f);
     drawn.lighting.lights = {key, fill};
+    for (const ExtraLight& extra : profile_->lights) {
+      render::Light light;
+      light.direction_W = Vector3D(extra.direction[0], extra.direction[1], extra.direction[2]);
+      light.colour =
+          Eigen::Vector3d(extra.colour[0], extra.colour[1], extra.colour[2]).cast<float>();
+      drawn.lighting.lights.push_back(light);
+    }
     render::RenderOptions options;
-    options.depthAndIds = false;  // the database keeps the colour images only
+    options.depthAndIds = depthAndIds;
     return renderer_.render(drawn, camera, options);
   }
 
@@ -153,17 +177,11 @@ class SceneRenderer {
   }
 
   const Assets* assets_;
+  const CameraProfile* profile_;
   render::OffscreenRenderer renderer_;
   std::map<std::string, render::MeshHandle> tables_;
   std::map<int, std::vector<render::MeshHandle>> objects_;
 };
-
-cv::Mat toBgr(const visual::RgbImage& image) {
-  cv::Mat rgb(image.height, image.width, CV_8UC3, const_cast<std::uint8_t*>(image.pixels.data()));
-  cv::Mat bgr;
-  cv::cvtColor(rgb, bgr, cv::COLOR_RGB2BGR);
-  return bgr;
-}
 
 bool onTable(const Transform3D& X_WO, const TableGeometry& table) {
   const Vector3D p = X_WO.translation();
@@ -174,7 +192,8 @@ bool onTable(const Transform3D& X_WO, const TableGeometry& table) {
 /// placement settles.
 database::SceneRecord makeScene(const database::SceneConditions& scene, const Assets& assets,
                                 const GeneratorOptions& options, const AssetLayout& layout,
-                                database::DatabaseWriter& writer, SceneRenderer& renderer) {
+                                const CameraRig& rig, database::DatabaseWriter& writer,
+                                SceneRenderer& renderer) {
   database::SceneRecord record;
   record.id = database::sceneIdOf(scene);
   record.conditions = scene;
@@ -235,19 +254,32 @@ database::SceneRecord makeScene(const database::SceneConditions& scene, const As
   database::writeFileAtomically(
       wcFile, sceneWorkcellXml(scene, models, settled, toDatabase, layout, table));
 
-  const database::StereoCalibration calibration = rigCalibration(options.rig);
-  const auto [left, right] = rigCameras(calibration);
-  const std::array<std::pair<const render::PinholeCamera*, const std::string*>, 2> views{
-      {{&left, &record.files.left}, {&right, &record.files.right}}};
-  for (const auto& [camera, file] : views) {
-    render::RenderResult image = renderer.render(scene, settled, *camera);
-    Random noise(options.seed, record.id + "|" + *file);
-    addSensorEffects(image.colour, options.rig, noise);
+  // Until the index names the raw pair, it goes beside the rectified one.
+  const std::string sceneFolder = record.files.left.substr(0, record.files.left.rfind('/') + 1);
+  if (record.files.rawLeft.empty()) record.files.rawLeft = sceneFolder + "raw_left.png";
+  if (record.files.rawRight.empty()) record.files.rawRight = sceneFolder + "raw_right.png";
+  const bool direct = rig.profile().alreadyRectified();
+  render::RenderResult truth;  // the rectified left view's depth and instance ids
+  for (int side = 0; side < 2; ++side) {
+    const std::string& file = side == 0 ? record.files.left : record.files.right;
+    const std::string& rawFile = side == 0 ? record.files.rawLeft : record.files.rawRight;
+    render::RenderResult image =
+        renderer.render(scene, settled, rig.renderCamera(side), direct && side == 0);
+    // The noise stream is keyed by the rectified image's file, as before raw images existed.
+    Random noise(options.seed, record.id + "|" + file);
+    const cv::Mat raw = rig.rawImage(side, image.colour, noise);
     // Sensor noise leaves string matching nothing to find: Huffman coding only.
-    database::writeImageAtomically(writer.path(*file), toBgr(image.colour),
+    database::writeImageAtomically(writer.path(rawFile), raw,
                                    database::PngCompression::kHuffmanOnly);
+    database::writeImageAtomically(writer.path(file), rig.rectify(side, raw),
+                                   database::PngCompression::kHuffmanOnly);
+    if (direct && side == 0) truth = std::move(image);
   }
-  database::writeCalibration(writer.path(record.files.calibration), calibration);
+  if (!direct) truth = renderer.render(scene, settled, rig.rectifiedCamera(0), true);
+  if (options.truthObserver) options.truthObserver(record.id, truth);
+  // products: hand `truth` (depth and instance ids of the rectified left view) and the
+  // rectified pair to the disparity, point cloud and ground-truth writers here.
+  database::writeCalibration(writer.path(record.files.calibration), rig.calibration());
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {
     record.objects.push_back({scene.objects[i], settled[i]});
   }
@@ -266,6 +298,7 @@ GenerationReport generateDatabase(const std::vector<database::SceneConditions>& 
   report.skipped = static_cast<int>(scenes.size() - todo.size());
   if (todo.empty()) return report;
   const AssetLayout layout;
+  const CameraRig rig(options.camera);
   const Assets assets = prepareAssets(todo, options, layout);
 
   std::mutex mutex;
@@ -280,11 +313,11 @@ GenerationReport generateDatabase(const std::vector<database::SceneConditions>& 
       todo.size(),
       [&](std::size_t i, int worker) {
         auto& renderer = renderers[static_cast<std::size_t>(worker)];
-        if (!renderer) renderer = std::make_unique<SceneRenderer>(assets);
+        if (!renderer) renderer = std::make_unique<SceneRenderer>(assets, rig.profile());
         std::string failure;
         try {
           database::SceneRecord record =
-              makeScene(todo[i], assets, options, layout, writer, *renderer);
+              makeScene(todo[i], assets, options, layout, rig, writer, *renderer);
           writer.addScene(record);
         } catch (const rw::common::WriteError&) {
           throw;  // disk full, folder gone: the other scenes would fail the same way
