@@ -105,6 +105,113 @@ Eigen::Vector2d undistortPoint(const Eigen::Vector2d& xyd, const std::array<doub
   return xy;
 }
 
+namespace {
+
+/// The raw calibration of the profile's cameras with cv::stereoRectify's rectification
+/// (CALIB_ZERO_DISPARITY, alpha 0, the image size kept). @throws std::invalid_argument if the
+/// result fails StereoCalibration::check().
+database::StereoCalibration rectifiedCalibration(const CameraProfile& profile,
+                                                 const std::array<Eigen::Matrix3d, 2>& K,
+                                                 const Transform3D& X_TL, const Transform3D& X_LR) {
+  database::StereoCalibration c;
+  c.width = profile.rig.width;
+  c.height = profile.rig.height;
+  c.K1 = K[0];
+  c.K2 = K[1];
+  c.D1 = Eigen::Map<const Eigen::VectorXd>(profile.cameras[0].distortion.data(), 5);
+  c.D2 = Eigen::Map<const Eigen::VectorXd>(profile.cameras[1].distortion.data(), 5);
+  c.R = X_LR.linear().transpose();
+  c.T = -(X_LR.linear().transpose() * X_LR.translation());
+  const cv::Size size(c.width, c.height);
+  cv::Mat R1, R2, P1, P2, Q;
+  cv::stereoRectify(toCv(c.K1), toCv(c.D1), toCv(c.K2), toCv(c.D2), size, toCv(c.R), toCv(c.T), R1,
+                    R2, P1, P2, Q, cv::CALIB_ZERO_DISPARITY, 0.0, size);
+  c.R1 = fromCv(R1);
+  c.R2 = fromCv(R2);
+  c.P1 = fromCv(P1);
+  c.P2 = fromCv(P2);
+  c.Q = fromCv(Q);
+  c.X_TL = X_TL;
+  const std::string why = c.check();
+  if (!why.empty()) {
+    throw std::invalid_argument("camera profile \"" + profile.name +
+                                "\": the rectified calibration is inconsistent: " + why);
+  }
+  return c;
+}
+
+/// The supersampled pinhole camera at `pose` that covers every raw pixel of a camera with
+/// matrix `k` and distortion `d` after undistortion (with a margin for the blur), and the maps
+/// from each raw pixel to its place in that camera's image.
+render::PinholeCamera lensWarp(const CameraProfile& profile, const Eigen::Matrix3d& k,
+                               const std::array<double, 5>& d, const Transform3D& pose,
+                               std::array<cv::Mat, 2>& maps) {
+  const StereoRigSpec& rig = profile.rig;
+  cv::Mat nx(rig.height, rig.width, CV_64F);
+  cv::Mat ny(rig.height, rig.width, CV_64F);
+  double xmin = std::numeric_limits<double>::infinity();
+  double xmax = -xmin;
+  double ymin = xmin;
+  double ymax = -xmin;
+  for (int r = 0; r < rig.height; ++r) {
+    for (int col = 0; col < rig.width; ++col) {
+      const Eigen::Vector2d xyd((col - k(0, 2)) / k(0, 0), (r - k(1, 2)) / k(1, 1));
+      const Eigen::Vector2d xy = undistortPoint(xyd, d);
+      nx.at<double>(r, col) = xy.x();
+      ny.at<double>(r, col) = xy.y();
+      xmin = std::min(xmin, xy.x());
+      xmax = std::max(xmax, xy.x());
+      ymin = std::min(ymin, xy.y());
+      ymax = std::max(ymax, xy.y());
+    }
+  }
+  const double s = profile.supersampling;
+  render::PinholeCamera camera;
+  camera.fx = s * k(0, 0);
+  camera.fy = s * k(1, 1);
+  const double margin = std::ceil(3.0 * s * rig.blurSigma) + 2.0;
+  camera.cx = margin - camera.fx * xmin;
+  camera.cy = margin - camera.fy * ymin;
+  camera.width = static_cast<int>(std::ceil(camera.fx * (xmax - xmin) + 2.0 * margin)) + 1;
+  camera.height = static_cast<int>(std::ceil(camera.fy * (ymax - ymin) + 2.0 * margin)) + 1;
+  camera.near = 0.05;
+  camera.far = 10.0;
+  camera.X_WC = pose;
+  maps[0].create(rig.height, rig.width, CV_32F);
+  maps[1].create(rig.height, rig.width, CV_32F);
+  for (int r = 0; r < rig.height; ++r) {
+    for (int col = 0; col < rig.width; ++col) {
+      maps[0].at<float>(r, col) = static_cast<float>(camera.fx * nx.at<double>(r, col) + camera.cx);
+      maps[1].at<float>(r, col) = static_cast<float>(camera.fy * ny.at<double>(r, col) + camera.cy);
+    }
+  }
+  return camera;
+}
+
+/// For each rectified pixel of projection `p` and rectifying rotation `R`: its ray turned back
+/// into the raw camera, distorted and projected with `k` (what cv::initUndistortRectifyMap
+/// computes).
+std::array<cv::Mat, 2> rectifyMap(const StereoRigSpec& rig, const Eigen::Matrix3d& k,
+                                  const std::array<double, 5>& d, const Eigen::Matrix3d& R,
+                                  const Eigen::Matrix<double, 3, 4>& p) {
+  std::array<cv::Mat, 2> maps;
+  maps[0].create(rig.height, rig.width, CV_32F);
+  maps[1].create(rig.height, rig.width, CV_32F);
+  const Eigen::Matrix3d Rt = R.transpose();
+  for (int r = 0; r < rig.height; ++r) {
+    for (int col = 0; col < rig.width; ++col) {
+      const Eigen::Vector3d ray =
+          Rt * Eigen::Vector3d((col - p(0, 2)) / p(0, 0), (r - p(1, 2)) / p(1, 1), 1.0);
+      const Eigen::Vector2d xd = distortPoint(ray.head<2>() / ray.z(), d);
+      maps[0].at<float>(r, col) = static_cast<float>(k(0, 0) * xd.x() + k(0, 2));
+      maps[1].at<float>(r, col) = static_cast<float>(k(1, 1) * xd.y() + k(1, 2));
+    }
+  }
+  return maps;
+}
+
+}  // namespace
+
 CameraRig::CameraRig(CameraProfile profile) : profile_(std::move(profile)) {
   const StereoRigSpec& rig = profile_.rig;
   if (rig.width < 16 || rig.height < 16 || !(rig.focal > 0.0) || !(rig.baseline > 0.0) ||
@@ -116,7 +223,6 @@ CameraRig::CameraRig(CameraProfile profile) : profile_(std::move(profile)) {
   const Transform3D X_TL = rigCalibration(rig).X_TL;
   const Transform3D X_LR = rightInLeft(profile_);
   rawPoses_ = {X_TL, X_TL * X_LR};
-  const cv::Size size(rig.width, rig.height);
   std::array<Eigen::Matrix3d, 2> K;
   for (int side = 0; side < 2; ++side) {
     const CameraSensorSpec& camera = profile_.cameras[static_cast<std::size_t>(side)];
@@ -132,92 +238,13 @@ CameraRig::CameraRig(CameraProfile profile) : profile_(std::move(profile)) {
     return;
   }
 
-  database::StereoCalibration& c = calibration_;
-  c.width = rig.width;
-  c.height = rig.height;
-  c.K1 = K[0];
-  c.K2 = K[1];
-  c.D1 = Eigen::Map<const Eigen::VectorXd>(profile_.cameras[0].distortion.data(), 5);
-  c.D2 = Eigen::Map<const Eigen::VectorXd>(profile_.cameras[1].distortion.data(), 5);
-  c.R = X_LR.linear().transpose();
-  c.T = -(X_LR.linear().transpose() * X_LR.translation());
-  cv::Mat R1, R2, P1, P2, Q;
-  cv::stereoRectify(toCv(c.K1), toCv(c.D1), toCv(c.K2), toCv(c.D2), size, toCv(c.R), toCv(c.T), R1,
-                    R2, P1, P2, Q, cv::CALIB_ZERO_DISPARITY, 0.0, size);
-  c.R1 = fromCv(R1);
-  c.R2 = fromCv(R2);
-  c.P1 = fromCv(P1);
-  c.P2 = fromCv(P2);
-  c.Q = fromCv(Q);
-  c.X_TL = X_TL;
-  const std::string why = c.check();
-  if (!why.empty()) {
-    throw std::invalid_argument("camera profile \"" + profile_.name +
-                                "\": the rectified calibration is inconsistent: " + why);
-  }
-
-  const double s = profile_.supersampling;
-  const std::array<const Eigen::Matrix<double, 3, 4>*, 2> P{&c.P1, &c.P2};
-  const std::array<const Eigen::Matrix3d*, 2> Rrect{&c.R1, &c.R2};
+  calibration_ = rectifiedCalibration(profile_, K, X_TL, X_LR);
+  const std::array<const Eigen::Matrix<double, 3, 4>*, 2> P{&calibration_.P1, &calibration_.P2};
+  const std::array<const Eigen::Matrix3d*, 2> R{&calibration_.R1, &calibration_.R2};
   for (std::size_t side = 0; side < 2; ++side) {
     const auto& d = profile_.cameras[side].distortion;
-    const Eigen::Matrix3d& k = K[side];
-    // Undistorted normalised coordinates of every raw pixel and their bounds.
-    cv::Mat nx(rig.height, rig.width, CV_64F);
-    cv::Mat ny(rig.height, rig.width, CV_64F);
-    double xmin = std::numeric_limits<double>::infinity();
-    double xmax = -xmin;
-    double ymin = xmin;
-    double ymax = -xmin;
-    for (int r = 0; r < rig.height; ++r) {
-      for (int col = 0; col < rig.width; ++col) {
-        const Eigen::Vector2d xyd((col - k(0, 2)) / k(0, 0), (r - k(1, 2)) / k(1, 1));
-        const Eigen::Vector2d xy = undistortPoint(xyd, d);
-        nx.at<double>(r, col) = xy.x();
-        ny.at<double>(r, col) = xy.y();
-        xmin = std::min(xmin, xy.x());
-        xmax = std::max(xmax, xy.x());
-        ymin = std::min(ymin, xy.y());
-        ymax = std::max(ymax, xy.y());
-      }
-    }
-    render::PinholeCamera& camera = renderCameras_[side];
-    camera.fx = s * k(0, 0);
-    camera.fy = s * k(1, 1);
-    const double margin = std::ceil(3.0 * s * rig.blurSigma) + 2.0;
-    camera.cx = margin - camera.fx * xmin;
-    camera.cy = margin - camera.fy * ymin;
-    camera.width = static_cast<int>(std::ceil(camera.fx * (xmax - xmin) + 2.0 * margin)) + 1;
-    camera.height = static_cast<int>(std::ceil(camera.fy * (ymax - ymin) + 2.0 * margin)) + 1;
-    camera.near = 0.05;
-    camera.far = 10.0;
-    camera.X_WC = rawPoses_[side];
-    auto& warp = warpMaps_[side];
-    warp[0].create(rig.height, rig.width, CV_32F);
-    warp[1].create(rig.height, rig.width, CV_32F);
-    for (int r = 0; r < rig.height; ++r) {
-      for (int col = 0; col < rig.width; ++col) {
-        warp[0].at<float>(r, col) =
-            static_cast<float>(camera.fx * nx.at<double>(r, col) + camera.cx);
-        warp[1].at<float>(r, col) =
-            static_cast<float>(camera.fy * ny.at<double>(r, col) + camera.cy);
-      }
-    }
-    // Each rectified pixel's ray, turned back into the raw camera, distorted and projected.
-    const Eigen::Matrix<double, 3, 4>& p = *P[side];
-    const Eigen::Matrix3d Rt = Rrect[side]->transpose();
-    auto& rect = rectifyMaps_[side];
-    rect[0].create(rig.height, rig.width, CV_32F);
-    rect[1].create(rig.height, rig.width, CV_32F);
-    for (int r = 0; r < rig.height; ++r) {
-      for (int col = 0; col < rig.width; ++col) {
-        const Eigen::Vector3d ray =
-            Rt * Eigen::Vector3d((col - p(0, 2)) / p(0, 0), (r - p(1, 2)) / p(1, 1), 1.0);
-        const Eigen::Vector2d xd = distortPoint(ray.head<2>() / ray.z(), d);
-        rect[0].at<float>(r, col) = static_cast<float>(k(0, 0) * xd.x() + k(0, 2));
-        rect[1].at<float>(r, col) = static_cast<float>(k(1, 1) * xd.y() + k(1, 2));
-      }
-    }
+    renderCameras_[side] = lensWarp(profile_, K[side], d, rawPoses_[side], warpMaps_[side]);
+    rectifyMaps_[side] = rectifyMap(rig, K[side], d, *R[side], *P[side]);
   }
 }
 

@@ -254,11 +254,18 @@ database::SceneRecord makeScene(const database::SceneConditions& scene, const As
   database::writeFileAtomically(
       wcFile, sceneWorkcellXml(scene, models, settled, toDatabase, layout, table));
 
-  // Until the index names the raw pair, it goes beside the rectified one.
-  const std::string sceneFolder = record.files.left.substr(0, record.files.left.rfind('/') + 1);
-  if (record.files.rawLeft.empty()) record.files.rawLeft = sceneFolder + "raw_left.png";
-  if (record.files.rawRight.empty()) record.files.rawRight = sceneFolder + "raw_right.png";
   const bool direct = rig.profile().alreadyRectified();
+  // Already rectified and without a mosaic, the raw images are the rectified ones: one file
+  // each. Otherwise, until the index names the raw pair, it goes beside the rectified one.
+  const bool rawIsRectified = direct && rig.profile().bayer == BayerPattern::kNone;
+  const std::string sceneFolder = record.files.left.substr(0, record.files.left.rfind('/') + 1);
+  if (rawIsRectified) {
+    record.files.rawLeft = record.files.left;
+    record.files.rawRight = record.files.right;
+  } else {
+    if (record.files.rawLeft.empty()) record.files.rawLeft = sceneFolder + "raw_left.png";
+    if (record.files.rawRight.empty()) record.files.rawRight = sceneFolder + "raw_right.png";
+  }
   render::RenderResult truth;  // the rectified left view's depth and instance ids
   for (int side = 0; side < 2; ++side) {
     const std::string& file = side == 0 ? record.files.left : record.files.right;
@@ -269,8 +276,10 @@ database::SceneRecord makeScene(const database::SceneConditions& scene, const As
     Random noise(options.seed, record.id + "|" + file);
     const cv::Mat raw = rig.rawImage(side, image.colour, noise);
     // Sensor noise leaves string matching nothing to find: Huffman coding only.
-    database::writeImageAtomically(writer.path(rawFile), raw,
-                                   database::PngCompression::kHuffmanOnly);
+    if (!rawIsRectified) {
+      database::writeImageAtomically(writer.path(rawFile), raw,
+                                     database::PngCompression::kHuffmanOnly);
+    }
     database::writeImageAtomically(writer.path(file), rig.rectify(side, raw),
                                    database::PngCompression::kHuffmanOnly);
     if (direct && side == 0) truth = std::move(image);
