@@ -1,5 +1,6 @@
 #include "visgrab/generator/generator.hpp"
 
+#include <array>
 #include <chrono>
 #include <exception>
 #include <map>
@@ -188,6 +189,60 @@ bool onTable(const Transform3D& X_WO, const TableGeometry& table) {
   return p.z() > -0.01 && std::abs(p.x()) < 0.5 * table.x && std::abs(p.y()) < 0.5 * table.y;
 }
 
+/// What a scene's stereo images leave for the files that derive from them.
+struct StereoImages {
+  /// The rectified left and right images (BGR), as written.
+  std::array<cv::Mat, 2> rectified;
+  /// Depth and instance ids of the rectified left view.
+  render::RenderResult truth;
+};
+
+/// Renders and writes the raw and rectified pair of a settled scene (record.files names them;
+/// raw files it leaves empty are named raw_left.png/raw_right.png beside left.png) and renders
+/// the ground truth of the rectified left view.
+StereoImages writeStereoImages(const database::SceneConditions& scene,
+                               const std::vector<Transform3D>& settled,
+                               const GeneratorOptions& options, const CameraRig& rig,
+                               database::DatabaseWriter& writer, SceneRenderer& renderer,
+                               database::SceneRecord& record) {
+  const bool direct = rig.profile().alreadyRectified();
+  // Already rectified and without a mosaic, the raw images are the rectified ones: one file
+  // each. Otherwise, until the index names the raw pair, it goes beside the rectified one.
+  const bool rawIsRectified = direct && rig.profile().bayer == BayerPattern::kNone;
+  const std::string sceneFolder = record.files.left.substr(0, record.files.left.rfind('/') + 1);
+  if (rawIsRectified) {
+    record.files.rawLeft = record.files.left;
+    record.files.rawRight = record.files.right;
+  } else {
+    if (record.files.rawLeft.empty()) record.files.rawLeft = sceneFolder + "raw_left.png";
+    if (record.files.rawRight.empty()) record.files.rawRight = sceneFolder + "raw_right.png";
+  }
+  StereoImages images;
+  for (int side = 0; side < 2; ++side) {
+    const std::string& file = side == 0 ? record.files.left : record.files.right;
+    const std::string& rawFile = side == 0 ? record.files.rawLeft : record.files.rawRight;
+    // Already rectified, the left render is the rectified left view: its depth and ids are
+    // the ground truth.
+    render::RenderResult image =
+        renderer.render(scene, settled, rig.renderCamera(side), direct && side == 0);
+    // The noise stream is keyed by the rectified image's file, as before raw images existed.
+    Random noise(options.seed, record.id + "|" + file);
+    const cv::Mat raw = rig.rawImage(side, image.colour, noise);
+    // Sensor noise leaves string matching nothing to find: Huffman coding only.
+    if (!rawIsRectified) {
+      database::writeImageAtomically(writer.path(rawFile), raw,
+                                     database::PngCompression::kHuffmanOnly);
+    }
+    auto& rectified = images.rectified[static_cast<std::size_t>(side)];
+    rectified = rig.rectify(side, raw);
+    database::writeImageAtomically(writer.path(file), rectified,
+                                   database::PngCompression::kHuffmanOnly);
+    if (direct && side == 0) images.truth = std::move(image);
+  }
+  if (!direct) images.truth = renderer.render(scene, settled, rig.rectifiedCamera(0), true);
+  return images;
+}
+
 /// Makes one scene's files and returns its index record. @throws std::runtime_error when no
 /// placement settles.
 database::SceneRecord makeScene(const database::SceneConditions& scene, const Assets& assets,
@@ -254,40 +309,12 @@ database::SceneRecord makeScene(const database::SceneConditions& scene, const As
   database::writeFileAtomically(
       wcFile, sceneWorkcellXml(scene, models, settled, toDatabase, layout, table));
 
-  const bool direct = rig.profile().alreadyRectified();
-  // Already rectified and without a mosaic, the raw images are the rectified ones: one file
-  // each. Otherwise, until the index names the raw pair, it goes beside the rectified one.
-  const bool rawIsRectified = direct && rig.profile().bayer == BayerPattern::kNone;
-  const std::string sceneFolder = record.files.left.substr(0, record.files.left.rfind('/') + 1);
-  if (rawIsRectified) {
-    record.files.rawLeft = record.files.left;
-    record.files.rawRight = record.files.right;
-  } else {
-    if (record.files.rawLeft.empty()) record.files.rawLeft = sceneFolder + "raw_left.png";
-    if (record.files.rawRight.empty()) record.files.rawRight = sceneFolder + "raw_right.png";
-  }
-  render::RenderResult truth;  // the rectified left view's depth and instance ids
-  for (int side = 0; side < 2; ++side) {
-    const std::string& file = side == 0 ? record.files.left : record.files.right;
-    const std::string& rawFile = side == 0 ? record.files.rawLeft : record.files.rawRight;
-    render::RenderResult image =
-        renderer.render(scene, settled, rig.renderCamera(side), direct && side == 0);
-    // The noise stream is keyed by the rectified image's file, as before raw images existed.
-    Random noise(options.seed, record.id + "|" + file);
-    const cv::Mat raw = rig.rawImage(side, image.colour, noise);
-    // Sensor noise leaves string matching nothing to find: Huffman coding only.
-    if (!rawIsRectified) {
-      database::writeImageAtomically(writer.path(rawFile), raw,
-                                     database::PngCompression::kHuffmanOnly);
-    }
-    database::writeImageAtomically(writer.path(file), rig.rectify(side, raw),
-                                   database::PngCompression::kHuffmanOnly);
-    if (direct && side == 0) truth = std::move(image);
-  }
-  if (!direct) truth = renderer.render(scene, settled, rig.rectifiedCamera(0), true);
-  if (options.truthObserver) options.truthObserver(record.id, truth);
-  // products: hand `truth` (depth and instance ids of the rectified left view) and the
-  // rectified pair to the disparity, point cloud and ground-truth writers here.
+  const StereoImages images =
+      writeStereoImages(scene, settled, options, rig, writer, renderer, record);
+  if (options.truthObserver) options.truthObserver(record.id, images.truth);
+  // products: hand images.truth (depth and instance ids of the rectified left view) and
+  // images.rectified (the rectified pair) to the disparity, point cloud and ground-truth
+  // writers here.
   database::writeCalibration(writer.path(record.files.calibration), rig.calibration());
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {
     record.objects.push_back({scene.objects[i], settled[i]});
