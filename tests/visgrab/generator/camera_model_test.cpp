@@ -6,6 +6,7 @@
 // checked against the rig's original path (a render with addSensorEffects); generation is
 // checked for the same bytes with 1 and 2 threads.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -54,16 +55,31 @@ std::vector<db::SceneConditions> testScenes() {
   return {*db::parseSceneId(kTexturedCan), *db::parseSceneId(kPlainJar)};
 }
 
+// A folder of this process's own under the test temporary folder (CTest runs each test of this
+// file in a process of its own, in parallel).
+fs::path uniqueDir(const std::string& name) {
+  return fs::path(::testing::TempDir()) / (name + "-" + std::to_string(::getpid()));
+}
+
 // Two scenes generated once with the realistic profile, with their ground-truth renders.
 struct Generated {
   fs::path dir;
   std::map<std::string, visgrab::render::RenderResult> truth;
+  Generated() = default;
+  Generated(Generated&&) = default;
+  Generated& operator=(Generated&&) = default;
+  Generated(const Generated&) = delete;
+  Generated& operator=(const Generated&) = delete;
+  ~Generated() {
+    std::error_code ec;
+    if (!dir.empty()) fs::remove_all(dir, ec);
+  }
 };
 
 const Generated& generated() {
   static const Generated g = [] {
     Generated out;
-    out.dir = fs::path(::testing::TempDir()) / "camera-model-realistic";
+    out.dir = uniqueDir("camera-model-realistic");
     fs::remove_all(out.dir);
     gen::GeneratorOptions options = optionsFor(out.dir, 2);
     std::mutex mutex;
@@ -345,7 +361,7 @@ std::string bytes(const fs::path& file) {
 }
 
 TEST(CameraModel, SameBytesWithOneAndTwoThreads) {
-  const fs::path one = fs::path(::testing::TempDir()) / "camera-model-one-thread";
+  const fs::path one = uniqueDir("camera-model-one-thread");
   fs::remove_all(one);
   ASSERT_TRUE(gen::generateDatabase(testScenes(), optionsFor(one, 1)).failures.empty());
   int compared = 0;

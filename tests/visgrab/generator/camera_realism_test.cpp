@@ -9,6 +9,7 @@
 // visgrab_camera_realism_test --gtest_also_run_disabled_tests
 // --gtest_filter=CameraRealism.DISABLED_EffectShares
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -166,7 +167,8 @@ TEST(CameraRealism, RealisticProfileLeavesSixtyToEightyFivePercentWithinFiveMill
                          "textured/single/saltbox/06", "plain/double/burti_denkmit/05"}) {
     scenes.push_back(*db::parseSceneId(id));
   }
-  const fs::path out = fs::path(::testing::TempDir()) / "camera-realism";
+  const fs::path out =
+      fs::path(::testing::TempDir()) / ("camera-realism-" + std::to_string(::getpid()));
   const Summary ideal = summarise(measure(shippedProfile("ideal"), scenes, out));
   const Summary realistic = summarise(measure(shippedProfile("realistic"), scenes, out));
   std::cout << row("ideal", ideal) << "\n" << row("realistic", realistic) << "\n";
@@ -178,7 +180,8 @@ TEST(CameraRealism, RealisticProfileLeavesSixtyToEightyFivePercentWithinFiveMill
 
 TEST(CameraRealism, DISABLED_EffectShares) {
   const auto scenes = visgrab::test::testDatabaseScenes();
-  const fs::path out = fs::path(::testing::TempDir()) / "camera-realism-shares";
+  const fs::path out =
+      fs::path(::testing::TempDir()) / ("camera-realism-shares-" + std::to_string(::getpid()));
   const gen::CameraProfile ideal = shippedProfile("ideal");
   const gen::CameraProfile realistic = shippedProfile("realistic");
   std::vector<std::string> rows;
