@@ -3,12 +3,14 @@
 // their file and line.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
 #include "rw/common/diagnostic.hpp"
 #include "support/test_support.hpp"
 #include "visgrab/generator/camera_profile.hpp"
+#include "visgrab/objects/object_model.hpp"
 
 namespace {
 
@@ -134,6 +136,25 @@ TEST(CameraProfile, OmittedValuesKeepTheIdealOnes) {
   EXPECT_EQ(p.bayer, gen::BayerPattern::kRggb);
   EXPECT_EQ(p.rig.noiseSigma, 1.2);
   EXPECT_TRUE(p.alreadyRectified());
+}
+
+// The finishes apply to the parts the object models mark with a material: a can's body and
+// lids are metal, a jar's body glass with a metal lid, a printed box has none.
+TEST(CameraProfile, ObjectPartsCarryTheMaterialsProfilesGiveAFinish) {
+  namespace obj = visgrab::objects;
+  const auto spec = obj::loadObjectSpecs(visgrab::test::sourceDir() / "scenes/objects/objects.xml");
+  const auto materials = [&](const char* name) {
+    std::vector<std::optional<obj::SurfaceMaterial>> out;
+    for (const auto& part : obj::generateObject(*spec.findObject(name)).visual) {
+      out.push_back(part.material);
+    }
+    return out;
+  };
+  for (const auto& m : materials("cocacola")) EXPECT_EQ(m, obj::SurfaceMaterial::kMetal);
+  const auto jar = materials("marmelade");
+  EXPECT_NE(std::find(jar.begin(), jar.end(), obj::SurfaceMaterial::kGlass), jar.end());
+  EXPECT_NE(std::find(jar.begin(), jar.end(), obj::SurfaceMaterial::kMetal), jar.end());
+  for (const auto& m : materials("amicelli")) EXPECT_FALSE(m.has_value());
 }
 
 }  // namespace
