@@ -56,8 +56,15 @@ int runGenerate(const Arguments& a) {
   options.materials = data / "materials.xml";
   options.threads = threadsOption(a);
   options.seed = static_cast<std::uint64_t>(integerOption(a, "seed", 1, 0));
+  try {
+    options.camera =
+        generator::findCameraProfile(a.option("camera").value_or("realistic"), data / "cameras");
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(std::string("--camera: ") + e.what());
+  }
   std::cerr << "visgrab db generate: " << scenes.size() << " scenes into " << *out << " with "
-            << options.threads << " thread(s), seed " << options.seed << "\n";
+            << options.threads << " thread(s), seed " << options.seed << ", camera "
+            << options.camera.name << "\n";
   std::optional<ProgressReporter> reporter;
   if (!a.flag("quiet")) reporter.emplace("db generate", "scenes");
   // SIGINT/SIGTERM: the scenes being made are finished and indexed, then it stops (exit 130/143);
@@ -217,6 +224,12 @@ void addDatabaseCommands(CommandLine& cli) {
       ->type_name("S")
       ->default_str("1")
       ->check(integerAtLeast(0));
+  generate
+      .add_option("--camera",
+                  "Camera profile: a name from the data folder's cameras/ (ideal, realistic) or "
+                  "a profile file")
+      ->type_name("NAME|FILE")
+      ->default_str("realistic");
   addDataOption(generate);
   addQuietFlag(generate);
 

@@ -148,6 +148,8 @@ std::string ensureDatabase(const fs::path& dir, const std::string& filter, int t
   options.handFolder = data / "hands" / "sdh";
   options.materials = data / "materials.xml";
   options.threads = threads;
+  // The same default as `visgrab db generate`: the realistic camera.
+  options.camera = generator::findCameraProfile("realistic", data / "cameras");
   rw::common::catchStopSignals();
   options.stop = &rw::common::stopSignalFlag();
   std::optional<ProgressReporter> reporter;

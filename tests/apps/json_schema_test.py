@@ -119,7 +119,9 @@ def check_database(binary, store, tmp):
         for name in ["disparity", "point_cloud", "depth", "mask", "poses"]:
             check(show["files"][name] is not None and show["files"][name]["exists"],
                   f"db show: the generated scene's {name} exists")
-        check(show["files"]["raw_left_image"] is None, "db show: the ideal rig has no raw pair")
+        for name in ["raw_left_image", "raw_right_image"]:
+            check(show["files"][name] is not None and show["files"][name]["exists"],
+                  f"db show: the realistic camera's {name} exists")
         check(show["files"]["collision_mesh"] is None, "db show: a generated scene has no mesh")
         truth = show["ground_truth"]
         check(len(truth) == 1 and truth[0]["name"] == "cocacola", f"db show: ground truth {truth}")

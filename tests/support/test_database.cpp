@@ -36,8 +36,9 @@ class FileLock {
   int fd_;
 };
 
-std::filesystem::path generateTestDatabase() {
-  const std::filesystem::path dir = VISGRAB_TEST_DATABASE_DIR;
+std::filesystem::path generateTestDatabase(const std::string& camera) {
+  const std::filesystem::path dir =
+      std::string(VISGRAB_TEST_DATABASE_DIR) + (camera == "realistic" ? "" : "-" + camera);
   std::filesystem::create_directories(dir.parent_path());
   const FileLock lock(dir.string() + ".lock");
   generator::GeneratorOptions options;
@@ -47,6 +48,7 @@ std::filesystem::path generateTestDatabase() {
   options.materials = sourceDir() / "scenes/materials.xml";
   options.seed = kTestDatabaseSeed;
   options.threads = 2;
+  options.camera = generator::findCameraProfile(camera, sourceDir() / "scenes/cameras");
   const auto report = generator::generateDatabase(testDatabaseScenes(), options);
   if (!report.failures.empty()) {
     throw std::runtime_error("shared test database " + dir.string() + ": " +
@@ -68,12 +70,22 @@ std::vector<database::SceneConditions> testDatabaseScenes() {
 }
 
 const std::filesystem::path& testDatabasePath() {
-  static const std::filesystem::path dir = generateTestDatabase();
+  static const std::filesystem::path dir = generateTestDatabase("realistic");
+  return dir;
+}
+
+const std::filesystem::path& idealTestDatabasePath() {
+  static const std::filesystem::path dir = generateTestDatabase("ideal");
   return dir;
 }
 
 const database::Database& testDatabase() {
   static const database::Database database = database::Database::open(testDatabasePath());
+  return database;
+}
+
+const database::Database& idealTestDatabase() {
+  static const database::Database database = database::Database::open(idealTestDatabasePath());
   return database;
 }
 

@@ -10,7 +10,11 @@
 #include "visgrab/database/scene_set.hpp"
 
 /// The shared test database: 20 scenes generated with the project's objects, hand and materials
-/// (scenes/), seed kTestDatabaseSeed, made once per build tree and reused by every test process.
+/// (scenes/), seed kTestDatabaseSeed and the default (realistic) camera profile, made once per
+/// build tree and reused by every test process. Its twin with the "ideal" camera profile (the
+/// same scenes and poses; clean, already rectified images) is for tests that measure an
+/// algorithm's accuracy on clean images (the stereo matcher, the baseline's segmentation);
+/// everything else uses the realistic one, which is what users get.
 ///
 /// Use it for tests that need real generated scenes (images, calibration, scene files, ground
 /// truth): the generator's checks against the simulator and renderer, the benchmark run, and the
@@ -77,5 +81,11 @@ const std::filesystem::path& testDatabasePath();
 
 /// The shared test database, opened once per process (see testDatabasePath()).
 const database::Database& testDatabase();
+
+/// The ideal-camera twin (`<build>/tests/test-database-ideal`), generated on first use.
+const std::filesystem::path& idealTestDatabasePath();
+
+/// The ideal-camera twin, opened once per process.
+const database::Database& idealTestDatabase();
 
 }  // namespace visgrab::test

@@ -46,19 +46,19 @@ struct SceneFiles {
   std::string dynamicWorkcell;
   /// Raw left sensor image: distorted, unrectified, Bayer mosaic (8-bit PNG). Empty in
   /// databases made before format version 2.
-  std::string rawLeft;
+  std::string rawLeft{};
   /// Raw right sensor image.
-  std::string rawRight;
+  std::string rawRight{};
   /// Disparity of the rectified pair from the documented matcher (16-bit PNG, KITTI scale).
-  std::string disparity;
+  std::string disparity{};
   /// Point cloud reprojected from the disparity (binary PLY with colour).
-  std::string pointCloud;
+  std::string pointCloud{};
   /// Ground-truth depth of the rectified left view (16-bit PNG).
-  std::string depth;
+  std::string depth{};
   /// Ground-truth instance mask of the rectified left view (8-bit PNG, object ids).
-  std::string mask;
+  std::string mask{};
   /// Ground-truth object poses (OpenCV FileStorage YAML).
-  std::string poses;
+  std::string poses{};
   /// Equal when all paths are equal.
   bool operator==(const SceneFiles& other) const = default;
 };

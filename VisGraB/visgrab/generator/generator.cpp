@@ -1,5 +1,6 @@
 #include "visgrab/generator/generator.hpp"
 
+#include <array>
 #include <chrono>
 #include <exception>
 #include <map>
@@ -17,6 +18,7 @@
 #include "visgrab/database/atomic_file.hpp"
 #include "visgrab/database/database_writer.hpp"
 #include "visgrab/database/stereo_calibration.hpp"
+#include "visgrab/generator/camera_model.hpp"
 #include "visgrab/generator/scene_model.hpp"
 #include "visgrab/generator/scene_products.hpp"
 #include "visgrab/objects/object_spec.hpp"
@@ -41,6 +43,8 @@ struct Assets {
   std::map<std::string, objects::TableModel> tables;
   /// The same meshes as shared pointers, for uploading.
   std::map<int, std::vector<std::shared_ptr<const visual::VisualMesh>>> objectMeshes;
+  /// Each mesh's material class (VisualPart::material), parallel to objectMeshes.
+  std::map<int, std::vector<std::optional<objects::SurfaceMaterial>>> objectMaterials;
   std::map<std::string, std::shared_ptr<const visual::VisualMesh>> tableMeshes;
 };
 
@@ -69,8 +73,10 @@ Assets prepareAssets(const std::vector<database::SceneConditions>& scenes,
       objects::ObjectModel model = objects::generateObject(*objectSpec);
       objects::writeObjectFiles(model, options.out / layout.objects);
       auto& meshes = assets.objectMeshes[id];
+      auto& materials = assets.objectMaterials[id];
       for (const auto& part : model.visual) {
         meshes.push_back(std::make_shared<const visual::VisualMesh>(part.mesh));
+        materials.push_back(part.material);
       }
       assets.objects.emplace(id, std::move(model));
     }
@@ -110,19 +116,30 @@ Assets prepareAssets(const std::vector<database::SceneConditions>& scenes,
 /// One worker's renderer with the meshes it has uploaded.
 class SceneRenderer {
  public:
-  explicit SceneRenderer(const Assets& assets) : assets_(&assets) {}
+  SceneRenderer(const Assets& assets, const CameraProfile& profile)
+      : assets_(&assets), profile_(&profile) {}
 
+  /// Renders the scene; `depthAndIds` also the ground truth (the colour is the same either way).
   render::RenderResult render(const database::SceneConditions& scene,
                               const std::vector<Transform3D>& X_WO,
-                              const render::PinholeCamera& camera, bool depthAndIds = false) {
+                              const render::PinholeCamera& camera, bool depthAndIds) {
     render::Scene drawn;
     const std::string texture(database::toString(scene.texture));
     drawn.items.push_back({tableHandle(texture), Transform3D::Identity(), kTableInstance});
     for (std::size_t i = 0; i < scene.objects.size(); ++i) {
       const int id = scene.objects[i];
-      for (const auto handle : objectHandles(id)) {
-        drawn.items.push_back(
-            {handle, X_WO[i], static_cast<std::uint16_t>(kObjectInstanceBase + id)});
+      const auto& handles = objectHandles(id);
+      const auto& materials = assets_->objectMaterials.at(id);
+      for (std::size_t k = 0; k < handles.size(); ++k) {
+        render::SceneItem item{handles[k], X_WO[i],
+                               static_cast<std::uint16_t>(kObjectInstanceBase + id)};
+        for (const MaterialFinish& finish : profile_->materials) {
+          if (materials[k] == finish.material) {
+            item.specular = finish.specular;
+            item.shininess = finish.shininess;
+          }
+        }
+        drawn.items.push_back(item);
       }
     }
     drawn.background = Eigen::Vector3f(0.55f, 0.57f, 0.6f);  // a grey lab wall
@@ -135,8 +152,15 @@ class SceneRenderer {
     fill.direction_W = Vector3D(-0.6, 0.2, -0.7);
     fill.colour = Eigen::Vector3f(0.2f, 0.21f, 0.23f);
     drawn.lighting.lights = {key, fill};
+    for (const ExtraLight& extra : profile_->lights) {
+      render::Light light;
+      light.direction_W = Vector3D(extra.direction[0], extra.direction[1], extra.direction[2]);
+      light.colour =
+          Eigen::Vector3d(extra.colour[0], extra.colour[1], extra.colour[2]).cast<float>();
+      drawn.lighting.lights.push_back(light);
+    }
     render::RenderOptions options;
-    options.depthAndIds = depthAndIds;  // the colour image is the same either way
+    options.depthAndIds = depthAndIds;
     return renderer_.render(drawn, camera, options);
   }
 
@@ -160,28 +184,77 @@ class SceneRenderer {
   }
 
   const Assets* assets_;
+  const CameraProfile* profile_;
   render::OffscreenRenderer renderer_;
   std::map<std::string, render::MeshHandle> tables_;
   std::map<int, std::vector<render::MeshHandle>> objects_;
 };
-
-cv::Mat toBgr(const visual::RgbImage& image) {
-  cv::Mat rgb(image.height, image.width, CV_8UC3, const_cast<std::uint8_t*>(image.pixels.data()));
-  cv::Mat bgr;
-  cv::cvtColor(rgb, bgr, cv::COLOR_RGB2BGR);
-  return bgr;
-}
 
 bool onTable(const Transform3D& X_WO, const TableGeometry& table) {
   const Vector3D p = X_WO.translation();
   return p.z() > -0.01 && std::abs(p.x()) < 0.5 * table.x && std::abs(p.y()) < 0.5 * table.y;
 }
 
+/// What a scene's stereo images leave for the files that derive from them.
+struct StereoImages {
+  /// The rectified left and right images (BGR), as written.
+  std::array<cv::Mat, 2> rectified;
+  /// Depth and instance ids of the rectified left view.
+  render::RenderResult truth;
+};
+
+/// Renders and writes the raw and rectified pair of a settled scene (record.files names them;
+/// raw files it leaves empty are named raw_left.png/raw_right.png beside left.png) and renders
+/// the ground truth of the rectified left view.
+StereoImages writeStereoImages(const database::SceneConditions& scene,
+                               const std::vector<Transform3D>& settled,
+                               const GeneratorOptions& options, const CameraRig& rig,
+                               database::DatabaseWriter& writer, SceneRenderer& renderer,
+                               database::SceneRecord& record) {
+  const bool direct = rig.profile().alreadyRectified();
+  // Already rectified and without a mosaic, the raw images are the rectified ones: one file
+  // each. Otherwise, until the index names the raw pair, it goes beside the rectified one.
+  const bool rawIsRectified = direct && rig.profile().bayer == BayerPattern::kNone;
+  const std::string sceneFolder = record.files.left.substr(0, record.files.left.rfind('/') + 1);
+  if (rawIsRectified) {
+    record.files.rawLeft = record.files.left;
+    record.files.rawRight = record.files.right;
+  } else {
+    if (record.files.rawLeft.empty()) record.files.rawLeft = sceneFolder + "raw_left.png";
+    if (record.files.rawRight.empty()) record.files.rawRight = sceneFolder + "raw_right.png";
+  }
+  StereoImages images;
+  for (int side = 0; side < 2; ++side) {
+    const std::string& file = side == 0 ? record.files.left : record.files.right;
+    const std::string& rawFile = side == 0 ? record.files.rawLeft : record.files.rawRight;
+    // Already rectified, the left render is the rectified left view: its depth and ids are
+    // the ground truth.
+    render::RenderResult image =
+        renderer.render(scene, settled, rig.renderCamera(side), direct && side == 0);
+    // The noise stream is keyed by the rectified image's file, as before raw images existed.
+    Random noise(options.seed, record.id + "|" + file);
+    const cv::Mat raw = rig.rawImage(side, image.colour, noise);
+    // Sensor noise leaves string matching nothing to find: Huffman coding only.
+    if (!rawIsRectified) {
+      database::writeImageAtomically(writer.path(rawFile), raw,
+                                     database::PngCompression::kHuffmanOnly);
+    }
+    auto& rectified = images.rectified[static_cast<std::size_t>(side)];
+    rectified = rig.rectify(side, raw);
+    database::writeImageAtomically(writer.path(file), rectified,
+                                   database::PngCompression::kHuffmanOnly);
+    if (direct && side == 0) images.truth = std::move(image);
+  }
+  if (!direct) images.truth = renderer.render(scene, settled, rig.rectifiedCamera(0), true);
+  return images;
+}
+
 /// Makes one scene's files and returns its index record. @throws std::runtime_error when no
 /// placement settles.
 database::SceneRecord makeScene(const database::SceneConditions& scene, const Assets& assets,
                                 const GeneratorOptions& options, const AssetLayout& layout,
-                                database::DatabaseWriter& writer, SceneRenderer& renderer) {
+                                const CameraRig& rig, database::DatabaseWriter& writer,
+                                SceneRenderer& renderer) {
   database::SceneRecord record;
   record.id = database::sceneIdOf(scene, options.catalog);
   record.conditions = scene;
@@ -242,36 +315,19 @@ database::SceneRecord makeScene(const database::SceneConditions& scene, const As
   database::writeFileAtomically(
       wcFile, sceneWorkcellXml(scene, models, settled, toDatabase, layout, table));
 
-  const database::StereoCalibration calibration = rigCalibration(options.rig);
-  const auto [left, right] = rigCameras(calibration);
-  const std::array<std::pair<const render::PinholeCamera*, const std::string*>, 2> views{
-      {{&left, &record.files.left}, {&right, &record.files.right}}};
-  // The ideal rig renders the rectified views directly, so the left view's depth and ids are
-  // the ground truth of the rectified left view (R1 = I).
-  std::array<cv::Mat, 2> rectified;
-  render::RenderResult truth;
-  for (std::size_t k = 0; k < views.size(); ++k) {
-    const auto& [camera, file] = views[k];
-    render::RenderResult image = renderer.render(scene, settled, *camera, k == 0);
-    Random noise(options.seed, record.id + "|" + *file);
-    addSensorEffects(image.colour, options.rig, noise);
-    rectified[k] = toBgr(image.colour);
-    // Sensor noise leaves string matching nothing to find: Huffman coding only.
-    database::writeImageAtomically(writer.path(*file), rectified[k],
-                                   database::PngCompression::kHuffmanOnly);
-    if (k == 0) truth = std::move(image);
-  }
+  const StereoImages images =
+      writeStereoImages(scene, settled, options, rig, writer, renderer, record);
+  if (options.truthObserver) options.truthObserver(record.id, images.truth);
+  const database::StereoCalibration& calibration = rig.calibration();
   database::writeCalibration(writer.path(record.files.calibration), calibration);
-  record.files.rawLeft.clear();  // no raw sensor pair from the ideal rig
-  record.files.rawRight.clear();
   std::vector<TruthObject> truthObjects;
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {
     truthObjects.push_back({scene.objects[i], names[i],
                             static_cast<std::uint16_t>(kObjectInstanceBase + scene.objects[i]),
                             settled[i]});
   }
-  writeSceneProducts(rectified[0], rectified[1], calibration, truth, kTableInstance, truthObjects,
-                     record.files, writer);
+  writeSceneProducts(images.rectified[0], images.rectified[1], calibration, images.truth,
+                     kTableInstance, truthObjects, record.files, writer);
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {
     record.objects.push_back({scene.objects[i], settled[i]});
   }
@@ -291,6 +347,7 @@ GenerationReport generateDatabase(const std::vector<database::SceneConditions>& 
   report.skipped = static_cast<int>(scenes.size() - todo.size());
   if (todo.empty()) return report;
   const AssetLayout layout;
+  const CameraRig rig(options.camera);
   const Assets assets = prepareAssets(todo, options, layout);
 
   std::mutex mutex;
@@ -305,11 +362,11 @@ GenerationReport generateDatabase(const std::vector<database::SceneConditions>& 
       todo.size(),
       [&](std::size_t i, int worker) {
         auto& renderer = renderers[static_cast<std::size_t>(worker)];
-        if (!renderer) renderer = std::make_unique<SceneRenderer>(assets);
+        if (!renderer) renderer = std::make_unique<SceneRenderer>(assets, rig.profile());
         std::string failure;
         try {
           database::SceneRecord record =
-              makeScene(todo[i], assets, options, layout, writer, *renderer);
+              makeScene(todo[i], assets, options, layout, rig, writer, *renderer);
           writer.addScene(record);
         } catch (const rw::common::WriteError&) {
           throw;  // disk full, folder gone: the other scenes would fail the same way

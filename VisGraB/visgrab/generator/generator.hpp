@@ -8,9 +8,10 @@
 #include <vector>
 
 #include "visgrab/database/scene_set.hpp"
+#include "visgrab/generator/camera_profile.hpp"
 #include "visgrab/generator/placement.hpp"
 #include "visgrab/generator/settle.hpp"
-#include "visgrab/generator/stereo_rig.hpp"
+#include "visgrab/render/render_result.hpp"
 
 namespace visgrab::generator {
 
@@ -37,8 +38,9 @@ struct GeneratorOptions {
   /// indexed, no new one starts, and generateDatabase throws rw::common::StopRequested. Null:
   /// never. Must outlive the call.
   const std::atomic<bool>* stop = nullptr;
-  /// Camera rig.
-  StereoRigSpec rig;
+  /// The camera profile: rig geometry and camera effects (default: the "ideal" profile;
+  /// `visgrab db generate` loads scenes/cameras/realistic.xml unless told otherwise).
+  CameraProfile camera;
   /// Placements.
   PlacementOptions placement;
   /// Settling.
@@ -55,6 +57,11 @@ struct GeneratorOptions {
   /// canister whose lid is wider than its body rolls in a circle) then comes to rest where it
   /// would. The scene files keep no damping; trials run without it. 0: no second settle.
   double rollingDamping = 0.05;
+  /// Called with each made scene's id and the ground-truth render of its rectified left view
+  /// (depth and instance ids: 1 the table, 10 + object id), before the scene is indexed; from
+  /// the worker threads, concurrently. For tools and tests that measure the images against the
+  /// truth. Empty: not called.
+  std::function<void(const std::string&, const render::RenderResult&)> truthObserver;
 };
 
 /// Progress after each finished (or failed) scene.

@@ -10,7 +10,8 @@
 
 namespace visgrab::generator {
 
-/// The database's stereo rig: two identical parallel cameras (already rectified, no
+/// The geometry of the database's stereo rig and its ideal sensor (CameraProfile::rig; the
+/// ideal profile is this rig alone): two identical parallel cameras (already rectified, no
 /// distortion) in front of and above the table, looking down at its centre as in the paper's
 /// Figure 3. Defaults: 720 x 540 pixels, fx = fy = 810 px (48 degrees horizontal field of view,
 /// like a 1/3" sensor behind a 6 mm lens), baseline 12 cm, rig centre 0.5 m in front of and
@@ -49,7 +50,8 @@ std::pair<render::PinholeCamera, render::PinholeCamera> rigCameras(
     const database::StereoCalibration& calibration);
 
 /// Adds optical blur and Gaussian sensor noise to a rendered image, deterministically for the
-/// stream `random`.
+/// stream `random`: the ideal rig's effects as the generator applied them before camera
+/// profiles (CameraRig with the ideal profile gives the same bytes; kept as that reference).
 void addSensorEffects(visual::RgbImage& image, const StereoRigSpec& spec, Random& random);
 
 }  // namespace visgrab::generator

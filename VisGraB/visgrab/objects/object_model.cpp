@@ -107,6 +107,7 @@ void addBox(const ObjectSpec& spec, Random& random, ObjectModel& model) {
   part.mesh.specular =
       a.pattern == PatternKind::kPrintedBox ? a.specular : materialSpecular(a.bodyMaterial);
   part.mesh.texture = share(canvas.toImage());
+  if (a.pattern != PatternKind::kPrintedBox) part.material = a.bodyMaterial;
   model.visual.push_back(std::move(part));
   addMeshPiece(model, detail::boxPiece(spec.boxSize));
 }
@@ -160,7 +161,10 @@ void addLathe(const ObjectSpec& spec, Random& random, ObjectModel& model) {
     Random part(random.next());
     std::string name = "side" + std::to_string(i);
     float specular = materialSpecular(a.bodyMaterial);
+    const bool metalCan = a.pattern == PatternKind::kMetalCan;
+    std::optional<SurfaceMaterial> material = metalCan ? SurfaceMaterial::kMetal : a.bodyMaterial;
     if (regions[i] == Region::kLabel) {
+      if (!metalCan) material.reset();
       detail::paintPrinted(canvas, all, kObjectTexelsPerMetre, palette[0], palette, part);
       name += "_label";
       specular = a.specular;
@@ -168,6 +172,7 @@ void addLathe(const ObjectSpec& spec, Random& random, ObjectModel& model) {
       detail::paintMaterial(canvas, all, kObjectTexelsPerMetre, a.lidMaterial, lid, false, part);
       name += "_lid";
       specular = materialSpecular(a.lidMaterial);
+      material = a.lidMaterial;
     } else {
       detail::paintMaterial(canvas, all, kObjectTexelsPerMetre, a.bodyMaterial, body, false, part);
       name += "_body";
@@ -176,6 +181,7 @@ void addLathe(const ObjectSpec& spec, Random& random, ObjectModel& model) {
     side.mesh.colour = Eigen::Vector3f::Ones();
     side.mesh.specular = specular;
     side.mesh.texture = share(canvas.toImage());
+    side.material = material;
     model.visual.push_back(std::move(side));
   }
   const bool metalCan = a.pattern == PatternKind::kMetalCan;
@@ -193,6 +199,7 @@ void addLathe(const ObjectSpec& spec, Random& random, ObjectModel& model) {
     cap.mesh.colour = Eigen::Vector3f::Ones();
     cap.mesh.specular = materialSpecular(material);
     cap.mesh.texture = share(canvas.toImage());
+    cap.material = metalCan && !isLid ? SurfaceMaterial::kMetal : material;
     model.visual.push_back(std::move(cap));
   }
   for (std::size_t i = 0; i + 1 < spec.profile.size(); ++i) {
@@ -210,6 +217,7 @@ void addLathe(const ObjectSpec& spec, Random& random, ObjectModel& model) {
     handle.mesh.colour = Eigen::Vector3f::Ones();
     handle.mesh.specular = materialSpecular(a.bodyMaterial);
     handle.mesh.texture = share(canvas.toImage());
+    handle.material = a.bodyMaterial;
     model.visual.push_back(std::move(handle));
     for (auto& piece : detail::handlePieces(spec)) {
       addMeshPiece(model, std::move(piece));

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,9 @@ struct VisualPart {
   std::string name;
   /// The mesh in the object frame; its texture is sRGB-encoded, `colour` is white.
   visual::VisualMesh mesh;
+  /// The surface's material class, for renderers that give materials a finish of their own
+  /// (a camera profile's glossy metal, glass and plastic); nullopt for printed paper labels.
+  std::optional<SurfaceMaterial> material = std::nullopt;
 };
 
 /// A way the object rests on a table: its pose relative to a table frame whose z = 0 is the

@@ -583,7 +583,8 @@ void GlRenderer::State::drawShaded(const Scene& scene, const PinholeCamera& came
     glUniformMatrix4fv(shaded.model, 1, GL_FALSE, model.data());
     glUniformMatrix3fv(shaded.normalMatrix, 1, GL_FALSE, normalMatrix.data());
     glUniform3fv(shaded.colour, 1, item.colour ? item.colour->data() : mesh.colour.data());
-    glUniform1f(shaded.specular, mesh.specular);
+    glUniform1f(shaded.specular, item.specular.value_or(mesh.specular));
+    glUniform1f(shaded.shininess, item.shininess.value_or(lighting.shininess));
     glUniform1i(shaded.hasTexture, mesh.texture != 0 ? 1 : 0);
     glBindTexture(GL_TEXTURE_2D, mesh.texture);
     glBindVertexArray(mesh.vao);

@@ -30,6 +30,10 @@ struct SceneItem {
   /// When set, replaces the mesh's colour (a texture still modulates it): e.g. a hand tinted
   /// by a grasp's outcome. Linear RGB in [0, 1].
   std::optional<Eigen::Vector3f> colour = std::nullopt;
+  /// When set, replaces the mesh's specular strength (VisualMesh::specular).
+  std::optional<float> specular = std::nullopt;
+  /// When set, replaces the scene's Blinn-Phong exponent (Lighting::shininess) for this item.
+  std::optional<float> shininess = std::nullopt;
 };
 
 /// A light source. Colours are linear RGB intensities (1 = full white).

@@ -187,7 +187,7 @@ TEST(SceneProducts, DepthAndMaskEqualTheRenderedTruth) {
     const cv::Mat mask = cv::imread(entry.mask.string(), cv::IMREAD_UNCHANGED);
     ASSERT_EQ(depth.type(), CV_16UC1);
     ASSERT_EQ(mask.type(), CV_8UC1);
-    int depthOff = 0, maskOff = 0, objectPixels = 0;
+    int depthOff = 0, maskOff = 0, maskEdge = 0, objectPixels = 0;
     double worst = 0.0;
     for (int r = 0; r < truth.depth.height; ++r) {
       for (int c = 0; c < truth.depth.width; ++c) {
@@ -204,12 +204,28 @@ TEST(SceneProducts, DepthAndMaskEqualTheRenderedTruth) {
         const std::uint16_t id = truth.instanceIds.at(r, c);
         const int expected = id == 0 ? 0 : id == 1 ? 255 : id - 10;
         if (id >= 10) ++objectPixels;
-        if (mask.at<std::uint8_t>(r, c) != expected) ++maskOff;
+        const int stored8 = mask.at<std::uint8_t>(r, c);
+        if (stored8 != expected) {
+          // This render reads the object files, whose vertices are rounded to 1 um: a pixel
+          // centre that close to a silhouette may land on the other side. Such a pixel is on
+          // the edge between the two ids (the stored one is a neighbour's); anything else fails.
+          bool edge = false;
+          for (int dr = -1; dr <= 1; ++dr) {
+            for (int dc = -1; dc <= 1; ++dc) {
+              const int rr = std::clamp(r + dr, 0, truth.depth.height - 1);
+              const int cc = std::clamp(c + dc, 0, truth.depth.width - 1);
+              const std::uint16_t n = truth.instanceIds.at(rr, cc);
+              edge = edge || (n == 0 ? 0 : n == 1 ? 255 : n - 10) == stored8;
+            }
+          }
+          ++(edge ? maskEdge : maskOff);
+        }
       }
     }
     EXPECT_GT(objectPixels, 2000) << entry.id;
     EXPECT_EQ(depthOff, 0) << entry.id << " worst " << worst;
     EXPECT_EQ(maskOff, 0) << entry.id;
+    EXPECT_LE(maskEdge, 3) << entry.id << ": silhouette pixels on the other side";
   }
 }
 
@@ -310,13 +326,15 @@ TEST(SceneProducts, AResumedGenerationRemakesAMissingProductIdentically) {
     before[name] = bytesOf(folder / name);
     EXPECT_FALSE(before[name].empty()) << name;
   }
-  // The index of format 2 names the five files, and no raw pair (the ideal rig has none).
+  // The index of format 2 names the five files; the ideal rig's raw pair is its rectified pair.
   const std::string index = bytesOf(options.out / "index.xml");
   EXPECT_NE(index.find("formatVersion=\"2\""), std::string::npos);
   EXPECT_NE(index.find("pointCloud=\"scenes/textured/single/peachcan/01/cloud.ply\""),
             std::string::npos)
       << index;
-  EXPECT_EQ(index.find("rawLeft"), std::string::npos) << index;
+  EXPECT_NE(index.find("rawLeft=\"scenes/textured/single/peachcan/01/left.png\""),
+            std::string::npos)
+      << index;
   // A lost point cloud makes the scene incomplete; the next run makes it again, the same.
   fs::remove(folder / "cloud.ply");
   const auto resumed = gen::generateDatabase(scenes, options);
