@@ -1,19 +1,24 @@
 #include "db_commands.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <thread>
 
 #include "json_writer.hpp"
 #include "progress_reporter.hpp"
 #include "rw/common/diagnostic.hpp"
+#include "rw/common/number_text.hpp"
 #include "rw/common/stop_signals.hpp"
 #include "rw/math/rpy.hpp"
 #include "visgrab/database/database.hpp"
+#include "visgrab/database/stereo_accuracy.hpp"
 #include "visgrab/database/scene_filter.hpp"
 #include "visgrab/database/scene_set.hpp"
 #include "visgrab/generator/generator.hpp"
@@ -201,6 +206,47 @@ int runShow(const Arguments& a) {
   return 0;
 }
 
+// How much of the objects the database's disparity maps recover within 5 mm, per scene and in
+// all (docs/database-format.md, "Realism").
+int runStereoAccuracy(const Arguments& a) {
+  const database::SceneFilter filter = parseFilter(a);
+  const database::Database db = openDatabase(a);
+  constexpr double kTolerance = 0.005;
+  int scenes = 0;
+  long objects = 0, found = 0, within = 0;
+  double sum = 0.0, lo = 1.0, hi = 0.0;
+  std::cout << "scene  within 5 mm / object pixels  (share)  of the pixels with a disparity\n";
+  for (const database::SceneEntry* s : db.filter(filter)) {
+    if (s->disparity.empty() || s->depth.empty() || s->mask.empty()) {
+      std::cout << s->id << ": no disparity, depth or mask (index format 1?), skipped\n";
+      continue;
+    }
+    const database::StereoAccuracy r = database::stereoAccuracy(db, s->id, kTolerance);
+    std::cout << s->id << ": " << r.within << " / " << r.objectPixels << "  ("
+              << rw::common::shortestText(std::round(1000.0 * r.shareOfObjects()) / 10.0)
+              << " %)  "
+              << rw::common::shortestText(std::round(1000.0 * r.shareOfFound()) / 10.0)
+              << " %\n";
+    ++scenes;
+    objects += r.objectPixels;
+    found += r.withDisparity;
+    within += r.within;
+    sum += r.shareOfObjects();
+    lo = std::min(lo, r.shareOfObjects());
+    hi = std::max(hi, r.shareOfObjects());
+  }
+  if (scenes == 0) throw std::runtime_error("no scene of the selection has a disparity map");
+  const auto percent = [](double x) {
+    return rw::common::shortestText(std::round(1000.0 * x) / 10.0) + " %";
+  };
+  std::cout << scenes << " scenes: mean " << percent(sum / scenes) << " of the object pixels within "
+            << "5 mm (per scene " << percent(lo) << " - " << percent(hi) << "; pooled "
+            << percent(static_cast<double>(within) / std::max(1L, objects)) << "), "
+            << percent(static_cast<double>(within) / std::max(1L, found))
+            << " of those with a disparity\n";
+  return 0;
+}
+
 }  // namespace
 
 void addDatabaseCommands(CommandLine& cli) {
@@ -247,6 +293,17 @@ void addDatabaseCommands(CommandLine& cli) {
   show.add_option("--db", kDatabaseOptionHelp)->required()->type_name("DIR|MANIFEST");
   addFlag(show, "--json",
           "Print JSON instead (docs/schemas/db-show.schema.json; poses in m and rad)");
+
+  CLI::App& accuracy = cli.addCommand(
+      &db, "stereo-accuracy",
+      "How much of the objects each scene's disparity map (disparity.png) recovers: the share of "
+      "the object pixels (mask.png) whose depth from the disparity lies within 5 mm of the "
+      "ground truth (depth.png).",
+      guarded(runStereoAccuracy));
+  accuracy.add_option("--db", "A generated database folder (index format 2)")
+      ->required()
+      ->type_name("DIR");
+  addScenesOption(accuracy);
 }
 
 }  // namespace visgrab::app

@@ -71,8 +71,8 @@ TEST(CommandLineHelp, EveryVisgrabCommandListsEveryOptionInItsHelp) {
     if (cmd->get_subcommands({}).empty()) leaves.push_back(wordsAfterProgram(*cmd));
   }
   EXPECT_EQ(leaves, (std::vector<std::string>{"wc info", "wc check", "sim", "grasp", "db generate",
-                                              "db list", "db show", "run", "benchmark", "analyze",
-                                              "baseline", "render"}));
+                                              "db list", "db show", "db stereo-accuracy", "run",
+                                              "benchmark", "analyze", "baseline", "render"}));
   for (const CLI::App* cmd : commands) {
     const std::string words = wordsAfterProgram(*cmd);
     const RunResult help = visgrab::test::runProgram(VISGRAB_BINARY, words + " --help");

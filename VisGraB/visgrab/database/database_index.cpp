@@ -80,6 +80,7 @@ class IndexParser {
     index.formatVersion = version_;
     index.seed = std::stoull(root.attributeOr("seed", "0"));
     index.generator = root.attributeOr("generator", "");
+    index.camera = root.attributeOr("camera", "");
     const auto catalog = readCatalog(root);
     if (!catalog) return std::nullopt;
     index.catalog = *catalog;
@@ -373,6 +374,7 @@ std::string indexToXml(const DatabaseIndex& index) {
          std::to_string(index.seed) + "\"";
   if (!index.generator.empty())
     out += " generator=\"" + rw::common::escapeXml(index.generator) + "\"";
+  if (!index.camera.empty()) out += " camera=\"" + rw::common::escapeXml(index.camera) + "\"";
   out += ">\n";
   for (const SceneRecord* s : ordered) {
     const SceneConditions& c = s->conditions;

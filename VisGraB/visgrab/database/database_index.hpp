@@ -98,6 +98,9 @@ struct DatabaseIndex {
   std::uint64_t seed = 0;
   /// Free text naming the generator (may be empty).
   std::string generator;
+  /// Name of the camera profile the images were made with (attribute camera; empty when the
+  /// index does not say, e.g. format 1). One database holds one profile's images.
+  std::string camera;
   /// Scenes in enumerateScenes(catalog) order.
   std::vector<SceneRecord> scenes;
   /// The objects the scenes are made of: the benchmark's, or (a database of your own objects)

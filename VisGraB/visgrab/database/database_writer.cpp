@@ -10,7 +10,7 @@ namespace visgrab::database {
 namespace fs = std::filesystem;
 
 DatabaseWriter::DatabaseWriter(fs::path dir, std::uint64_t seed, std::string generator,
-                               const ObjectCatalog& catalog)
+                               const ObjectCatalog& catalog, std::string camera)
     : dir_(std::move(dir)) {
   std::error_code ec;
   fs::create_directories(dir_, ec);
@@ -30,6 +30,12 @@ DatabaseWriter::DatabaseWriter(fs::path dir, std::uint64_t seed, std::string gen
                                std::to_string(index_.seed) + ", not " + std::to_string(seed) +
                                "; use the same seed to resume, or another folder");
     }
+    if (!camera.empty() && !index_.camera.empty() && index_.camera != camera) {
+      throw std::runtime_error(indexFile.string() + ": the database's images were made with the "
+                               "camera profile \"" + index_.camera + "\", not \"" + camera +
+                               "\"; one database holds one profile's images: resume with "
+                               "the same profile, or use another folder");
+    }
     for (const SceneRecord& r : index_.scenes) {
       if (!validate(r.conditions, catalog).empty() || sceneIdOf(r.conditions, catalog) != r.id) {
         throw std::runtime_error(indexFile.string() + ": scene " + r.id +
@@ -40,6 +46,7 @@ DatabaseWriter::DatabaseWriter(fs::path dir, std::uint64_t seed, std::string gen
   index_.catalog = catalog;
   index_.seed = seed;
   if (!generator.empty()) index_.generator = std::move(generator);
+  if (!camera.empty()) index_.camera = std::move(camera);
 }
 
 DatabaseIndex DatabaseWriter::index() const {

@@ -21,11 +21,12 @@ class DatabaseWriter {
  public:
   /// Opens `dir` for writing, creating it if needed. If DIR/index.xml exists it is read and
   /// kept (resume); its seed must equal `seed`, its format version kIndexFormatVersion and its
-  /// objects `catalog`'s.
-  /// @throws rw::common::LoadError for a corrupt index, std::runtime_error for a seed or
-  /// version mismatch, other objects, or a folder that cannot be created.
+  /// objects `catalog`'s and, when both name one, its camera profile `camera`.
+  /// @throws rw::common::LoadError for a corrupt index, std::runtime_error for a seed,
+  /// version or camera mismatch, other objects, or a folder that cannot be created.
   DatabaseWriter(std::filesystem::path dir, std::uint64_t seed, std::string generator = {},
-                 const ObjectCatalog& catalog = ObjectCatalog::benchmark());
+                 const ObjectCatalog& catalog = ObjectCatalog::benchmark(),
+                 std::string camera = {});
 
   DatabaseWriter(const DatabaseWriter&) = delete;
   DatabaseWriter& operator=(const DatabaseWriter&) = delete;

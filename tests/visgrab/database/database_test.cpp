@@ -439,6 +439,21 @@ TEST_F(DatabaseTest, WriterResumesAndKnowsCompleteScenes) {
   EXPECT_THROW(writer.addScene(record), std::runtime_error);
   // Another seed cannot resume this folder.
   EXPECT_THROW(DatabaseWriter(dir_.path(), 43), std::runtime_error);
+  // Nor can another camera profile once the index names one: one database, one profile.
+  {
+    DatabaseWriter named(dir_.path(), 42, "test", ObjectCatalog::benchmark(), "realistic");
+    EXPECT_EQ(named.index().camera, "realistic");
+    addFakeScene(named, SceneConditions::single(Texture::kPlain, 5, 7), 3);
+  }
+  EXPECT_EQ(readIndex(dir_.path() / "index.xml").camera, "realistic");
+  try {
+    DatabaseWriter(dir_.path(), 42, "test", ObjectCatalog::benchmark(), "ideal");
+    ADD_FAILURE() << "a resume with another camera profile was accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("camera profile \"realistic\", not \"ideal\""),
+              std::string::npos)
+        << e.what();
+  }
   // An invalid record is refused.
   record.id = "plain/single/cocacola/05";
   EXPECT_THROW(writer.addScene(record), std::invalid_argument);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <ostream>
 #include <string>
 
 #include "mesh_test_support.hpp"
@@ -211,6 +212,9 @@ struct BadMesh {
   int line;
   std::string message;
 };
+
+// Names the case in test output (instead of the struct's bytes).
+void PrintTo(const BadMesh& bad, std::ostream* out) { *out << bad.what; }
 
 class BadMeshObject : public ::testing::TestWithParam<BadMesh> {};
 
