@@ -18,9 +18,9 @@
 #include "rw/common/stop_signals.hpp"
 #include "rw/math/rpy.hpp"
 #include "visgrab/database/database.hpp"
-#include "visgrab/database/stereo_accuracy.hpp"
 #include "visgrab/database/scene_filter.hpp"
 #include "visgrab/database/scene_set.hpp"
+#include "visgrab/database/stereo_accuracy.hpp"
 #include "visgrab/generator/generator.hpp"
 #include "visgrab/generator/scene_model.hpp"
 #include "visgrab/objects/object_spec.hpp"
@@ -223,10 +223,8 @@ int runStereoAccuracy(const Arguments& a) {
     }
     const database::StereoAccuracy r = database::stereoAccuracy(db, s->id, kTolerance);
     std::cout << s->id << ": " << r.within << " / " << r.objectPixels << "  ("
-              << rw::common::shortestText(std::round(1000.0 * r.shareOfObjects()) / 10.0)
-              << " %)  "
-              << rw::common::shortestText(std::round(1000.0 * r.shareOfFound()) / 10.0)
-              << " %\n";
+              << rw::common::shortestText(std::round(1000.0 * r.shareOfObjects()) / 10.0) << " %)  "
+              << rw::common::shortestText(std::round(1000.0 * r.shareOfFound()) / 10.0) << " %\n";
     ++scenes;
     objects += r.objectPixels;
     found += r.withDisparity;
@@ -239,7 +237,8 @@ int runStereoAccuracy(const Arguments& a) {
   const auto percent = [](double x) {
     return rw::common::shortestText(std::round(1000.0 * x) / 10.0) + " %";
   };
-  std::cout << scenes << " scenes: mean " << percent(sum / scenes) << " of the object pixels within "
+  std::cout << scenes << " scenes: mean " << percent(sum / scenes)
+            << " of the object pixels within "
             << "5 mm (per scene " << percent(lo) << " - " << percent(hi) << "; pooled "
             << percent(static_cast<double>(within) / std::max(1L, objects)) << "), "
             << percent(static_cast<double>(within) / std::max(1L, found))

@@ -31,8 +31,10 @@ DatabaseWriter::DatabaseWriter(fs::path dir, std::uint64_t seed, std::string gen
                                "; use the same seed to resume, or another folder");
     }
     if (!camera.empty() && !index_.camera.empty() && index_.camera != camera) {
-      throw std::runtime_error(indexFile.string() + ": the database's images were made with the "
-                               "camera profile \"" + index_.camera + "\", not \"" + camera +
+      throw std::runtime_error(indexFile.string() +
+                               ": the database's images were made with the "
+                               "camera profile \"" +
+                               index_.camera + "\", not \"" + camera +
                                "\"; one database holds one profile's images: resume with "
                                "the same profile, or use another folder");
     }

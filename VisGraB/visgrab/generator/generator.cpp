@@ -340,8 +340,8 @@ GenerationReport generateDatabase(const std::vector<database::SceneConditions>& 
                                   const GeneratorOptions& options,
                                   const std::function<void(const GenerationProgress&)>& progress) {
   const auto start = std::chrono::steady_clock::now();
-  database::DatabaseWriter writer(options.out, options.seed, "visgrab db generate",
-                                  options.catalog, options.camera.name);
+  database::DatabaseWriter writer(options.out, options.seed, "visgrab db generate", options.catalog,
+                                  options.camera.name);
   const std::vector<database::SceneConditions> todo = writer.remaining(scenes);
   GenerationReport report;
   report.skipped = static_cast<int>(scenes.size() - todo.size());

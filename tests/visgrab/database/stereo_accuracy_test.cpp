@@ -12,19 +12,19 @@ namespace visgrab::database {
 namespace {
 
 TEST(StereoAccuracy, CountsObjectPixelsFoundWithinTheTolerance) {
-  const StereoCalibration rig = idealRectifiedRig(500.0, 500.0, 2.0, 1.0, 0.1, 5, 3,
-                                                  rw::math::Transform3D::Identity());
+  const StereoCalibration rig =
+      idealRectifiedRig(500.0, 500.0, 2.0, 1.0, 0.1, 5, 3, rw::math::Transform3D::Identity());
   cv::Mat disparity(3, 5, CV_32F, cv::Scalar(50.0f));
   cv::Mat depth(3, 5, CV_32F, cv::Scalar(1.0f));
   cv::Mat mask(3, 5, CV_8U, cv::Scalar(7));
-  mask.at<std::uint8_t>(0, 0) = 0;    // background: not counted
-  mask.at<std::uint8_t>(0, 1) = 255;  // table: not counted
-  depth.at<float>(1, 0) = 1.004f;     // 4 mm off: within 5 mm
-  depth.at<float>(1, 1) = 1.006f;     // 6 mm off: not within
-  disparity.at<float>(1, 2) = 40.0f;  // z = 1.25 m: not within
-  disparity.at<float>(1, 3) = -1.0f;  // no disparity
+  mask.at<std::uint8_t>(0, 0) = 0;                                      // background: not counted
+  mask.at<std::uint8_t>(0, 1) = 255;                                    // table: not counted
+  depth.at<float>(1, 0) = 1.004f;                                       // 4 mm off: within 5 mm
+  depth.at<float>(1, 1) = 1.006f;                                       // 6 mm off: not within
+  disparity.at<float>(1, 2) = 40.0f;                                    // z = 1.25 m: not within
+  disparity.at<float>(1, 3) = -1.0f;                                    // no disparity
   disparity.at<float>(1, 4) = std::numeric_limits<float>::quiet_NaN();  // no disparity
-  disparity.at<float>(2, 0) = 0.0f;   // no disparity
+  disparity.at<float>(2, 0) = 0.0f;                                     // no disparity
   const StereoAccuracy r = stereoAccuracy(disparity, depth, mask, rig, 0.005);
   EXPECT_EQ(r.objectPixels, 13);
   EXPECT_EQ(r.withDisparity, 10);
@@ -34,8 +34,8 @@ TEST(StereoAccuracy, CountsObjectPixelsFoundWithinTheTolerance) {
 }
 
 TEST(StereoAccuracy, RefusesImagesOfOtherTypesOrSizes) {
-  const StereoCalibration rig = idealRectifiedRig(500.0, 500.0, 2.0, 1.0, 0.1, 5, 3,
-                                                  rw::math::Transform3D::Identity());
+  const StereoCalibration rig =
+      idealRectifiedRig(500.0, 500.0, 2.0, 1.0, 0.1, 5, 3, rw::math::Transform3D::Identity());
   const cv::Mat disparity(3, 5, CV_32F, cv::Scalar(50.0f));
   const cv::Mat depth(3, 5, CV_32F, cv::Scalar(1.0f));
   const cv::Mat mask(3, 5, CV_8U, cv::Scalar(7));
