@@ -5,11 +5,16 @@
 
 #include <fcntl.h>
 
+#include <map>
+#include <memory>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "support/test_support.hpp"
 #include "visgrab/generator/generator.hpp"
+#include "visgrab/render/mesh_loader.hpp"
+#include "visgrab/render/offscreen_renderer.hpp"
 
 namespace visgrab::test {
 
@@ -82,6 +87,46 @@ const std::filesystem::path& idealTestDatabasePath() {
 const database::Database& testDatabase() {
   static const database::Database database = database::Database::open(testDatabasePath());
   return database;
+}
+
+render::RenderResult renderLeftViewTruth(const database::Database& database,
+                                         const database::SceneEntry& entry) {
+  static render::OffscreenRenderer renderer;
+  static std::map<std::string, std::vector<render::MeshHandle>> uploaded;
+  auto meshes = [&](const std::filesystem::path& obj) -> const std::vector<render::MeshHandle>& {
+    auto it = uploaded.find(obj.string());
+    if (it == uploaded.end()) {
+      std::vector<render::MeshHandle> handles;
+      for (auto& m : render::loadVisualMeshes(obj)) {
+        handles.push_back(renderer.add(std::make_shared<const visual::VisualMesh>(m)));
+      }
+      it = uploaded.emplace(obj.string(), handles).first;
+    }
+    return it->second;
+  };
+  const std::string texture(database::toString(entry.conditions->texture));
+  render::Scene scene;
+  for (const auto h : meshes(database.root() / "tables" / texture / (texture + ".obj"))) {
+    scene.items.push_back({h, rw::math::Transform3D::Identity(), 1});
+  }
+  for (const auto& pose : database.groundTruth(entry.id)) {
+    const std::string name(database::objectName(pose.object));
+    for (const auto h : meshes(database.root() / "objects" / name / (name + ".obj"))) {
+      scene.items.push_back({h, pose.X_WO, static_cast<std::uint16_t>(10 + pose.object)});
+    }
+  }
+  const auto k = database.calibration(entry.id);
+  render::PinholeCamera camera;
+  camera.fx = k.P1(0, 0);
+  camera.fy = k.P1(1, 1);
+  camera.cx = k.P1(0, 2);
+  camera.cy = k.P1(1, 2);
+  camera.width = k.width;
+  camera.height = k.height;
+  // The rectified left camera: the raw left camera turned by R1.
+  camera.X_WC = k.X_TL;
+  camera.X_WC.linear() = k.X_TL.linear() * k.R1.transpose();
+  return renderer.render(scene, camera);
 }
 
 const database::Database& idealTestDatabase() {

@@ -8,6 +8,7 @@
 
 #include "visgrab/database/database.hpp"
 #include "visgrab/database/scene_set.hpp"
+#include "visgrab/render/render_result.hpp"
 
 /// The shared test database: 20 scenes generated with the project's objects, hand and materials
 /// (scenes/), seed kTestDatabaseSeed and the default (realistic) camera profile, made once per
@@ -87,5 +88,12 @@ const std::filesystem::path& idealTestDatabasePath();
 
 /// The ideal-camera twin, opened once per process.
 const database::Database& idealTestDatabase();
+
+/// Renders the rectified left view of a generated scene from the database's own files (the
+/// table and object OBJs, the index's ground-truth poses, P1 and the rectified left camera
+/// X_TL R1^T of calibration.yml), independently of the generator's in-memory models: depth and
+/// instance ids (table 1, objects 10 + object id). One offscreen renderer per process.
+render::RenderResult renderLeftViewTruth(const database::Database& database,
+                                         const database::SceneEntry& entry);
 
 }  // namespace visgrab::test

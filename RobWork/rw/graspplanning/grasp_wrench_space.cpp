@@ -17,6 +17,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "rw/common/memory_stream.hpp"
+
 namespace rw::graspplanning {
 namespace {
 
@@ -234,29 +236,6 @@ struct HullOutcome {
   std::string message;
 };
 
-// Collects what Qhull writes to its error stream; falls back to stderr if that fails.
-class ErrorCapture {
- public:
-  ErrorCapture() : file_(open_memstream(&buffer_, &size_)) {}
-  ~ErrorCapture() {
-    if (file_ != nullptr) fclose(file_);
-    std::free(buffer_);  // open_memstream allocates with malloc
-  }
-  ErrorCapture(const ErrorCapture&) = delete;
-  ErrorCapture& operator=(const ErrorCapture&) = delete;
-  FILE* file() const { return file_ != nullptr ? file_ : stderr; }
-  std::string text() {
-    if (file_ == nullptr) return {};
-    fflush(file_);
-    return {buffer_, size_};
-  }
-
- private:
-  char* buffer_ = nullptr;
-  std::size_t size_ = 0;
-  FILE* file_ = nullptr;
-};
-
 // Builds the 6-D hull of `points` on a private qhT (reentrant Qhull) and reads facet offsets.
 HullOutcome runQhull(const std::vector<Wrench6D>& points, std::string_view qhullOptions) {
   std::vector<double> coordinates;
@@ -264,7 +243,7 @@ HullOutcome runQhull(const std::vector<Wrench6D>& points, std::string_view qhull
   for (const Wrench6D& w : points) coordinates.insert(coordinates.end(), w.data(), w.data() + 6);
   std::string options(qhullOptions);  // qh_new_qhull takes a mutable C string
   HullOutcome out;
-  ErrorCapture errors;
+  rw::common::MemoryStream errors;
   auto qh = std::make_unique<qhT>();
   qh_zero(qh.get(), errors.file());
   out.exitCode = qh_new_qhull(qh.get(), 6, static_cast<int>(points.size()), coordinates.data(),
@@ -378,7 +357,7 @@ HullOutcome runQhullLazy(const std::vector<Wrench6D>& points, std::string_view q
   std::vector<bool> added(points.size(), false);
   for (const std::size_t i : start) added[i] = true;
   std::string options(qhullOptions);
-  ErrorCapture errors;
+  rw::common::MemoryStream errors;
   auto qh = std::make_unique<qhT>();
   qh_zero(qh.get(), errors.file());
   out.exitCode =

@@ -14,34 +14,13 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "rw/common/memory_stream.hpp"
+
 namespace visgrab::objects {
 
 namespace {
 
 using rw::math::Vector3D;
-
-// Collects what Qhull writes to its error stream (stderr if the memory stream cannot open).
-class ErrorText {
- public:
-  ErrorText() : file_(open_memstream(&buffer_, &size_)) {}
-  ~ErrorText() {
-    if (file_ != nullptr) fclose(file_);
-    std::free(buffer_);  // open_memstream allocates with malloc
-  }
-  ErrorText(const ErrorText&) = delete;
-  ErrorText& operator=(const ErrorText&) = delete;
-  FILE* file() const { return file_ != nullptr ? file_ : stderr; }
-  std::string text() {
-    if (file_ == nullptr) return {};
-    fflush(file_);
-    return {buffer_, size_};
-  }
-
- private:
-  char* buffer_ = nullptr;
-  std::size_t size_ = 0;
-  FILE* file_ = nullptr;
-};
 
 // Smallest singular value of the centred points: how far they are from lying on a plane.
 double thickness(const std::vector<Vector3D>& points) {
@@ -75,7 +54,7 @@ rw::geometry::TriMesh convexHull(const std::vector<Vector3D>& input) {
   coordinates.reserve(points.size() * 3);
   for (const Vector3D& p : points) coordinates.insert(coordinates.end(), p.data(), p.data() + 3);
   std::string options = "qhull Qt";  // merged facets, reported as triangles
-  ErrorText errors;
+  rw::common::MemoryStream errors;
   auto qh = std::make_unique<qhT>();
   qh_zero(qh.get(), errors.file());
   const int exitCode =

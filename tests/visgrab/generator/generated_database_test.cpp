@@ -90,46 +90,11 @@ TEST(GeneratedDatabase, SettledObjectsAreAtRestAndDoNotPenetrate) {
   }
 }
 
-// Renders what the left camera sees from the database's own files (object and table OBJs,
-// ground-truth poses, calibration): depth and instance ids (10 + object id) as truth.
+// The truth of the rectified left view from the database's own files
+// (test/support/test_database.hpp).
 visgrab::render::RenderResult renderTruth(const db::Database& database,
                                           const db::SceneEntry& entry) {
-  static visgrab::render::OffscreenRenderer renderer;
-  static std::map<std::string, std::vector<visgrab::render::MeshHandle>> uploaded;
-  auto meshes = [&](const fs::path& obj) -> const std::vector<visgrab::render::MeshHandle>& {
-    auto it = uploaded.find(obj.string());
-    if (it == uploaded.end()) {
-      std::vector<visgrab::render::MeshHandle> handles;
-      for (auto& m : visgrab::render::loadVisualMeshes(obj)) {
-        handles.push_back(renderer.add(std::make_shared<const visgrab::visual::VisualMesh>(m)));
-      }
-      it = uploaded.emplace(obj.string(), handles).first;
-    }
-    return it->second;
-  };
-  const std::string texture(db::toString(entry.conditions->texture));
-  visgrab::render::Scene scene;
-  for (const auto h : meshes(database.root() / "tables" / texture / (texture + ".obj"))) {
-    scene.items.push_back({h, Transform3D::Identity(), 1});
-  }
-  for (const auto& pose : database.groundTruth(entry.id)) {
-    const std::string name(db::objectName(pose.object));
-    for (const auto h : meshes(database.root() / "objects" / name / (name + ".obj"))) {
-      scene.items.push_back({h, pose.X_WO, static_cast<std::uint16_t>(10 + pose.object)});
-    }
-  }
-  const auto calibration = database.calibration(entry.id);
-  visgrab::render::PinholeCamera camera;
-  camera.fx = calibration.P1(0, 0);
-  camera.fy = calibration.P1(1, 1);
-  camera.cx = calibration.P1(0, 2);
-  camera.cy = calibration.P1(1, 2);
-  camera.width = calibration.width;
-  camera.height = calibration.height;
-  // The rectified left camera: the raw left camera turned by R1.
-  camera.X_WC = calibration.X_TL;
-  camera.X_WC.linear() = calibration.X_TL.linear() * calibration.R1.transpose();
-  return renderer.render(scene, camera);
+  return visgrab::test::renderLeftViewTruth(database, entry);
 }
 
 // The matcher on clean images (the ideal-camera twin); on the realistic camera the share within

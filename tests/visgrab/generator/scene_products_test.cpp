@@ -38,44 +38,11 @@ Transform3D rectifiedLeft(const db::StereoCalibration& k) {
   return X;
 }
 
-// Renders the rectified left view from the database's own files (table and object OBJs,
-// ground-truth poses of the index, P1): depth and instance ids (table 1, objects 10 + id).
+// The truth of the rectified left view from the database's own files
+// (test/support/test_database.hpp): depth and instance ids (table 1, objects 10 + id).
 visgrab::render::RenderResult renderTruth(const db::Database& database,
                                           const db::SceneEntry& entry) {
-  static visgrab::render::OffscreenRenderer renderer;
-  static std::map<std::string, std::vector<visgrab::render::MeshHandle>> uploaded;
-  auto meshes = [&](const fs::path& obj) -> const std::vector<visgrab::render::MeshHandle>& {
-    auto it = uploaded.find(obj.string());
-    if (it == uploaded.end()) {
-      std::vector<visgrab::render::MeshHandle> handles;
-      for (auto& m : visgrab::render::loadVisualMeshes(obj)) {
-        handles.push_back(renderer.add(std::make_shared<const visgrab::visual::VisualMesh>(m)));
-      }
-      it = uploaded.emplace(obj.string(), handles).first;
-    }
-    return it->second;
-  };
-  const std::string texture(db::toString(entry.conditions->texture));
-  visgrab::render::Scene scene;
-  for (const auto h : meshes(database.root() / "tables" / texture / (texture + ".obj"))) {
-    scene.items.push_back({h, Transform3D::Identity(), 1});
-  }
-  for (const auto& pose : database.groundTruth(entry.id)) {
-    const std::string name(db::objectName(pose.object));
-    for (const auto h : meshes(database.root() / "objects" / name / (name + ".obj"))) {
-      scene.items.push_back({h, pose.X_WO, static_cast<std::uint16_t>(10 + pose.object)});
-    }
-  }
-  const auto k = database.calibration(entry.id);
-  visgrab::render::PinholeCamera camera;
-  camera.fx = k.P1(0, 0);
-  camera.fy = k.P1(1, 1);
-  camera.cx = k.P1(0, 2);
-  camera.cy = k.P1(1, 2);
-  camera.width = k.width;
-  camera.height = k.height;
-  camera.X_WC = rectifiedLeft(k);
-  return renderer.render(scene, camera);
+  return visgrab::test::renderLeftViewTruth(database, entry);
 }
 
 struct PlyPoint {
