@@ -255,15 +255,7 @@ bool CameraProfile::alreadyRectified() const {
 
 CameraProfile loadCameraProfile(const fs::path& file) {
   DiagnosticSink sink;
-  std::string text;
-  const std::string problem = rw::common::readTextFile(file, text);
-  if (!problem.empty()) {
-    auto source = std::make_shared<rw::common::SourceFile>(
-        rw::common::SourceFile{file.lexically_normal().string(), {}});
-    sink.error(rw::common::SourceLocation{source, 0, 0}, "cannot read the file: " + problem);
-    throw rw::common::LoadError(sink.take());
-  }
-  return loadOrThrow(text, file, sink);
+  return loadOrThrow(rw::common::readTextFileOrThrow(file), file, sink);
 }
 
 CameraProfile loadCameraProfileFromString(std::string_view xml, const fs::path& virtualFile) {
