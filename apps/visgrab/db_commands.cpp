@@ -31,9 +31,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-database::SceneFilter parseFilter(const Arguments& a) {
+// --scenes for a database of `catalog`'s objects (names, ids and pair letters are its own).
+database::SceneFilter parseFilter(const Arguments& a, const database::ObjectCatalog& catalog) {
   try {
-    return database::SceneFilter::parse(a.values("scenes"));
+    return database::SceneFilter::parse(a.values("scenes"), catalog);
   } catch (const database::FilterError& e) {
     throw UsageError(std::string("--scenes: ") + e.what());
   }
@@ -41,7 +42,6 @@ database::SceneFilter parseFilter(const Arguments& a) {
 
 int runGenerate(const Arguments& a) {
   const auto out = a.option("out");
-  const database::SceneFilter filter = parseFilter(a);
   generator::GeneratorOptions options;
   const fs::path data = dataFolder(a);
   options.objectSpec = data / "objects" / "objects.xml";
@@ -51,6 +51,7 @@ int runGenerate(const Arguments& a) {
     options.tableSpec = options.objectSpec;
     options.objectSpec = *spec;
   }
+  const database::SceneFilter filter = parseFilter(a, options.catalog);
   std::vector<database::SceneConditions> scenes;
   for (const auto& s : database::enumerateScenes(options.catalog)) {
     if (filter.matches(database::sceneIdOf(s, options.catalog), &s)) scenes.push_back(s);
@@ -128,8 +129,8 @@ void writeSceneJson(JsonWriter& j, const database::SceneEntry& s,
 }
 
 int runList(const Arguments& a) {
-  const database::SceneFilter filter = parseFilter(a);
   const database::Database db = openDatabase(a);
+  const database::SceneFilter filter = parseFilter(a, db.catalog());
   const auto scenes = db.filter(filter);
   if (a.flag("json")) {
     JsonWriter j(std::cout);
@@ -209,8 +210,8 @@ int runShow(const Arguments& a) {
 // How much of the objects the database's disparity maps recover within 5 mm, per scene and in
 // all (docs/database-format.md, "Realism").
 int runStereoAccuracy(const Arguments& a) {
-  const database::SceneFilter filter = parseFilter(a);
   const database::Database db = openDatabase(a);
+  const database::SceneFilter filter = parseFilter(a, db.catalog());
   constexpr double kTolerance = 0.005;
   int scenes = 0;
   long objects = 0, found = 0, within = 0;

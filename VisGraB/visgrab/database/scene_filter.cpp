@@ -81,7 +81,8 @@ bool globMatch(std::string_view pattern, std::string_view text) {
   return p == pattern.size();
 }
 
-SceneFilter::Term SceneFilter::parseTerm(std::string_view text, std::string_view whole) {
+SceneFilter::Term SceneFilter::parseTerm(std::string_view text, std::string_view whole,
+                                         const ObjectCatalog& catalog) {
   Term term;
   std::string_view word = rw::common::trimXmlSpace(text);
   if (word.empty()) fail(whole, "empty term (two separators in a row, or one at an end)");
@@ -103,7 +104,7 @@ SceneFilter::Term SceneFilter::parseTerm(std::string_view text, std::string_view
     } else if (const auto a = arrangementWord(word)) {
       term.type = Term::Type::kArrangement;
       term.value = static_cast<int>(*a);
-    } else if (const auto o = objectIdByName(word)) {
+    } else if (const auto o = catalog.idByName(word)) {
       term.type = Term::Type::kObject;
       term.value = *o;
     } else if (word.find_first_of("/*?") != std::string_view::npos) {
@@ -142,14 +143,29 @@ SceneFilter::Term SceneFilter::parseTerm(std::string_view text, std::string_view
     term.value = static_cast<int>(*a);
   } else if (key == "object") {
     auto id = smallInt(value);
-    if (!id) id = objectIdByName(value);
-    if (!id || *id < 1 || *id > kObjectCount) badValue("an object id 1..18 or an object name");
+    if (!id) id = catalog.idByName(value);
+    const bool known =
+        id && std::any_of(catalog.objects.begin(), catalog.objects.end(),
+                          [&](const ObjectCatalog::Object& o) { return o.id == *id; });
+    if (!known) {
+      badValue(catalog.isBenchmark() ? "an object id 1..18 or an object name"
+                                     : "an object id or name of this database's objects");
+    }
     term.type = Term::Type::kObject;
     term.value = *id;
   } else if (key == "pair") {
-    if (value.size() != 1 || !pairByLetter(value[0])) badValue("a pair letter a..i");
+    const auto pair = std::find_if(
+        catalog.pairs.begin(), catalog.pairs.end(),
+        [&](const ObjectPair& p) { return value.size() == 1 && p.letter == value[0]; });
+    if (pair == catalog.pairs.end()) {
+      badValue(catalog.pairs.empty()
+                   ? std::string("none: this database has no pairs")
+                   : "a pair letter a.." + std::string(1, catalog.pairs.back().letter));
+    }
     term.type = Term::Type::kPair;
     term.value = value[0];
+    term.first = pair->first;
+    term.second = pair->second;
   } else if (key == "pose") {
     const auto pose = smallInt(value);
     if (!pose || *pose < 1 || *pose > kPosesPerSubject) badValue("a pose index 1..8");
@@ -163,13 +179,21 @@ SceneFilter::Term SceneFilter::parseTerm(std::string_view text, std::string_view
 }
 
 SceneFilter SceneFilter::parse(std::string_view text) {
+  return parse(text, ObjectCatalog::benchmark());
+}
+
+SceneFilter SceneFilter::parse(const std::vector<std::string>& texts) {
+  return parse(texts, ObjectCatalog::benchmark());
+}
+
+SceneFilter SceneFilter::parse(std::string_view text, const ObjectCatalog& catalog) {
   SceneFilter filter;
   if (rw::common::trimXmlSpace(text).empty()) return filter;
   bool all = false;
   for (std::string_view alternative : rw::common::split(text, ';')) {
     Conjunction conjunction;
     for (std::string_view term : rw::common::split(alternative, ',')) {
-      conjunction.push_back(parseTerm(term, text));
+      conjunction.push_back(parseTerm(term, text, catalog));
     }
     const bool everything = std::all_of(conjunction.begin(), conjunction.end(), [](const Term& t) {
       return t.type == Term::Type::kAll && !t.negated;
@@ -181,10 +205,11 @@ SceneFilter SceneFilter::parse(std::string_view text) {
   return filter;
 }
 
-SceneFilter SceneFilter::parse(const std::vector<std::string>& texts) {
+SceneFilter SceneFilter::parse(const std::vector<std::string>& texts,
+                               const ObjectCatalog& catalog) {
   SceneFilter filter;
   for (const std::string& text : texts) {
-    SceneFilter one = parse(text);
+    SceneFilter one = parse(text, catalog);
     if (one.selectsAll()) return one;
     filter.alternatives_.insert(filter.alternatives_.end(), one.alternatives_.begin(),
                                 one.alternatives_.end());
@@ -214,11 +239,10 @@ bool SceneFilter::matchesTerm(const Term& term, std::string_view id, const Scene
       result = c != nullptr &&
                std::find(c->objects.begin(), c->objects.end(), term.value) != c->objects.end();
       break;
-    case Term::Type::kPair: {
-      const auto pair = c != nullptr ? c->pair() : std::nullopt;
-      result = pair && pair->letter == static_cast<char>(term.value);
+    case Term::Type::kPair:
+      result = c != nullptr && c->kind == SceneKind::kDouble && c->objects.size() == 2 &&
+               c->objects[0] == term.first && c->objects[1] == term.second;
       break;
-    }
     case Term::Type::kPose:
       result = c != nullptr && c->pose == term.value;
       break;

@@ -34,6 +34,11 @@ class SceneFilter {
   /// Parses several filter texts (repeated options) combined with OR; no texts = everything.
   /// @throws FilterError.
   static SceneFilter parse(const std::vector<std::string>& texts);
+  /// The same for a database of `catalog`'s objects: object names, ids and pair letters are
+  /// that catalog's. @throws FilterError.
+  static SceneFilter parse(std::string_view text, const ObjectCatalog& catalog);
+  /// The same for several texts. @throws FilterError.
+  static SceneFilter parse(const std::vector<std::string>& texts, const ObjectCatalog& catalog);
 
   /// True if the scene with `id` and `conditions` (null when unknown, e.g. an original
   /// manifest scene whose conditions could not be derived) is selected. Condition terms never
@@ -50,11 +55,15 @@ class SceneFilter {
     Type type = Type::kAll;
     bool negated = false;
     int value = 0;
+    /// kPair: the pair's object ids, first and second.
+    int first = 0;
+    int second = 0;
     std::string glob;
   };
   using Conjunction = std::vector<Term>;
 
-  static Term parseTerm(std::string_view term, std::string_view whole);
+  static Term parseTerm(std::string_view term, std::string_view whole,
+                        const ObjectCatalog& catalog);
   static bool matchesTerm(const Term& term, std::string_view id, const SceneConditions* c);
   static std::string termToString(const Term& term);
 

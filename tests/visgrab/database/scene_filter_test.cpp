@@ -109,5 +109,46 @@ TEST(SceneFilterTest, ErrorsNameTheWordAndWhatWasExpected) {
             "scene filter \"id=\": bad value \"\" for id=; expected a scene id or glob");
 }
 
+// A database of your own objects: names, ids and pair letters are its catalog's.
+TEST(SceneFilter, NamesIdsAndPairsOfAnotherCatalog) {
+  const ObjectCatalog mine =
+      ObjectCatalog::make({{101, "mug"}, {102, "jam"}, {5, "tin"}}, {{101, 102}});
+  const auto mug = SceneConditions::single(Texture::kPlain, 101, 2);
+  const auto tin = SceneConditions::single(Texture::kTextured, 5, 6);
+  SceneConditions pair = SceneConditions::single(Texture::kPlain, 101, 5);
+  pair.kind = SceneKind::kDouble;
+  pair.objects = {101, 102};
+  const auto matches = [&](std::string_view text, const SceneConditions& c) {
+    return SceneFilter::parse(text, mine).matches(sceneIdOf(c, mine), &c);
+  };
+  EXPECT_TRUE(matches("mug", mug));
+  EXPECT_TRUE(matches("mug", pair));
+  EXPECT_FALSE(matches("mug", tin));
+  EXPECT_TRUE(matches("object=102", pair));
+  EXPECT_TRUE(matches("object=tin,lying", tin));  // id 5 is this catalog's tin, not cocacola
+  EXPECT_TRUE(matches("pair=a", pair));
+  EXPECT_FALSE(matches("pair=a", mug));
+  EXPECT_TRUE(matches("!jam", tin));
+  const auto errorOf = [&](std::string_view text) {
+    try {
+      SceneFilter::parse(text, mine);
+    } catch (const FilterError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  // The benchmark's names and letters are not this database's.
+  EXPECT_NE(errorOf("cocacola").find("unknown word \"cocacola\""), std::string::npos);
+  EXPECT_EQ(errorOf("object=7"),
+            "scene filter \"object=7\": bad value \"7\" for object=; expected an object id or "
+            "name of this database's objects");
+  EXPECT_EQ(errorOf("pair=b"),
+            "scene filter \"pair=b\": bad value \"b\" for pair=; expected a pair letter a..a");
+  // The benchmark's catalog gives the same filter as parse() without one.
+  const auto cola = SceneConditions::single(Texture::kPlain, 5, 1);
+  EXPECT_TRUE(SceneFilter::parse("cocacola,pair=e;object=5", ObjectCatalog::benchmark())
+                  .matches(sceneIdOf(cola), &cola));
+}
+
 }  // namespace
 }  // namespace visgrab::database
