@@ -9,7 +9,7 @@ from a temporary folder with no VISGRAB_DATA: its default data folder is the ins
 share/visgrab/scenes: it generates one database scene from the installed objects and runs a
 grasp in it with the installed SDH description.
 Exit 77 (skipped) when something it needs is missing: the built program, the CMake generator,
-the compiler.
+the compiler, or in a sanitizer build (the outside project would need the same instrumentation).
 """
 import argparse
 import json
@@ -41,11 +41,16 @@ def check(condition, message):
 
 def main():
     parser = argparse.ArgumentParser()
-    for name in ("cmake", "generator", "cxx", "build", "consumer", "program"):
+    for name in ("cmake", "generator", "cxx", "build", "consumer", "program", "instrumented"):
         parser.add_argument(f"--{name}", required=True)
     args = parser.parse_args()
 
-    built = os.path.join(args.build, "apps", "visgrab", args.program)
+    built = args.program
+    program_name = os.path.basename(built)
+    if args.instrumented == "ON":
+        print("SKIPPED: a VISGRAB_SANITIZE or VISGRAB_BUILD_FUZZERS build (the outside project is "
+              "not built with the sanitizers its static libraries need)")
+        return SKIP
     if not os.path.isfile(built):
         print(f"SKIPPED: {built} is not built (build everything before this test)")
         return SKIP
@@ -66,7 +71,7 @@ def main():
         check(libdirs, f"no lib/ under {prefix}")
         lib = os.path.join(prefix, libdirs[0])
         for path in (
-            os.path.join(prefix, "bin", args.program),
+            os.path.join(prefix, "bin", program_name),
             os.path.join(lib, "librw_math.a"),
             os.path.join(lib, "librwsim_simulator.a"),
             os.path.join(lib, "libvisgrab_runner.a"),
@@ -89,10 +94,14 @@ def main():
         run([args.cmake, "-S", args.consumer, "-B", consumer_build, "-G", args.generator,
              f"-DCMAKE_CXX_COMPILER={args.cxx}", "-DCMAKE_BUILD_TYPE=Release",
              f"-DCMAKE_PREFIX_PATH={prefix}"])
-        run([args.cmake, "--build", consumer_build])
+        run([args.cmake, "--build", consumer_build, "--config", "Release"])
         work = os.path.join(tmp, "work")
         os.mkdir(work)
-        out = run([os.path.join(consumer_build, "consumer"), scenes, work], cwd=work)
+        consumer = [path for path in (os.path.join(consumer_build, "consumer"),
+                                      os.path.join(consumer_build, "Release", "consumer"))
+                    if os.path.isfile(path)]
+        check(consumer, f"no consumer program in {consumer_build}")
+        out = run([consumer[0], scenes, work], cwd=work)
         print(f"consumer: {out.strip()}")
         words = out.split()
         check(len(words) == 6 and words[0] == "outcome" and words[2] == "contacts"
@@ -104,7 +113,7 @@ def main():
 
         # The installed program, run from the temporary folder without VISGRAB_DATA: its default
         # data folder is the installed one (the help shows the default).
-        program = os.path.join(prefix, "bin", args.program)
+        program = os.path.join(prefix, "bin", program_name)
         env = {k: v for k, v in os.environ.items()
                if k not in ("VISGRAB_DATA", "VISGRAB_SOURCE_DIR")}
         helptext = run([program, "db", "generate", "--help"], cwd=work, env=env)

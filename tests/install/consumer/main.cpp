@@ -1,12 +1,12 @@
-// Links an installed VisGraB: writes a scene (a 6 x 6 x 10 cm box on a table) next to the
-// installed SDH hand, loads it and runs one grasp trial with the hand's cylinder pre-shape
-// around the box. Prints "outcome <name> contacts <n> object <body>"; exit 0 when it ran.
+// Links an installed VisGraB: writes a scene (a 6 x 6 x 10 cm box on a table) with the
+// installed SDH hand, loads it (rwsim) and runs one grasp trial with the cylinder pre-shape of the
+// installed SDH description (visgrab) around the box. Prints "outcome <name> contacts <n> object
+// <body>"; exit 0 when it ran.
 //
 // usage: consumer SCENES_DIR OUT_DIR  (SCENES_DIR: the installed share/visgrab/scenes)
 #include <exception>
 #include <filesystem>
 #include <fstream>
-#include <initializer_list>
 #include <iostream>
 #include <numbers>
 #include <stdexcept>
@@ -15,6 +15,7 @@
 #include "rw/math/rpy.hpp"
 #include "rwsim/loaders/dynamic_workcell_loader.hpp"
 #include "rwsim/simulator/grasp_trial.hpp"
+#include "visgrab/grasp/hand_grasp_setup.hpp"
 
 namespace fs = std::filesystem;
 
@@ -24,13 +25,6 @@ void write(const fs::path& file, const std::string& text) {
   std::ofstream out(file);
   out << text;
   if (!out) throw std::runtime_error("cannot write " + file.string());
-}
-
-rw::math::Q q(std::initializer_list<double> values) {
-  rw::math::Q out(static_cast<Eigen::Index>(values.size()));
-  Eigen::Index i = 0;
-  for (const double v : values) out[i++] = v;
-  return out;
 }
 
 }  // namespace
@@ -77,13 +71,19 @@ int main(int argc, char** argv) {
     setup.simulator = rwsim::simulator::optionsFromEngineProperties(*dwc);
     const rwsim::simulator::GraspTrial trial(*dwc, setup);
 
+    // The installed SDH description (visgrab layer): its cylinder pre-shape and torque limits.
+    const auto hand = visgrab::grasp::loadHandGraspSetup(scenes / "hands/sdh");
+    const visgrab::grasp::PreShape* cylinder = hand->findPreshape("SDH_CYL");
+    if (cylinder == nullptr) throw std::runtime_error("the installed SDH has no SDH_CYL");
+
     // The hand pointing down, its TCP at the box's centre, fingers around it.
     rwsim::simulator::GraspParameters grasp;
     grasp.X_W_tcp = rw::math::rpyTransform(rw::math::Vector3D(0, std::numbers::pi, 0),
                                            rw::math::Vector3D(0, 0, 0.05));
-    grasp.qOpen = q({-1.048, 0.174, 0.0, -1.048, 0.174, -1.048, 0.174});
-    grasp.qClosed = q({0.0, 0.349, 0.0, 0.0, 0.349, 0.0, 0.349});
-    grasp.tauMax = q({2.1, 1.4, 2.1, 1.05, 0.7, 1.05, 0.7});
+    grasp.qOpen = cylinder->qOpen;
+    grasp.qClosed = cylinder->qClosed;
+    grasp.tauMax =
+        cylinder->tauMax.size() > 0 ? cylinder->tauMax : hand->tauRule().evaluate(cylinder->qOpen);
     const auto result = trial.run(grasp, dwc->workcell().defaultState());
 
     const std::string object =
