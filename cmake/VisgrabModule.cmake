@@ -22,24 +22,30 @@ endfunction()
 #
 # One library target per module. Sources are listed explicitly (no GLOB). A module without
 # sources becomes an INTERFACE library. INCLUDE_ROOT is the layer folder (RobWork/, RobWorkSim/,
-# VisGraB/) so that headers are included as "rw/math/rpy.hpp".
+# VisGraB/) so that headers are included as "rw/math/rpy.hpp", in the build tree and installed.
 function(visgrab_add_module name)
   cmake_parse_arguments(ARG "" "INCLUDE_ROOT" "SOURCES;PUBLIC_DEPS;PRIVATE_DEPS" ${ARGN})
   if(NOT ARG_INCLUDE_ROOT)
     message(FATAL_ERROR "visgrab_add_module(${name}): INCLUDE_ROOT is required")
   endif()
+  # Installed, the headers of every layer are under include/visgrab (cmake/VisgrabInstall.cmake).
+  set(_include $<BUILD_INTERFACE:${ARG_INCLUDE_ROOT}> $<INSTALL_INTERFACE:include/visgrab>)
   if(ARG_SOURCES)
     add_library(${name} STATIC ${ARG_SOURCES})
-    target_include_directories(${name} PUBLIC ${ARG_INCLUDE_ROOT})
+    target_include_directories(${name} PUBLIC ${_include})
     target_link_libraries(${name} PUBLIC ${ARG_PUBLIC_DEPS} PRIVATE ${ARG_PRIVATE_DEPS})
     set_target_properties(${name} PROPERTIES POSITION_INDEPENDENT_CODE ON)
     visgrab_set_warnings(${name})
     visgrab_set_unity_build(${name})
   else()
     add_library(${name} INTERFACE)
-    target_include_directories(${name} INTERFACE ${ARG_INCLUDE_ROOT})
+    target_include_directories(${name} INTERFACE ${_include})
     target_link_libraries(${name} INTERFACE ${ARG_PUBLIC_DEPS})
   endif()
+  # Every module is installed and exported (VisGraB::<name>); the layers' umbrella targets are
+  # made from this list once all modules exist (visgrab_install_package).
+  install(TARGETS ${name} EXPORT VisGraBTargets ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
+  set_property(GLOBAL APPEND PROPERTY VISGRAB_MODULES ${name})
 endfunction()
 
 # visgrab_add_test(<name> SOURCES ... DEPS ... [LABELS ...]): one GoogleTest executable,

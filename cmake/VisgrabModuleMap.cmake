@@ -32,6 +32,11 @@ function(visgrab_write_module_map file)
     if(NOT type MATCHES "^(STATIC_LIBRARY|SHARED_LIBRARY|OBJECT_LIBRARY|INTERFACE_LIBRARY|EXECUTABLE)$")
       continue()
     endif()
+    # The layers' umbrella targets of the installed package (VisgrabInstall.cmake) own no files;
+    # nothing in the tree links them.
+    if(target MATCHES "^visgrab_layer_")
+      continue()
+    endif()
     get_target_property(dir ${target} SOURCE_DIR)
     set(fields)
     foreach(property SOURCES INCLUDE_DIRECTORIES INTERFACE_INCLUDE_DIRECTORIES LINK_LIBRARIES

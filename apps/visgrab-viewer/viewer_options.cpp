@@ -4,6 +4,7 @@
 #include <cstdlib>
 
 #include "cli_common/cli_errors.hpp"
+#include "cli_common/data_folder.hpp"
 #include "rw/common/diagnostic.hpp"
 #include "visgrab/results/results_file.hpp"
 
@@ -36,10 +37,11 @@ std::string parseSize(const std::string& text, ViewerOptions& options) {
   return {};
 }
 
-// The project's scene data folder: $VISGRAB_DATA, else the source tree's scenes/ folder.
+// The project's scene data folder: $VISGRAB_DATA, else the installed share/visgrab/scenes next
+// to the program, else the source tree's scenes/ folder.
 fs::path dataFolder() {
   if (const char* env = std::getenv("VISGRAB_DATA"); env != nullptr && *env != '\0') return env;
-  return VISGRAB_SCENES_DIR;
+  return visgrab::cli::defaultDataFolder(VISGRAB_SCENES_DIR);
 }
 
 }  // namespace
@@ -68,7 +70,8 @@ std::unique_ptr<CLI::App> makeViewerApp(ViewerOptions& options) {
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   app->add_option("--hand", options.hand,
                   "The hand: its folder or grasp description (default: the results' hand, else "
-                  "$VISGRAB_DATA or the source tree's scenes/hands/sdh/sdh.grasp.xml)")
+                  "the data folder's hands/sdh/sdh.grasp.xml: $VISGRAB_DATA, the installed "
+                  "share/visgrab/scenes or the source tree's scenes/)")
       ->type_name("DIR|GRASP.xml");
   app->add_option("--grasp", options.grasp,
                   "Replay this grasp of --scene: its id, or N for the scene's N-th grasp")

@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "cli_common/cli_errors.hpp"
+#include "cli_common/data_folder.hpp"
 #include "rw/common/diagnostic.hpp"
 
 namespace visgrab::app {
@@ -190,10 +191,10 @@ CLI::Option* addDataOption(CLI::App& cmd) {
   return cmd
       .add_option("--data",
                   "The project's scene data: objects, hands, materials (default: $VISGRAB_DATA, "
-                  "else the source tree's scenes/ folder)")
+                  "else the installed share/visgrab/scenes, else the source tree's scenes/)")
       ->type_name("DIR")
       ->envname("VISGRAB_DATA")
-      ->default_str(VISGRAB_SCENES_DIR);
+      ->default_str(visgrab::cli::defaultDataFolder(VISGRAB_SCENES_DIR).string());
 }
 
 CLI::Option* addQuietFlag(CLI::App& cmd) {
@@ -281,8 +282,10 @@ int threadsOption(const Arguments& a) {
 }
 
 std::filesystem::path dataFolder(const Arguments& a) {
-  // $VISGRAB_DATA reaches the option through CLI11 (envname).
-  return a.option("data").value_or(VISGRAB_SCENES_DIR);
+  // $VISGRAB_DATA reaches the option through CLI11 (envname). Without either: the installed
+  // data next to the program, else the source tree's (cli_common/data_folder.hpp).
+  if (auto data = a.option("data")) return *data;
+  return visgrab::cli::defaultDataFolder(VISGRAB_SCENES_DIR);
 }
 
 RunFunction guarded(RunFunction run) {
