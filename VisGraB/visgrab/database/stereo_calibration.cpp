@@ -258,6 +258,18 @@ StereoCalibration parseCalibration(std::string_view yaml, const std::string& dis
     if (yaml.find_first_not_of(" \t\r\n") == std::string_view::npos) {
       fail(displayPath, "the file is empty");
     }
+    // OpenCV's YAML parser loops for ever on some lines that start with ':' (a value without a
+    // key; found by fuzzing, fuzz/regressions/calibration/timeout-*): no calibration has one.
+    std::size_t lineStart = 0;
+    for (int line = 1; lineStart < yaml.size(); ++line) {
+      const std::size_t end = std::min(yaml.find('\n', lineStart), yaml.size());
+      const std::size_t first = yaml.find_first_not_of(" \t", lineStart);
+      if (first < end && yaml[first] == ':') {
+        fail(displayPath + ":" + std::to_string(line),
+             "a value without a key (the line starts with ':'); expected KEY: VALUE");
+      }
+      lineStart = end + 1;
+    }
     std::string text(yaml);
     if (text.rfind("%YAML", 0) != 0) text = "%YAML:1.0\n" + text;
     fs.open(text, cv::FileStorage::READ | cv::FileStorage::MEMORY | cv::FileStorage::FORMAT_YAML);

@@ -164,17 +164,28 @@ TEST(StereoCalibrationTest, MalformedFilesNameFileAndNode) {
             "scene/calibration.yml: error: node \"image_size\": expected [ width, height ]");
 }
 
-// Found by fuzzing (fuzz/regressions/calibration): OpenCV's YAML parser throws
-// std::length_error for these bytes, which escaped readCalibration and ended the program.
+// Found by fuzzing (fuzz/regressions/calibration/length-error-*): OpenCV's YAML parser throws
+// std::length_error for these bytes, which escaped readCalibration and ended the program. Their
+// second line starts with ':', which the reader now refuses before OpenCV sees it (the catch of
+// standard exceptions stays as the second line of defence).
 TEST(StereoCalibrationTest, ParserFailureOtherThanCvExceptionIsACalibrationError) {
   for (const std::string yaml : {" o:3\n :", " r:3\n :"}) {
+    EXPECT_EQ(errorOf(yaml),
+              "scene/calibration.yml:2: error: a value without a key (the line starts with ':'); "
+              "expected KEY: VALUE");
+  }
+}
+
+// Found by fuzzing (fuzz/regressions/calibration/timeout-*): OpenCV's YAML parser never returns
+// on these bytes (an indented first key, then a line starting with ':' and a '-' in brackets).
+TEST(StereoCalibrationTest, ALineWithoutAKeyIsAnErrorNotAHang) {
+  for (const std::string yaml : {" c:5\n:[ - ]\n ", " c:5\n:{ -\n ", "K1: 1\n  : 2\n"}) {
     const std::string error = errorOf(yaml);
-    EXPECT_EQ(error.rfind("scene/calibration.yml: error: not a valid OpenCV YAML file (the parser "
-                          "failed: ",
-                          0),
-              0U)
+    EXPECT_EQ(error.rfind("scene/calibration.yml:", 0), 0U) << error;
+    EXPECT_NE(error.find("a value without a key (the line starts with ':')"), std::string::npos)
         << error;
   }
+  EXPECT_NE(errorOf(" c:5\n:[ - ]\n ").find("calibration.yml:2: error:"), std::string::npos);
 }
 
 TEST(StereoCalibrationTest, MissingFileNamesIt) {
