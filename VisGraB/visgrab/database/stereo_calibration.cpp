@@ -134,6 +134,12 @@ void writeMatrix(cv::FileStorage& fs, const char* name, const Eigen::MatrixXd& m
 
 }  // namespace
 
+rw::math::Transform3D StereoCalibration::rectifiedLeftPose() const {
+  rw::math::Transform3D X = X_TL;
+  X.linear() = X_TL.linear() * R1.transpose();
+  return X;
+}
+
 double StereoCalibration::baseline() const {
   const double f = P2(0, 0);
   const double t = std::abs(P2(1, 3)) > std::abs(P2(0, 3)) ? P2(1, 3) : P2(0, 3);

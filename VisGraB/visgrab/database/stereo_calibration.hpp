@@ -54,6 +54,9 @@ struct StereoCalibration {
 
   /// Baseline of the rectified rig in metres (|P2's Tx| / f).
   double baseline() const;
+  /// Pose of the rectified left camera (the frame of P1, Q, depth and point clouds) in the
+  /// table frame: the raw left camera X_TL turned by R1, X_TL * R1^T.
+  rw::math::Transform3D rectifiedLeftPose() const;
   /// Why the calibration is inconsistent (empty string if it is consistent): matrix shapes,
   /// finite values, positive focal lengths, rotations, and P1/P2/Q agreeing as stereoRectify
   /// makes them. Messages start with the node name ("Q: ...").

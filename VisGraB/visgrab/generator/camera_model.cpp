@@ -6,8 +6,11 @@
 #include <limits>
 #include <numbers>
 #include <opencv2/calib3d.hpp>
+#include <opencv2/core/eigen.hpp>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
+
+#include "rw/math/rpy.hpp"
 
 namespace visgrab::generator {
 
@@ -17,18 +20,14 @@ using rw::math::Transform3D;
 using rw::math::Vector3D;
 
 cv::Mat toCv(const Eigen::MatrixXd& m) {
-  cv::Mat out(static_cast<int>(m.rows()), static_cast<int>(m.cols()), CV_64F);
-  for (int r = 0; r < out.rows; ++r) {
-    for (int c = 0; c < out.cols; ++c) out.at<double>(r, c) = m(r, c);
-  }
+  cv::Mat out;
+  cv::eigen2cv(m, out);
   return out;
 }
 
 Eigen::MatrixXd fromCv(const cv::Mat& m) {
-  Eigen::MatrixXd out(m.rows, m.cols);
-  for (int r = 0; r < m.rows; ++r) {
-    for (int c = 0; c < m.cols; ++c) out(r, c) = m.at<double>(r, c);
-  }
+  Eigen::MatrixXd out;
+  cv::cv2eigen(m, out);
   return out;
 }
 
@@ -44,11 +43,8 @@ Eigen::Matrix3d cameraMatrix(const StereoRigSpec& rig, const CameraSensorSpec& c
 /// misalignment (rotation about the right camera's own axes, RobWork RPY in degrees).
 Transform3D rightInLeft(const CameraProfile& p) {
   constexpr double kRadPerDeg = std::numbers::pi / 180.0;
-  const Eigen::Matrix3d R =
-      (Eigen::AngleAxisd(p.misalignmentRpy[0] * kRadPerDeg, Eigen::Vector3d::UnitZ()) *
-       Eigen::AngleAxisd(p.misalignmentRpy[1] * kRadPerDeg, Eigen::Vector3d::UnitY()) *
-       Eigen::AngleAxisd(p.misalignmentRpy[2] * kRadPerDeg, Eigen::Vector3d::UnitX()))
-          .toRotationMatrix();
+  const rw::math::Rotation3D R = rw::math::rpyToRotation(
+      Vector3D(p.misalignmentRpy[0], p.misalignmentRpy[1], p.misalignmentRpy[2]) * kRadPerDeg);
   const Vector3D t(p.rig.baseline + p.misalignmentOffset[0], p.misalignmentOffset[1],
                    p.misalignmentOffset[2]);
   return rw::math::makeTransform(R, t);

@@ -55,12 +55,6 @@ void checkSize(const cv::Mat& image, const database::StereoCalibration& calibrat
 
 }  // namespace
 
-Transform3D rectifiedLeftPose(const database::StereoCalibration& calibration) {
-  Transform3D X = calibration.X_TL;
-  X.linear() = calibration.X_TL.linear() * calibration.R1.transpose();
-  return X;
-}
-
 cv::Mat encodeDisparity(const cv::Mat& disparity) {
   CV_Assert(disparity.type() == CV_32FC1);
   cv::Mat out(disparity.size(), CV_16UC1, cv::Scalar(0));
@@ -120,7 +114,7 @@ database::PointCloud cloudFromDisparity(const cv::Mat& disparity, const cv::Mat&
                                         const database::StereoCalibration& calibration) {
   CV_Assert(disparity.type() == CV_32FC1 && leftBgr.type() == CV_8UC3 &&
             leftBgr.size() == disparity.size());
-  const Transform3D X_TC = rectifiedLeftPose(calibration);
+  const Transform3D X_TC = calibration.rectifiedLeftPose();
   const cv::Mat textured = vision::textureMask(leftBgr, vision::StereoOptions{});
   database::PointCloud cloud;
   cloud.comments = {
@@ -159,7 +153,7 @@ database::PointCloud cloudFromDisparity(const cv::Mat& disparity, const cv::Mat&
 
 std::string posesYaml(const database::StereoCalibration& calibration,
                       const std::vector<TruthObject>& objects) {
-  const Transform3D X_TC = rectifiedLeftPose(calibration);
+  const Transform3D X_TC = calibration.rectifiedLeftPose();
   cv::FileStorage fs(".yml", cv::FileStorage::WRITE | cv::FileStorage::MEMORY);
   fs.writeComment(
       "VisGraB ground-truth poses: 4x4 transforms in metres; camera = the rectified left camera "

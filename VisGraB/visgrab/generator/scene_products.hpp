@@ -32,10 +32,6 @@ struct TruthObject {
   rw::math::Transform3D X_TO = rw::math::Transform3D::Identity();
 };
 
-/// The pose of the rectified left camera (x right, y down, z forward) in the table frame:
-/// X_TL * R1^T.
-rw::math::Transform3D rectifiedLeftPose(const database::StereoCalibration& calibration);
-
 /// A disparity (CV_32F pixels, <= 0 or NaN: none) as disparity.png's pixels: CV_16U,
 /// round(disparity * 256), 0 where there is none or it is too large for 16 bits (256 pixels
 /// and more: with the default rig, points nearer than 0.38 m, out of the objects' reach).

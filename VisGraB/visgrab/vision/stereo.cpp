@@ -146,8 +146,8 @@ OrganizedCloud reprojectToTable(const cv::Mat& disparity, const cv::Mat& texture
   const float nan = std::numeric_limits<float>::quiet_NaN();
   cloud.points.assign(static_cast<std::size_t>(cloud.size()), Eigen::Vector3f(nan, nan, nan));
   cloud.textured.assign(static_cast<std::size_t>(cloud.size()), 0);
-  // Table from rectified camera: X_TL * R1^T.
-  const Eigen::Matrix3d R = calibration.X_TL.linear() * calibration.R1.transpose();
+  // Table from rectified camera.
+  const Eigen::Matrix3d R = calibration.rectifiedLeftPose().linear();
   const Eigen::Vector3d t = calibration.X_TL.translation();
   cloud.viewpoint = t;
   for (int r = 0; r < cloud.height; ++r) {
