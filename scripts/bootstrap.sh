@@ -38,6 +38,9 @@ packages=(build-essential cmake ninja-build pkg-config
   qtbase5-dev libqhull-dev libgtest-dev libbenchmark-dev
   libegl-dev libegl-mesa0 libgl1-mesa-dri libgl-dev
   libcli11-dev python3-jsonschema
+  pybind11-dev python3-dev python3-numpy  # the Python module (python/; docs/python.md)
+  python3-pytest python3-pandas python3-matplotlib  # its tests; pandas reads the result CSVs
+  slurm-wlm munge  # the Slurm cluster test starts its own one-node cluster (docs/cluster.md)
   xvfb xauth clang-format python3
   clang libclang-rt-14-dev  # the fuzz stage: clang 14 with libFuzzer and the sanitizer runtimes
   libmujoco-dev)  # MuJoCo 2.2.2, only for the MuJoCo comparison benchmark; no library or app uses it
