@@ -8,6 +8,7 @@
 
 #include "rw/common/text_file.hpp"
 #include "visgrab/database/atomic_file.hpp"
+#include "visgrab/database/detail/opencv_yaml.hpp"
 
 namespace visgrab::database {
 
@@ -71,55 +72,65 @@ std::string entryMismatch(const char* node, int r, int c, double got, double exp
 
 // --------------------------------------------------------------------------- YAML reading
 
+using detail::YamlNode;
+
 [[noreturn]] void fail(const std::string& file, const std::string& what) {
   throw CalibrationError(file + ": error: " + what);
 }
 
-cv::FileNode requireNode(const cv::FileStorage& fs, const char* name, const std::string& file) {
-  cv::FileNode node = fs[name];
-  if (node.empty() || node.isNone()) fail(file, "missing node \"" + std::string(name) + "\"");
-  return node;
+[[noreturn]] void fail(const std::string& file, int line, const std::string& what) {
+  fail(file + ":" + std::to_string(line), what);
 }
 
-double number(const cv::FileNode& n, const std::string& file, const std::string& node) {
-  if (!n.isReal() && !n.isInt()) fail(file, "node \"" + node + "\": expected a number");
-  const double v = static_cast<double>(n);
-  if (!std::isfinite(v)) fail(file, "node \"" + node + "\": values must be finite");
-  return v;
+const YamlNode& requireNode(const YamlNode& root, const char* name, const std::string& file) {
+  const YamlNode* node = root.find(name);
+  if (node == nullptr) fail(file, "missing node \"" + std::string(name) + "\"");
+  return *node;
 }
 
-int integer(const cv::FileNode& n, const std::string& file, const std::string& node) {
-  if (!n.isInt()) fail(file, "node \"" + node + "\": expected an integer");
-  return static_cast<int>(n);
+double number(const YamlNode& n, const std::string& file, const std::string& node) {
+  const auto v = n.number();
+  if (!v) fail(file, n.line, "node \"" + node + "\": expected a number, found '" + n.scalar + "'");
+  if (!std::isfinite(*v)) fail(file, n.line, "node \"" + node + "\": values must be finite");
+  return *v;
+}
+
+int integer(const YamlNode* n, const std::string& file, int line, const std::string& node) {
+  const auto v = n == nullptr ? std::nullopt : n->integer();
+  if (!v) fail(file, n == nullptr ? line : n->line, "node \"" + node + "\": expected an integer");
+  return *v;
 }
 
 // An opencv-matrix node as rows x cols values (row-major). `rows`/`cols` < 0 accept any size.
-Eigen::MatrixXd readMatrix(const cv::FileStorage& fs, const char* name, const std::string& file,
+Eigen::MatrixXd readMatrix(const YamlNode& root, const char* name, const std::string& file,
                            int rows, int cols) {
-  const cv::FileNode node = requireNode(fs, name, file);
+  const YamlNode& node = requireNode(root, name, file);
   const std::string n(name);
-  if (!node.isMap() || node["rows"].empty() || node["cols"].empty() || node["data"].empty()) {
-    fail(file, "node \"" + n + "\": expected an opencv-matrix (rows, cols, dt, data)");
+  const YamlNode* data = node.find("data");
+  if (node.kind != YamlNode::Kind::kMap || node.find("rows") == nullptr ||
+      node.find("cols") == nullptr || data == nullptr) {
+    fail(file, node.line, "node \"" + n + "\": expected an opencv-matrix (rows, cols, dt, data)");
   }
-  const int r = integer(node["rows"], file, n + ".rows");
-  const int c = integer(node["cols"], file, n + ".cols");
-  const bool vectorOk = rows == -1 && (r == 1 || c == 1) && r * c > 0;
+  const int r = integer(node.find("rows"), file, node.line, n + ".rows");
+  const int c = integer(node.find("cols"), file, node.line, n + ".cols");
+  const bool vectorOk = rows == -1 && (r == 1 || c == 1) && r > 0 && c > 0;
   if (!vectorOk && (r != rows || c != cols)) {
-    fail(file, "node \"" + n + "\": expected a " +
-                   (rows == -1 ? std::string("1xN or Nx1")
-                               : std::to_string(rows) + "x" + std::to_string(cols)) +
-                   " matrix, got " + std::to_string(r) + "x" + std::to_string(c));
+    fail(file, node.line,
+         "node \"" + n + "\": expected a " +
+             (rows == -1 ? std::string("1xN or Nx1")
+                         : std::to_string(rows) + "x" + std::to_string(cols)) +
+             " matrix, got " + std::to_string(r) + "x" + std::to_string(c));
   }
-  const cv::FileNode data = node["data"];
-  if (!data.isSeq() || data.size() != static_cast<std::size_t>(r) * static_cast<std::size_t>(c)) {
-    fail(file, "node \"" + n + "\": data must hold rows x cols = " + std::to_string(r * c) +
-                   " numbers, got " + std::to_string(data.isSeq() ? data.size() : 1));
+  const std::size_t count = data->kind == YamlNode::Kind::kSequence ? data->items.size() : 1;
+  if (data->kind != YamlNode::Kind::kSequence ||
+      count != static_cast<std::size_t>(r) * static_cast<std::size_t>(c)) {
+    fail(file, data->line,
+         "node \"" + n + "\": data must hold rows x cols = " + std::to_string(r * c) +
+             " numbers, got " + std::to_string(count));
   }
   Eigen::MatrixXd m(r, c);
-  int i = 0;
-  for (const cv::FileNode& v : data) {
-    m(i / c, i % c) = number(v, file, n);
-    ++i;
+  for (int i = 0; i < r * c; ++i) {
+    m(i / c, i % c) = number(data->items[static_cast<std::size_t>(i)], file, n);
   }
   return m;
 }
@@ -259,77 +270,55 @@ StereoCalibration idealRectifiedRig(double fx, double fy, double cx, double cy, 
 }
 
 StereoCalibration parseCalibration(std::string_view yaml, const std::string& displayPath) {
-  cv::FileStorage fs;
-  try {
-    if (yaml.find_first_not_of(" \t\r\n") == std::string_view::npos) {
-      fail(displayPath, "the file is empty");
-    }
-    // OpenCV's YAML parser loops for ever on some lines that start with ':' (a value without a
-    // key; found by fuzzing, fuzz/regressions/calibration/timeout-*): no calibration has one.
-    std::size_t lineStart = 0;
-    for (int line = 1; lineStart < yaml.size(); ++line) {
-      const std::size_t end = std::min(yaml.find('\n', lineStart), yaml.size());
-      const std::size_t first = yaml.find_first_not_of(" \t", lineStart);
-      if (first < end && yaml[first] == ':') {
-        fail(displayPath + ":" + std::to_string(line),
-             "a value without a key (the line starts with ':'); expected KEY: VALUE");
-      }
-      lineStart = end + 1;
-    }
-    std::string text(yaml);
-    if (text.rfind("%YAML", 0) != 0) text = "%YAML:1.0\n" + text;
-    fs.open(text, cv::FileStorage::READ | cv::FileStorage::MEMORY | cv::FileStorage::FORMAT_YAML);
-  } catch (const CalibrationError&) {
-    throw;
-  } catch (const cv::Exception& e) {
-    fail(displayPath, "not a valid OpenCV YAML file: " + e.err);
-  } catch (const std::exception& e) {
-    // OpenCV's parser lets standard exceptions through for some malformed input (found by
-    // fuzzing: " o:3\n :" gives std::length_error).
-    fail(displayPath,
-         std::string("not a valid OpenCV YAML file (the parser failed: ") + e.what() + ")");
+  if (yaml.find_first_not_of(" \t\r\n") == std::string_view::npos) {
+    fail(displayPath, "the file is empty");
   }
-  if (!fs.isOpened()) fail(displayPath, "not a valid OpenCV YAML file");
+  // Our own reader of the YAML that cv::FileStorage writes (detail/opencv_yaml.hpp): OpenCV's
+  // parser never returns on some malformed input and throws standard exceptions on other
+  // (found by fuzzing, fuzz/regressions/calibration), so a file from outside never reaches it.
+  YamlNode root;
+  try {
+    root = detail::parseOpencvYaml(yaml);
+  } catch (const detail::YamlError& e) {
+    fail(displayPath, e.line(), std::string("not a valid OpenCV YAML file: ") + e.what());
+  }
   StereoCalibration c;
-  try {
-    const cv::FileNode size = requireNode(fs, "image_size", displayPath);
-    if (!size.isSeq() || size.size() != 2) {
-      fail(displayPath, "node \"image_size\": expected [ width, height ]");
-    }
-    c.width = integer(size[0], displayPath, "image_size");
-    c.height = integer(size[1], displayPath, "image_size");
-    c.K1 = readMatrix(fs, "K1", displayPath, 3, 3);
-    c.D1 = readMatrix(fs, "D1", displayPath, -1, -1).reshaped();
-    c.K2 = readMatrix(fs, "K2", displayPath, 3, 3);
-    c.D2 = readMatrix(fs, "D2", displayPath, -1, -1).reshaped();
-    c.R = readMatrix(fs, "R", displayPath, 3, 3);
-    const Eigen::MatrixXd T = readMatrix(fs, "T", displayPath, -1, -1);
-    if (T.size() != 3) {
-      fail(displayPath, "node \"T\": expected 3 values, got " + std::to_string(T.size()));
-    }
-    c.T = T.reshaped();
-    c.R1 = readMatrix(fs, "R1", displayPath, 3, 3);
-    c.R2 = readMatrix(fs, "R2", displayPath, 3, 3);
-    c.P1 = readMatrix(fs, "P1", displayPath, 3, 4);
-    c.P2 = readMatrix(fs, "P2", displayPath, 3, 4);
-    c.Q = readMatrix(fs, "Q", displayPath, 4, 4);
-    const Eigen::Matrix4d X = readMatrix(fs, "X_table_left", displayPath, 4, 4);
-    if (X.row(3) != Eigen::RowVector4d(0, 0, 0, 1)) {
-      fail(displayPath, "node \"X_table_left\": the last row must be 0 0 0 1");
-    }
-    c.X_TL.matrix() = X;
-  } catch (const CalibrationError&) {
-    throw;
-  } catch (const cv::Exception& e) {
-    fail(displayPath, "not a valid OpenCV YAML file: " + e.err);
-  } catch (const std::exception& e) {
-    fail(displayPath,
-         std::string("not a valid OpenCV YAML file (the parser failed: ") + e.what() + ")");
+  const YamlNode& size = requireNode(root, "image_size", displayPath);
+  if (size.kind != YamlNode::Kind::kSequence || size.items.size() != 2) {
+    fail(displayPath, size.line, "node \"image_size\": expected [ width, height ]");
   }
+  c.width = integer(&size.items[0], displayPath, size.line, "image_size");
+  c.height = integer(&size.items[1], displayPath, size.line, "image_size");
+  c.K1 = readMatrix(root, "K1", displayPath, 3, 3);
+  c.D1 = readMatrix(root, "D1", displayPath, -1, -1).reshaped();
+  c.K2 = readMatrix(root, "K2", displayPath, 3, 3);
+  c.D2 = readMatrix(root, "D2", displayPath, -1, -1).reshaped();
+  c.R = readMatrix(root, "R", displayPath, 3, 3);
+  const Eigen::MatrixXd T = readMatrix(root, "T", displayPath, -1, -1);
+  if (T.size() != 3) {
+    fail(displayPath, root.find("T")->line,
+         "node \"T\": expected 3 values, got " + std::to_string(T.size()));
+  }
+  c.T = T.reshaped();
+  c.R1 = readMatrix(root, "R1", displayPath, 3, 3);
+  c.R2 = readMatrix(root, "R2", displayPath, 3, 3);
+  c.P1 = readMatrix(root, "P1", displayPath, 3, 4);
+  c.P2 = readMatrix(root, "P2", displayPath, 3, 4);
+  c.Q = readMatrix(root, "Q", displayPath, 4, 4);
+  const Eigen::Matrix4d X = readMatrix(root, "X_table_left", displayPath, 4, 4);
+  if (X.row(3) != Eigen::RowVector4d(0, 0, 0, 1)) {
+    fail(displayPath, root.find("X_table_left")->line,
+         "node \"X_table_left\": the last row must be 0 0 0 1");
+  }
+  c.X_TL.matrix() = X;
   const std::string why = c.check();
   if (!why.empty()) {
     const auto colon = why.find(':');
-    fail(displayPath, "node \"" + why.substr(0, colon) + "\"" + why.substr(colon));
+    const std::string node = why.substr(0, colon);
+    const YamlNode* at = root.find(node);
+    const std::string where =
+        at == nullptr ? displayPath : displayPath + ":" + std::to_string(at->line);
+    fail(where, "node \"" + node + "\"" + why.substr(colon));
   }
   return c;
 }

@@ -72,8 +72,10 @@ StereoCalibration idealRectifiedRig(double fx, double fy, double cx, double cy, 
                                     int width, int height, const rw::math::Transform3D& X_TL);
 
 /// Reads an OpenCV FileStorage YAML file with nodes image_size, K1, D1, K2, D2, R, T, R1, R2,
-/// P1, P2, Q and X_table_left (4x4) and checks it (StereoCalibration::check).
-/// @throws CalibrationError naming the file and the node.
+/// P1, P2, Q and X_table_left (4x4) and checks it (StereoCalibration::check). The YAML is read
+/// by the project's own parser of what cv::FileStorage writes (detail/opencv_yaml.hpp), never by
+/// OpenCV's, which does not return on some malformed files.
+/// @throws CalibrationError naming the file, the line and the node.
 StereoCalibration readCalibration(const std::filesystem::path& file);
 
 /// Same as readCalibration, from YAML text; `displayPath` names it in messages.
