@@ -6,6 +6,7 @@
 #include <limits>
 #include <map>
 #include <system_error>
+#include <utility>
 
 namespace visgrab::database::detail {
 
@@ -180,11 +181,12 @@ class Parser {
                                          std::to_string(it->second) + ")");
       }
       if (pos_ < lines_.size() && lines_[pos_].indent > indent) {
-        throw YamlError(lines_[pos_].number,
-                        "unexpected indentation: expected a key at column " +
-                            std::to_string(indent + 1) + ", found " + shown(lines_[pos_].text));
+        throw YamlError(lines_[pos_].number, "unexpected indentation: expected a key at column " +
+                                                 std::to_string(indent + 1) + ", found " +
+                                                 shown(lines_[pos_].text));
       }
-      map.entries.emplace_back(std::move(key), std::move(value));
+      value.key = std::move(key);
+      map.items.push_back(std::move(value));
     }
     return map;
   }
@@ -192,8 +194,9 @@ class Parser {
   static std::pair<std::string, std::string_view> splitKey(const Line& line) {
     const std::string_view t = line.text;
     if (t.front() == ':') {
-      throw YamlError(line.number, "a value without a key (the line starts with ':'); expected "
-                                   "KEY: VALUE");
+      throw YamlError(line.number,
+                      "a value without a key (the line starts with ':'); expected "
+                      "KEY: VALUE");
     }
     if (t.front() == '-' && (t.size() == 1 || t[1] == ' ')) {
       throw YamlError(line.number,
@@ -205,9 +208,10 @@ class Parser {
       while (i < t.size() && isKeyChar(t[i])) ++i;
     }
     if (i == 0 || i >= t.size() || t[i] != ':' || (i + 1 < t.size() && t[i + 1] != ' ')) {
-      throw YamlError(line.number, "expected KEY: VALUE (a key is a letter or '_' followed by "
-                                   "letters, digits, '_', '-', '.'), found " +
-                                       shown(t));
+      throw YamlError(line.number,
+                      "expected KEY: VALUE (a key is a letter or '_' followed by "
+                      "letters, digits, '_', '-', '.'), found " +
+                          shown(t));
     }
     return {std::string(t.substr(0, i)), trimLeft(t.substr(i + 1))};
   }
@@ -237,8 +241,9 @@ class Parser {
         sequence(value, line, rest, indent);
         return value;
       case '{':
-        throw YamlError(line.number, "a flow mapping '{ ... }' (write the entries on their own "
-                                     "lines, indented)");
+        throw YamlError(line.number,
+                        "a flow mapping '{ ... }' (write the entries on their own "
+                        "lines, indented)");
       case '&':
       case '*':
       case '|':
@@ -248,8 +253,9 @@ class Parser {
                                          "supported)");
       case '-':
         if (rest.size() == 1 || rest[1] == ' ') {
-          throw YamlError(line.number, "a block sequence item after a key; expected a value or "
-                                       "[ a, b ]");
+          throw YamlError(line.number,
+                          "a block sequence item after a key; expected a value or "
+                          "[ a, b ]");
         }
         break;
       default:
@@ -345,9 +351,10 @@ std::string lower(std::string_view s) {
 
 }  // namespace
 
-const YamlNode* YamlNode::find(std::string_view key) const {
-  for (const auto& [k, v] : entries) {
-    if (k == key) return &v;
+const YamlNode* YamlNode::find(std::string_view name) const {
+  if (kind != Kind::kMap) return nullptr;
+  for (const YamlNode& entry : items) {
+    if (entry.key == name) return &entry;
   }
   return nullptr;
 }

@@ -4,7 +4,6 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
-#include <utility>
 #include <vector>
 
 /// A reader for the part of YAML that OpenCV's cv::FileStorage writes for matrices and numbers,
@@ -32,13 +31,13 @@ struct YamlNode {
   std::string tag;
   /// kScalar: the text (quotes removed).
   std::string scalar;
-  /// kSequence: the items (scalars).
+  /// The key of a mapping entry (empty for a sequence item or the top-level mapping).
+  std::string key;
+  /// kSequence: the items (scalars); kMap: the entries in file order, each with its key.
   std::vector<YamlNode> items;
-  /// kMap: the entries in file order.
-  std::vector<std::pair<std::string, YamlNode>> entries;
 
-  /// The entry `key` of a mapping, or null.
-  const YamlNode* find(std::string_view key) const;
+  /// The entry called `name` of a mapping, or null.
+  const YamlNode* find(std::string_view name) const;
   /// The scalar as a number: integers, decimals, exponents, and .nan/.inf/-.inf in any case
   /// (OpenCV writes ".Nan" and ".Inf"); nullopt if it is not one.
   std::optional<double> number() const;
