@@ -44,6 +44,21 @@ std::size_t editDistance(std::string_view a, std::string_view b) {
   return row[b.size()];
 }
 
+std::string_view closestMatch(std::string_view wanted, const std::vector<std::string>& candidates) {
+  const std::size_t allowed = std::max<std::size_t>(2, wanted.size() / 4);
+  std::string_view best;
+  std::size_t bestScore = allowed + 1;
+  for (const std::string& c : candidates) {
+    if (c == wanted) continue;
+    const std::size_t score = editDistance(wanted, c);
+    if (score < bestScore) {
+      best = c;
+      bestScore = score;
+    }
+  }
+  return best;
+}
+
 std::vector<std::string_view> split(std::string_view text, char separator) {
   std::vector<std::string_view> parts;
   std::size_t start = 0;

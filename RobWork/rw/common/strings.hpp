@@ -13,6 +13,10 @@ std::string escapeXml(std::string_view text);
 /// Levenshtein distance between two strings (for "did you mean" suggestions in messages).
 std::size_t editDistance(std::string_view a, std::string_view b);
 
+/// The candidate closest to `wanted` by editDistance if it is close enough to be a misspelling
+/// (at most max(2, |wanted| / 4) edits; the first of equally close ones), or an empty view.
+std::string_view closestMatch(std::string_view wanted, const std::vector<std::string>& candidates);
+
 /// The parts of `text` between the `separator`s (n separators give n + 1 parts, empty ones too).
 std::vector<std::string_view> split(std::string_view text, char separator);
 

@@ -21,6 +21,9 @@
 #include <tuple>
 #include <utility>
 
+#include "rw/common/content_model.hpp"
+#include "rw/common/strings.hpp"
+
 namespace rw::common {
 
 namespace xc = XERCES_CPP_NAMESPACE;
@@ -236,6 +239,55 @@ std::string contentModelList(const std::string& model) {
   return out;
 }
 
+// The names of the elements a schema declares (`<xs:element name="...">`), for "did you mean".
+std::vector<std::string> declaredElements(std::string_view schema) {
+  std::vector<std::string> names;
+  constexpr std::string_view kOpen = "<xs:element";
+  for (std::size_t at = schema.find(kOpen); at != std::string_view::npos;
+       at = schema.find(kOpen, at + kOpen.size())) {
+    const std::size_t end = schema.find('>', at);
+    const std::size_t name = schema.find("name=\"", at);
+    if (name == std::string_view::npos || name > end) continue;
+    const std::size_t close = schema.find('"', name + 6);
+    if (close == std::string_view::npos) break;
+    std::string n(schema.substr(name + 6, close - name - 6));
+    if (n != kFragmentElement && std::find(names.begin(), names.end(), n) == names.end()) {
+      names.push_back(std::move(n));
+    }
+  }
+  return names;
+}
+
+// "; did you mean <X>?" for the declared element closest to `name`, or "".
+std::string suggestElement(const std::string& name, const std::vector<std::string>& declared) {
+  const std::string_view best = closestMatch(name, declared);
+  return best.empty() ? std::string() : "; did you mean <" + std::string(best) + ">?";
+}
+
+// Why the children of `open` do not fit the content model `model` (Xerces's text), at the child
+// concerned; empty if the model cannot be read.
+std::string explainChildren(const XmlElement& open, const std::string& model,
+                            SourceLocation& where) {
+  const auto parsed = ContentModel::parse(model);
+  if (!parsed) return {};
+  std::vector<std::string> names;
+  names.reserve(open.children.size());
+  for (const XmlElement& c : open.children) names.push_back(c.name);
+  std::size_t index = 0;
+  std::string message = parsed->explain(names, open.describe(), &index);
+  if (message.empty()) return {};
+  where = index < open.children.size() ? open.children[index].location : open.location;
+  if (message.find(" is given twice") != std::string::npos) {
+    for (std::size_t j = 0; j < index; ++j) {
+      if (open.children[j].name == names[index]) {
+        message += " (the first is at line " + std::to_string(open.children[j].location.line) + ")";
+        break;
+      }
+    }
+  }
+  return message;
+}
+
 // Receives the SAX events of one parse and builds the element tree.
 class TreeBuilder : public xc::DefaultHandler {
  public:
@@ -392,7 +444,8 @@ std::string TreeBuilder::explain(const std::string& xerces, const XmlElement* st
     const std::string self = started->describe();
     if (xerces.find("no declaration found for element") != std::string::npos) {
       return "unknown element <" + started->name + ">" +
-             (openIsWrapper ? std::string() : " in " + open->describe());
+             (openIsWrapper ? std::string() : " in " + open->describe()) +
+             suggestElement(started->name, declaredElements(options_.schema));
     }
     if (xerces.find("is not declared for element") != std::string::npos) {
       return self + ": unknown attribute \"" + quotedAfter(xerces, "attribute") + "\"";
@@ -414,6 +467,13 @@ std::string TreeBuilder::explain(const std::string& xerces, const XmlElement* st
 std::string TreeBuilder::explainContentError(const std::string& xerces, const XmlElement& open,
                                              SourceLocation& where) const {
   const bool isWrapper = open.name == kFragmentElement;
+  const bool contentModelError =
+      xerces.find("is not allowed for content model") != std::string::npos ||
+      xerces.find("missing elements in content model") != std::string::npos;
+  if (contentModelError && !isWrapper) {
+    std::string message = explainChildren(open, quotedAfter(xerces, "content model"), where);
+    if (!message.empty()) return message;
+  }
   if (xerces.find("is not allowed for content model") != std::string::npos) {
     const std::string child = quotedAfter(xerces, "element");
     for (const XmlElement& c : open.children) {

@@ -256,6 +256,32 @@ TEST(DatabaseIndexTest, MalformedIndexesGiveOneErrorWithFileAndLine) {
       "the database folder");
 }
 
+// Schema errors say what is wrong (issue 20): missing, out of order, given twice, misspelt.
+TEST(DatabaseIndexTest, SchemaErrorsSayWhatIsWrong) {
+  EXPECT_EQ(errorOf(indexText(kScene, kFiles + "    <Object id=\"5\" name=\"cocacola\">\n"
+                                               "      <RPY>90 0 0</RPY>\n    </Object>\n")),
+            "db/index.xml:6:7: error: missing <Pos> (required before <RPY>)");
+  EXPECT_EQ(errorOf(indexText(kScene, kFiles + "    <Object id=\"5\" name=\"cocacola\">\n"
+                                               "      <RPY>90 0 0</RPY>\n      <Pos>0 0 "
+                                               "0.06</Pos>\n    </Object>\n")),
+            "db/index.xml:6:7: error: <RPY> is out of order: it must come after <Pos>");
+  EXPECT_EQ(errorOf(indexText(kScene, kObject + kFiles)),
+            "db/index.xml:4:5: error: <Object> is out of order: it must come after <Files>");
+  EXPECT_EQ(errorOf(indexText(kScene, kObject)),
+            "db/index.xml:4:5: error: missing <Files> (required before <Object>)");
+  EXPECT_EQ(errorOf(indexText(kScene, kFiles + kFiles + kObject)),
+            "db/index.xml:5:5: error: <Files> is given twice; <Scene "
+            "id=\"textured/single/cocacola/03\"> allows only one (the first is at line 4)");
+  EXPECT_EQ(errorOf(indexText(kScene, kFiles)),
+            "db/index.xml:3:3: error: missing <Object> (required after <Files>)");
+  std::string misspelt = kObject;
+  misspelt.replace(misspelt.find("<Pos>"), 5, "<Poss>");
+  misspelt.replace(misspelt.find("</Pos>"), 6, "</Poss>");
+  EXPECT_EQ(errorOf(indexText(kScene, kFiles + misspelt)),
+            "db/index.xml:6:7: error: unknown element <Poss> in <Object name=\"cocacola\">; did "
+            "you mean <Pos>?");
+}
+
 TEST(DatabaseIndexTest, MissingFileIsAnError) {
   test::TempDir dir;
   try {

@@ -129,6 +129,22 @@ TEST(CameraProfile, BadValuesAreReportedWithFileAndLine) {
   }
 }
 
+// Schema errors say what is wrong (issue 20): out of order, misspelt.
+TEST(CameraProfile, SchemaErrorsSayWhatIsWrong) {
+  const std::string head = "<CameraProfile name=\"x\">\n";
+  std::string e = loadError(head +
+                            "  <Sensor readNoise=\"1\"/>\n  <Rig baseline=\"0.1\"/>\n"
+                            "</CameraProfile>");
+  EXPECT_NE(e.find("bad.xml:3:3: error: <Rig> is out of order: it must come before <Sensor>"),
+            std::string::npos)
+      << e;
+  e = loadError(head + "  <Sensr readNoise=\"1\"/>\n</CameraProfile>");
+  EXPECT_NE(e.find("bad.xml:2:3: error: unknown element <Sensr> in <CameraProfile "
+                   "name=\"x\">; did you mean <Sensor>?"),
+            std::string::npos)
+      << e;
+}
+
 TEST(CameraProfile, OmittedValuesKeepTheIdealOnes) {
   const gen::CameraProfile p = gen::loadCameraProfileFromString(
       "<CameraProfile name=\"mosaic\"><Sensor bayer=\"RGGB\"/></CameraProfile>", "m.xml");

@@ -218,6 +218,46 @@ TEST(GraspDescription, MalformedGiveOneErrorAtTheirLine) {
   }
 }
 
+// Schema errors say what is wrong (issue 20): a required element left out, elements out of
+// order or given twice, a misspelt one; each at the line of the element concerned.
+TEST(GraspDescription, SchemaErrorsSayWhatIsWrong) {
+  const std::string xml = description("tcp=\"SDHTCP\"", "qOpen=\"0 0 0 0 0 0 0\"");
+  const std::size_t tauBegin = xml.find("  <TauMax");
+  const std::size_t tauEnd = xml.find("  <ContactIK");
+  const std::string tau = xml.substr(tauBegin, tauEnd - tauBegin);
+  const std::size_t closingBegin = xml.find("  <Closing>");
+  const std::string closing = xml.substr(closingBegin, tauBegin - closingBegin);
+  std::string withoutTau = xml;
+  withoutTau.erase(tauBegin, tau.size());
+  std::string swapped = xml;
+  swapped.replace(closingBegin, closing.size() + tau.size(), tau + closing);
+  std::string twice = xml;
+  twice.insert(tauEnd, tau);
+  std::string misspelt = xml;
+  misspelt.replace(misspelt.find("<Closing>"), 9, "<Closng>");
+  misspelt.replace(misspelt.find("</Closing>"), 10, "</Closng>");
+  const BadCase cases[] = {
+      {"missing", withoutTau, 6, "missing <TauMax> (required before <ContactIK>)"},
+      {"out of order", swapped, 3, "<TauMax> is out of order: it must come after <Closing>"},
+      {"twice", twice, 9,
+       "<TauMax> is given twice; <GraspDescription> allows only one (the first is at line 6)"},
+      {"misspelt", misspelt, 3,
+       "unknown element <Closng> in <GraspDescription>; did you mean "
+       "<Closing>?"},
+  };
+  for (const BadCase& c : cases) {
+    SCOPED_TRACE(c.what);
+    try {
+      loadHandGraspSetupFromString(c.xml, virtualFile());
+      ADD_FAILURE() << "loaded";
+    } catch (const rw::common::LoadError& e) {
+      ASSERT_EQ(e.diagnostics().size(), 1u) << e.what();
+      EXPECT_EQ(e.diagnostics()[0].line, c.line) << e.what();
+      EXPECT_EQ(e.diagnostics()[0].message, c.message) << e.what();
+    }
+  }
+}
+
 TEST(GraspDescription, DuplicatePreshapeName) {
   std::string xml = description();
   const std::string line =

@@ -154,6 +154,16 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(
         BadSpec{"missing attribute", box(R"(<Box x="0.1" y="0.1"/>)"), 3,
                 "<Box>: missing required attribute \"z\""},
+        // Schema errors that say what is wrong (issue 20).
+        BadSpec{"no shape", box(""), 4,
+                "missing one of <Box>, <Cylinder>, <Lathe> or <Mesh> (required before "
+                "<Appearance>)"},
+        BadSpec{"appearance first",
+                "<ObjectDatabase>\n<Object id=\"1\" name=\"a\" mass=\"0.2\">\n" + kAppearance +
+                    "\n<Box x=\"0.1\" y=\"0.1\" z=\"0.2\"/>\n</Object>\n</ObjectDatabase>\n",
+                3, "<Appearance> is out of order: it must come after <Box>"},
+        BadSpec{"misspelt shape", box(R"(<Bx x="0.1" y="0.1" z="0.2"/>)"), 3,
+                "unknown element <Bx> in <Object name=\"a\">; did you mean <Box>?"},
         BadSpec{"non-positive size", box(R"(<Box x="0.1" y="-0.1" z="0.2"/>)"), 3,
                 "attribute y must be positive, got -0.1"},
         BadSpec{"not a number", box(R"(<Box x="0.1" y="wide" z="0.2"/>)"), 3,

@@ -6,6 +6,7 @@
 #include <string>
 #include <utility>
 
+#include "rw/common/strings.hpp"
 #include "rw/common/xml_attributes.hpp"
 #include "rw/kinematics/frame_tree.hpp"
 #include "rw/loaders/detail/wc_elements.hpp"
@@ -98,8 +99,15 @@ std::string DescriptionParser::scoped(const std::string& name) const {
 
 void DescriptionParser::notAllowed(const common::XmlElement& child,
                                    const common::XmlElement& parent, const char* expected) {
-  sink_.error(child.location, "<" + child.name + "> is not allowed in " + parent.describe() +
-                                  "; expected one of: " + expected);
+  std::vector<std::string> names;
+  for (const std::string_view name : common::split(expected, ',')) {
+    names.emplace_back(name.substr(name.find_first_not_of(' ')));
+  }
+  const std::string_view meant = common::closestMatch(child.name, names);
+  sink_.error(child.location,
+              "<" + child.name + "> is not allowed in " + parent.describe() +
+                  (meant.empty() ? std::string() : "; did you mean <" + std::string(meant) + ">?") +
+                  "; expected one of: " + expected);
 }
 
 void DescriptionParser::unsupportedDevice(const common::XmlElement& element) {
