@@ -133,8 +133,11 @@ def test_rejected_grasps_have_the_cli_messages(runs, db, binary, test_db_path, t
 
 
 def test_existing_results_need_resume_and_resume_completes(runs, db, tmp_path):
-    with pytest.raises(RuntimeError, match="already holds results"):
-        visgrab.run(db, runs["grasps"], threads=1, out=runs["module"])
+    kept = (runs["module"] / "grasps.csv").read_bytes()
+    with pytest.raises(RuntimeError, match=r"trials\.csv already holds results; resume them "
+                                           r"\(resume=True\)"):
+        visgrab.run(db, runs["grasps"][:1], threads=1, out=runs["module"])
+    assert (runs["module"] / "grasps.csv").read_bytes() == kept
     again = visgrab.run(db, runs["grasps"], threads=2, out=runs["module"], resume=True)
     assert again.summary["resumed"] == 4 and again.summary["trials"] == 0
 

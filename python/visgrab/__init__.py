@@ -322,6 +322,10 @@ def run(db, grasps, hand=None, threads=None, out=None, scenes=None, resume=False
         scenes = ";".join(scenes)
     with tempfile.TemporaryDirectory(prefix="visgrab-run-") as tmp:
         folder = pathlib.Path(tmp if out is None else os.fspath(out))
+        if not resume and (folder / "trials.csv").exists():
+            # Checked before grasps.csv is written: the earlier run's input stays as it was.
+            raise RuntimeError(f"{folder / 'trials.csv'} already holds results; resume them "
+                               "(resume=True) or choose another folder")
         folder.mkdir(parents=True, exist_ok=True)
         grasp_file = folder / "grasps.csv"
         write_grasps(grasp_file, grasps)
