@@ -222,3 +222,31 @@ def test_the_minimal_png_reader_agrees_with_pillow(db):
     pytest.importorskip("PIL", reason="python3-pil is not installed: nothing to compare with")
     mask = db.scene(SCENE).files["mask"]
     np.testing.assert_array_equal(read_png_minimal(mask), read_png(mask))
+
+
+def test_generate_database_gives_the_cli_files(tmp_path, binary):
+    scene = "plain/single/saltbox/01"
+    calls = []
+    report = visgrab.generate_database(tmp_path / "py", scenes=f"id={scene}", threads=1, seed=7,
+                                       progress=lambda *p: calls.append(p))
+    assert report == {"generated": 1, "skipped": 0, "failures": []}
+    assert calls[-1] == (1, 1, scene)
+    cli(binary, "db", "generate", "--out", tmp_path / "cli", "--scenes", f"id={scene}",
+        "--threads", "2", "--seed", "7", "--quiet")
+    for name in ("left.png", "right.png", "calibration.yml", "cloud.ply", "depth.png"):
+        assert (tmp_path / "py/scenes" / scene / name).read_bytes() == \
+            (tmp_path / "cli/scenes" / scene / name).read_bytes(), name
+    assert visgrab.Database(str(tmp_path / "py")).scene_ids() == [scene]
+    # Again: the complete scene is skipped.
+    assert visgrab.generate_database(tmp_path / "py", scenes=[f"id={scene}"], threads=1,
+                                     seed=7)["skipped"] == 1
+    with pytest.raises(ValueError, match="scenes: .*nosuchword"):
+        visgrab.generate_database(tmp_path / "x", scenes="nosuchword")
+    with pytest.raises(ValueError, match="selects no scene"):
+        visgrab.generate_database(tmp_path / "x", scenes="id=nothing/*")
+    with pytest.raises(ValueError, match="camera: "):
+        visgrab.generate_database(tmp_path / "x", scenes=f"id={scene}", camera="nocamera")
+    with pytest.raises(ValueError, match="threads"):
+        visgrab.generate_database(tmp_path / "x", scenes=f"id={scene}", threads=0)
+    with pytest.raises(ValueError, match="seed"):
+        visgrab.generate_database(tmp_path / "x", scenes=f"id={scene}", seed=-1)
