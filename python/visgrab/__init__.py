@@ -209,7 +209,7 @@ class _MakerOrAttribute:
     def __init__(self, make, attribute):
         self.make = make
         self.attribute = attribute
-        self.__doc__ = make.__doc__
+        self.__doc__ = f"{make.__doc__}\n    On a grasp: {attribute.__doc__}"
 
     def __get__(self, grasp, cls=None):
         return self.make if grasp is None else self.attribute.__get__(grasp, cls)
