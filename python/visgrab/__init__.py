@@ -183,7 +183,7 @@ def _raw(scene, method, id, q_open, q_closed, tau_max=(), position=None, quatern
     """
     q_open = _numbers("q_open", q_open, (None,))
     q_closed = _numbers("q_closed", q_closed, (None,))
-    tau = _numbers("tau_max", list(tau_max), (None,))
+    tau = _numbers("tau_max", tau_max, (None,))
     return _grasp("raw", scene, method, id,
                   _pose_fields(position, quaternion, pose) + [len(q_open)] + q_open
                   + [len(q_closed)] + q_closed + [len(tau)] + tau)
