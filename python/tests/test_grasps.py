@@ -69,6 +69,12 @@ def test_grasp_kinds_and_attributes():
                             q_closed=[0.5] * 7, position=[0, 0, 0.3], quaternion=[1, 0, 0, 0])
     assert list(raw.q_open) == [0.1] * 7 and list(raw.q_closed) == [0.5] * 7
     assert raw.tau_max.size == 0
+    limited = visgrab.Grasp.raw(scene=SCENE, method="mine", id="g5", q_open=np.zeros(7),
+                                q_closed=np.ones(7), tau_max=np.full(7, 2.5), pose=np.eye(4))
+    assert list(limited.tau_max) == [2.5] * 7
+    with pytest.raises(ValueError, match="tau_max: expected shape"):
+        visgrab.Grasp.raw(scene=SCENE, method="mine", id="g5", q_open=np.zeros(7),
+                          q_closed=np.ones(7), tau_max=2.5, pose=np.eye(4))
     contacts = visgrab.Grasp.contacts(scene=SCENE, method="mine", id="g4",
                                       contacts=[[0.0, 0, 0.1, 1, 0, 0], [0.06, 0, 0.1, -1, 0, 0]])
     assert contacts.contacts.shape == (2, 6) and contacts.position is None
