@@ -191,7 +191,7 @@ py::dict generate(const fs::path& out, const py::object& scenes, int threads,
   generator::GeneratorOptions options;
   options.objectSpec = data / "objects" / "objects.xml";
   if (!objects.is_none()) {
-    const fs::path spec = objects.cast<fs::path>();
+    const auto spec = objects.cast<fs::path>();
     options.catalog = generator::objectCatalog(objects::loadObjectSpecs(spec));
     options.tableSpec = options.objectSpec;
     options.objectSpec = spec;
@@ -281,7 +281,7 @@ Raises OSError (naming the file and line) when the index or manifest is missing 
             return d.db->source() == database::Database::Source::kGenerated ? "generated"
                                                                             : "original";
           },
-          "\"generated\" or \"original\" (an original VisGraB manifest).")
+          R"("generated" or "original" (an original VisGraB manifest).)")
       .def_property_readonly(
           "seed", [](const OpenDatabase& d) { return d.db->seed(); },
           "The generator's seed (0 for an original manifest).")
@@ -380,7 +380,7 @@ height (pixels), baseline (m). OpenCV conventions: x_right = R x_left + T.)doc")
           "point_cloud",
           [](const SceneView& s, const std::string& frame) {
             if (frame != "camera" && frame != "table") {
-              throw py::value_error("frame must be \"camera\" or \"table\", got \"" + frame + "\"");
+              throw py::value_error(R"(frame must be "camera" or "table", got ")" + frame + "\"");
             }
             database::PointCloud cloud;
             Eigen::Isometry3d X = Eigen::Isometry3d::Identity();

@@ -30,7 +30,7 @@ py::array_t<double> vectorOf(const Eigen::VectorXd& v) {
 py::array_t<double> poseOf(const rw::math::Transform3D& X) {
   py::array_t<double> out({py::ssize_t{4}, py::ssize_t{4}});
   auto view = out.mutable_unchecked<2>();
-  const Eigen::Matrix4d m = X.matrix();
+  const auto& m = X.matrix();
   for (int r = 0; r < 4; ++r) {
     for (int c = 0; c < 4; ++c) view(r, c) = m(r, c);
   }
@@ -168,7 +168,7 @@ Raises ValueError for an unknown name, OSError (file:line:column) for a missing 
 )doc")
       .def(py::init([](const py::object& hand) {
              // Names are looked up in visgrab.data_folder() (the package's Python side).
-             const fs::path data =
+             const auto data =
                  py::module_::import("visgrab").attr("data_folder")().cast<fs::path>();
              const fs::path file = findHand(py::str(hand).cast<std::string>(), data);
              py::gil_scoped_release release;
@@ -242,7 +242,7 @@ the hand's TCP frame in the table (world) frame, metres; quaternions [w, x, y, z
           "The grasp id, unique per (scene, method).")
       .def_property_readonly(
           "kind", [](const Grasp& g) { return std::string(grasp::kindName(g.request.kind)); },
-          "\"preshape\", \"pose_q\", \"raw\" or \"contacts\".")
+          R"("preshape", "pose_q", "raw" or "contacts".)")
       .def_property_readonly(
           "position",
           [](const Grasp& g) -> py::object {
@@ -341,6 +341,7 @@ the hand's TCP frame in the table (world) frame, metres; quaternions [w, x, y, z
       "_write_grasps",
       [](const fs::path& file, const std::vector<Grasp>& grasps) {
         std::vector<GraspRequest> requests;
+        requests.reserve(grasps.size());
         for (const auto& g : grasps) requests.push_back(g.request);
         try {
           taskio::writeGraspList(requests, file);

@@ -257,6 +257,7 @@ input files. Iterating or indexing goes over the trials.
         }
         std::vector<std::string> warnings;
         std::vector<results::RunResults> runs;
+        runs.reserve(dirs.size());
         for (const auto& dir : dirs) runs.push_back(readResults(dir, warnings));
         py::gil_scoped_release release;
         view::ReportPictureOptions options;

@@ -16,7 +16,8 @@ namespace py = pybind11;
 
 // C++ exceptions as Python's: bad input is ValueError, files are OSError (the message is the
 // CLI's: file:line:column where the C++ side knows them).
-void translate(std::exception_ptr error) {
+// By value: pybind11's translator signature.
+void translate(std::exception_ptr error) {  // NOLINT(performance-unnecessary-value-param)
   namespace db = visgrab::database;
   try {
     if (error) std::rethrow_exception(error);
@@ -53,7 +54,7 @@ PYBIND11_MODULE(_visgrab, m) {
       [](const std::filesystem::path& prefix) {
         // As the installed `visgrab` program finds its data: the installed data next to it
         // (PREFIX/bin/visgrab -> PREFIX/share/visgrab/scenes), else the source tree's.
-        const std::filesystem::path installed =
+        std::filesystem::path installed =
             visgrab::cli::installedDataFolder(prefix / "bin" / "visgrab");
         std::error_code error;
         if (std::filesystem::is_directory(installed, error)) return installed;
