@@ -6,7 +6,13 @@
 #   lib/cmake/VisGraB         the CMake package: find_package(VisGraB) gives VisGraB::<module> and
 #                             one umbrella target per layer, VisGraB::rw, VisGraB::rwsim and
 #                             VisGraB::visgrab, each linking all of its layer's modules.
+#   lib/python3/dist-packages/visgrab   the Python module (VISGRAB_BUILD_PYTHON), in Debian's
+#                             layout: PYTHONPATH=P/lib/python3/dist-packages (docs/python.md)
 include(CMakePackageConfigHelpers)
+
+# Where the Python package goes, relative to the prefix (Debian's layout for the system Python).
+set(VISGRAB_PYTHON_INSTALL_DIR lib/python3/dist-packages CACHE STRING
+  "Install folder of the Python package visgrab, relative to CMAKE_INSTALL_PREFIX")
 
 # visgrab_install_package(): called once, after every module is defined.
 function(visgrab_install_package)

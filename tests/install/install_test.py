@@ -7,7 +7,10 @@ find_package(VisGraB), runs it (one grasp trial of the installed SDH hand around
 centred cylinder grasp that tests/rwsim/simulator holds stable), and runs the installed `visgrab`
 from a temporary folder with no VISGRAB_DATA: its default data folder is the installed
 share/visgrab/scenes: it generates one database scene from the installed objects and runs a
-grasp in it with the installed SDH description.
+grasp in it with the installed SDH description. When the Python module is built
+(VISGRAB_BUILD_PYTHON), it is imported from the prefix's Python folder
+(VISGRAB_PYTHON_INSTALL_DIR, Debian's lib/python3/dist-packages) in the temporary folder:
+Hand("sdh") is the installed description, and one grasp runs in that scene.
 Exit 77 (skipped) when something it needs is missing: the built program, the CMake generator,
 the compiler, or in a sanitizer build (the outside project would need the same instrumentation).
 """
@@ -41,7 +44,8 @@ def check(condition, message):
 
 def main():
     parser = argparse.ArgumentParser()
-    for name in ("cmake", "generator", "cxx", "build", "consumer", "program", "instrumented"):
+    for name in ("cmake", "generator", "cxx", "build", "consumer", "program", "instrumented",
+                 "python", "python-module", "python-install-dir"):
         parser.add_argument(f"--{name}", required=True)
     args = parser.parse_args()
 
@@ -138,7 +142,40 @@ def main():
         check(len(trial["q_grasp"]) == 7
               and all(abs(a - b) < 0.01 for a, b in zip(trial["q_grasp"], closed)),
               f"q grasp {trial['q_grasp']}, expected SDH_CYL's closed values {closed}")
+
+        if args.python_module == "ON":
+            check_python_module(args, prefix, work, env, scene)
+        else:
+            print("the Python module is not built (VISGRAB_BUILD_PYTHON off): not checked")
         return 0
+
+
+def check_python_module(args, prefix, work, env, scene):
+    """The installed package, imported outside the source and build trees: its data folder and
+    Hand("sdh") are the installed ones, and a grasp high above the table runs (missed)."""
+    packages = os.path.join(prefix, args.python_install_dir)
+    check(os.path.isfile(os.path.join(packages, "visgrab", "__init__.py")),
+          f"the Python package is not installed in {packages}/visgrab")
+    env = dict(env, PYTHONPATH=packages)
+    script = f"""
+import json, visgrab
+hand = visgrab.Hand("sdh")
+grasp = visgrab.Grasp.preshape(scene={scene!r}, method="installed", id="g1", preshape="SDH_CYL",
+                               position=[0, 0, 0.5], quaternion=[0, 0, 1, 0])
+trials = visgrab.run("db", [grasp], hand=hand, threads=1)
+print(json.dumps(dict(module=visgrab.__file__, data=visgrab.data_folder(), hand=hand.file,
+                      name=hand.name, outcome=trials[0].outcome)))
+"""
+    out = json.loads(run([args.python, "-c", script], cwd=work, env=env))
+    print(f"installed Python module: {out}")
+    scenes = os.path.join(prefix, "share", "visgrab", "scenes")
+    check(out["module"].startswith(packages + os.sep), f"imported {out['module']}, not the "
+          f"installed package under {packages}")
+    check(out["data"] == scenes, f"visgrab.data_folder() is {out['data']}, not {scenes}")
+    check(out["hand"] == os.path.join(scenes, "hands", "sdh", "sdh.grasp.xml"),
+          f"Hand('sdh') is {out['hand']}, not the installed description")
+    check(out["name"] == "SchunkHand", f"Hand('sdh') is {out['name']}")
+    check(out["outcome"] == "missed", f"a grasp 0.5 m above the table is {out['outcome']}")
 
 
 if __name__ == "__main__":

@@ -1,0 +1,273 @@
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include <cmath>
+#include <mutex>
+#include <set>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "common.hpp"
+#include "rw/common/diagnostic.hpp"
+#include "visgrab/analysis/report.hpp"
+#include "visgrab/grasp/grasp_resolver.hpp"
+#include "visgrab/results/results_file.hpp"
+#include "visgrab/runner/benchmark_runner.hpp"
+#include "visgrab/taskio/grasp_list.hpp"
+#include "visgrab/view/report_pictures.hpp"
+
+namespace visgrab::python {
+
+namespace {
+
+namespace fs = std::filesystem;
+using results::TrialRecord;
+
+std::string quoted(const std::string& s) { return py::repr(py::str(s)).cast<std::string>(); }
+
+// Every grasp of the grasp list `file` that the run would reject as input, as the run would
+// report it (file:line and the same words): malformed lines, unknown scenes, pre-shapes the
+// hand does not know, wrong numbers of joint values. Contact grasps are solved in the run.
+std::vector<std::string> graspProblems(const OpenDatabase& d, const Hand& hand,
+                                       const fs::path& file) {
+  const taskio::GraspFileContents read = taskio::readGraspList(file);
+  std::vector<std::string> problems;
+  for (const auto& r : read.rejected) problems.push_back(r.format());
+  for (const grasp::GraspRequest& r : read.requests) {
+    rw::common::Diagnostic problem;
+    problem.file = r.sourceFile;
+    problem.line = r.sourceLine;
+    if (!d.db->contains(r.sceneId)) {
+      const auto close = d.db->closestIds(r.sceneId);
+      problem.message = "grasp " + r.id + ": unknown scene \"" + r.sceneId + "\"" +
+                        (close.empty() ? "" : " (did you mean " + close.front() + "?)");
+      problems.push_back(problem.format());
+      continue;
+    }
+    if (r.kind == grasp::GraspKind::kContacts) continue;
+    const grasp::ResolvedGrasp resolved = grasp::resolve(r, *hand.setup);
+    if (resolved.status == grasp::ResolveStatus::kInputError) {
+      problem.message = "grasp " + r.id + ": " + resolved.message;
+      problems.push_back(problem.format());
+    }
+  }
+  return problems;
+}
+
+py::dict summaryDict(const runner::RunSummary& s) {
+  py::dict d;
+  d["trials"] = s.trials;
+  d["resumed"] = s.resumed;
+  std::vector<std::string> rejected;
+  for (const auto& r : s.rejected) rejected.push_back(r.format());
+  d["rejected"] = rejected;
+  d["outcomes"] = s.outcomes;
+  d["scenes"] = s.scenes;
+  d["methods"] = s.methods;
+  return d;
+}
+
+py::dict runBenchmark(const fs::path& database, const fs::path& grasps, const fs::path& out,
+                      const fs::path& hand, const std::string& scenes, int threads, bool resume,
+                      const py::object& progress) {
+  if (threads < 1) throw py::value_error("threads must be >= 1, got " + std::to_string(threads));
+  runner::RunOptions options;
+  options.database = database;
+  options.grasps = {grasps};
+  options.out = out;
+  options.hand = hand;
+  options.scenes = scenes;
+  options.threads = threads;
+  options.resume = resume;
+  std::mutex mutex;
+  runner::RunProgress latest;
+  bool fresh = false;
+  const auto tick = [&] {
+    runner::RunProgress p;
+    {
+      const std::lock_guard lock(mutex);
+      if (!fresh) return;
+      fresh = false;
+      p = latest;
+    }
+    progress(p.trialsDone, p.trialsTotal);
+  };
+  const runner::RunSummary summary = runInterruptible(
+      [&](const std::atomic<bool>* stop) {
+        options.stop = stop;
+        return runner::runBenchmark(options, [&](const runner::RunProgress& p) {
+          const std::lock_guard lock(mutex);
+          latest = p;
+          fresh = true;
+        });
+      },
+      progress.is_none() ? std::function<void()>() : std::function<void()>(tick));
+  return summaryDict(summary);
+}
+
+py::object conditionsOf(const std::optional<database::SceneConditions>& c) {
+  if (!c) return py::none();
+  py::dict d;
+  d["texture"] = std::string(database::toString(c->texture));
+  d["kind"] = std::string(database::toString(c->kind));
+  d["arrangement"] = std::string(database::toString(c->arrangement()));
+  d["object_ids"] = c->objects;
+  d["pose"] = c->pose;
+  return d;
+}
+
+std::string trialRepr(const TrialRecord& t) {
+  return "visgrab.TrialResult(scene=" + quoted(t.sceneId) + ", method=" + quoted(t.method) +
+         ", id=" + quoted(t.graspId) + ", rank=" + std::to_string(t.rank) +
+         ", outcome=" + quoted(std::string(rwsim::simulator::outcomeName(t.outcome))) +
+         ", q_lift=" + py::repr(py::float_(t.qLift)).cast<std::string>() +
+         ", q_gws=" + py::repr(py::float_(t.qGws)).cast<std::string>() + ")";
+}
+
+results::RunResults readResults(const fs::path& dir, std::vector<std::string>& warnings) {
+  std::vector<rw::common::Diagnostic> found;
+  results::RunResults run;
+  {
+    py::gil_scoped_release release;
+    run = results::readResults(dir, &found);
+  }
+  for (const auto& w : found) warnings.push_back(w.format());
+  return run;
+}
+
+}  // namespace
+
+void bindRuns(py::module_& m) {
+  py::class_<TrialRecord>(m, "TrialResult", R"doc(
+One grasp trial of a run: a row of trials.csv (docs/report.md), read by the C++ results reader.
+outcome is the outcome's name (stable, slipped, dropped, missed, in_collision, invalid_contacts,
+simulation_failure, ...), robwork_code RobWork's status code for it.
+)doc")
+      .def_readonly("scene", &TrialRecord::sceneId, "The scene id.")
+      .def_readonly("method", &TrialRecord::method, "The method (grasp list field 2).")
+      .def_readonly("id", &TrialRecord::graspId, "The grasp id.")
+      .def_readonly("rank", &TrialRecord::rank,
+                    "0-based position among the scene's grasps of this method, as given.")
+      .def_property_readonly(
+          "outcome",
+          [](const TrialRecord& t) {
+            return std::string(rwsim::simulator::outcomeName(t.outcome));
+          },
+          "The outcome's name.")
+      .def_property_readonly(
+          "robwork_code",
+          [](const TrialRecord& t) { return rwsim::simulator::robworkCode(t.outcome); },
+          "RobWork's status code of the outcome.")
+      .def_property_readonly(
+          "success", [](const TrialRecord& t) { return results::isSuccess(t.outcome); },
+          "True for the outcomes the paper counts as success (stable, slipped).")
+      .def_readonly("q_lift", &TrialRecord::qLift, "Paper eq. 5 (0 unless held).")
+      .def_readonly("q_gws", &TrialRecord::qGws,
+                    "Paper eq. 6-7 on the measured contact forces (0 unless held; NaN when not "
+                    "computed).")
+      .def_readonly("q_gws_unit", &TrialRecord::qGwsUnit,
+                    "The grasp wrench space quality with unit normal forces (0 unless held).")
+      .def_readonly("object", &TrialRecord::object,
+                    "Id (1..18) of the object held or touched most; 0 when none was touched.")
+      .def_readonly("simulated_time", &TrialRecord::simulatedTime, "Simulated time, s.")
+      .def_readonly("detail", &TrialRecord::detail, "Free text (failure details).")
+      .def_property_readonly(
+          "conditions", [](const TrialRecord& t) { return conditionsOf(t.conditions); },
+          "The scene's conditions (texture, kind, arrangement, object_ids, pose) or None.")
+      .def("__repr__", &trialRepr);
+
+  py::class_<results::RunResults>(m, "Results", R"doc(
+A result folder as the analyses read it (results::readResults): trials in canonical order
+(scene, method, rank), the scenes and methods of the run, rejected grasp counts and the run's
+input files. Iterating or indexing goes over the trials.
+)doc")
+      .def_readonly("trials", &results::RunResults::trials, "list[TrialResult].")
+      .def_property_readonly(
+          "scenes",
+          [](const results::RunResults& r) {
+            std::vector<std::string> ids;
+            for (const auto& s : r.scenes) ids.push_back(s.id);
+            return ids;
+          },
+          "The run's scene ids (with or without grasps), in database order.")
+      .def_readonly("methods", &results::RunResults::methods, "The methods, in order first seen.")
+      .def_property_readonly(
+          "rejected",
+          [](const results::RunResults& r) {
+            py::dict d;
+            for (const auto& [method, n] : r.rejected) d[py::str(method)] = n;
+            return d;
+          },
+          "Grasps rejected before simulation, per method (dict).")
+      .def_property_readonly(
+          "sources",
+          [](const results::RunResults& r) {
+            py::dict d;
+            d["database"] = r.sources.database.string();
+            std::vector<std::string> grasps;
+            for (const auto& g : r.sources.grasps) grasps.push_back(g.string());
+            d["grasps"] = grasps;
+            d["hand"] = r.sources.hand.string();
+            return d;
+          },
+          "The run's input files (run.csv): database, grasps, hand.")
+      .def_readonly("label", &results::RunResults::label, "The folder's name.")
+      .def("__len__", [](const results::RunResults& r) { return r.trials.size(); })
+      .def(
+          "__iter__",
+          [](const results::RunResults& r) {
+            return py::make_iterator(r.trials.begin(), r.trials.end());
+          },
+          py::keep_alive<0, 1>())
+      .def("__getitem__",
+           [](const results::RunResults& r, py::ssize_t i) {
+             const auto n = static_cast<py::ssize_t>(r.trials.size());
+             if (i < 0) i += n;
+             if (i < 0 || i >= n) throw py::index_error("trial index out of range");
+             return r.trials[static_cast<std::size_t>(i)];
+           })
+      .def("__repr__", [](const results::RunResults& r) {
+        return "visgrab.Results(" + quoted(r.label) + ", " + std::to_string(r.trials.size()) +
+               " trials, " + std::to_string(r.scenes.size()) + " scenes, " +
+               std::to_string(r.methods.size()) + " methods)";
+      });
+
+  m.def(
+      "_read_results",
+      [](const fs::path& dir) {
+        std::vector<std::string> warnings;
+        results::RunResults run = readResults(dir, warnings);
+        return py::make_tuple(std::move(run), warnings);
+      },
+      py::arg("dir"), "read_results's C++ side: (Results, warnings).");
+
+  m.def("_grasp_problems", &graspProblems, py::arg("db"), py::arg("hand"), py::arg("file"),
+        "The grasps of a grasp list that a run would reject, as it reports them.");
+
+  m.def("_run", &runBenchmark, py::arg("database"), py::arg("grasps"), py::arg("out"),
+        py::arg("hand"), py::arg("scenes"), py::arg("threads"), py::arg("resume"),
+        py::arg("progress"), "run's C++ side: runner::runBenchmark; returns its summary.");
+
+  m.def(
+      "_analyze",
+      [](const std::vector<fs::path>& dirs, const fs::path& out, int threads, bool pictures) {
+        if (threads < 1) {
+          throw py::value_error("threads must be >= 1, got " + std::to_string(threads));
+        }
+        std::vector<std::string> warnings;
+        std::vector<results::RunResults> runs;
+        runs.reserve(dirs.size());
+        for (const auto& dir : dirs) runs.push_back(readResults(dir, warnings));
+        py::gil_scoped_release release;
+        view::ReportPictureOptions options;
+        options.threads = threads;
+        analysis::writeReport(
+            runs, out, {}, pictures ? view::showcaseDrawer(options) : analysis::ShowcaseDrawer());
+        return warnings;
+      },
+      py::arg("dirs"), py::arg("out"), py::arg("threads"), py::arg("pictures"),
+      "analyze's C++ side: analysis::writeReport as `visgrab analyze`; returns the warnings.");
+}
+
+}  // namespace visgrab::python

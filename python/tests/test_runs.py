@@ -1,0 +1,211 @@
+"""visgrab.run, read_results and analyze against `visgrab run` and `visgrab analyze` on the same
+grasps (written with write_grasps): byte-identical trials.csv through either path, whatever the
+thread count; the CLI's messages for rejected grasps; Ctrl-C and resume."""
+import filecmp
+import os
+import re
+import subprocess
+import sys
+import tempfile
+import textwrap
+
+import numpy as np
+import pytest
+
+import visgrab
+from conftest import cli, trials_rows
+
+SCENES = ["plain/single/cocacola/01", "plain/single/saltbox/01"]
+DOWN = [0.0, 0.0, 1.0, 0.0]
+
+
+def make_grasps(db):
+    """Two grasps per scene: top-down at the object (it may hold) and high above it (missed)."""
+    grasps = []
+    for sid in SCENES:
+        p = db.scene(sid).ground_truth[0]["pose"][:3, 3]
+        grasps.append(visgrab.Grasp.preshape(scene=sid, method="py", id="at", preshape="SDH_CYL",
+                                             position=[p[0], p[1], p[2] + 0.1],
+                                             quaternion=DOWN))
+        grasps.append(visgrab.Grasp.preshape(scene=sid, method="py", id="above",
+                                             preshape="SDH_BALL",
+                                             position=[p[0], p[1], p[2] + 0.4], quaternion=DOWN))
+    return grasps
+
+
+@pytest.fixture(scope="module")
+def runs(db, binary, test_db_path, tmp_path_factory):
+    """The same grasps through the module (1 thread) and the CLI (2 threads)."""
+    root = tmp_path_factory.mktemp("runs")
+    grasps = make_grasps(db)
+    module_out = root / "module" / "results"
+    trials = visgrab.run(db, grasps, hand="sdh", threads=1, out=module_out)
+    grasp_file = root / "grasps.csv"
+    visgrab.write_grasps(grasp_file, grasps)
+    cli_out = root / "cli" / "results"
+    cli(binary, "run", "--db", test_db_path, "--grasps", grasp_file, "--out", cli_out,
+        "--threads", "2", "--quiet")
+    return dict(root=root, grasps=grasps, trials=trials, module=module_out, cli=cli_out,
+                grasp_file=grasp_file)
+
+
+def test_trials_csv_is_byte_identical_to_the_cli(runs):
+    module_bytes = (runs["module"] / "trials.csv").read_bytes()
+    assert module_bytes == (runs["cli"] / "trials.csv").read_bytes()
+    rows = trials_rows(runs["cli"] / "trials.csv")
+    trials = runs["trials"]
+    assert len(trials) == len(rows) == 4
+    # The returned TrialResults are the CLI's rows (canonical order), field by field.
+    assert [t.scene for t in trials] == [SCENES[0]] * 2 + [SCENES[1]] * 2
+    for t, row in zip(trials, rows):
+        assert (t.scene, t.method, t.id, str(t.rank)) == (row["scene"], row["method"],
+                                                          row["grasp"], row["rank"])
+        assert t.outcome == row["outcome"] and str(t.robwork_code) == row["robwork_code"]
+        for name in ("q_lift", "q_gws", "q_gws_unit", "simulated_time"):
+            assert getattr(t, name) == pytest.approx(float(row[name]), rel=1e-12, abs=0), name
+        assert str(t.object) == row["object"] and t.detail == row["detail"]
+    # The grasp 0.4 m above the object closes on nothing.
+    assert [t.outcome for t in trials if t.id == "above"] == ["missed", "missed"]
+    assert trials.summary["trials"] == 4 and trials.rejected == []
+    assert sum(trials.summary["outcomes"].values()) == 4
+    # The run's grasp list is kept where run.csv points (visgrab render --results uses it).
+    assert trials.results.sources["grasps"] == [str(runs["module"] / "grasps.csv")]
+    assert visgrab.read_grasps(runs["module"] / "grasps.csv") == runs["grasps"]
+
+
+def test_two_threads_give_the_same_bytes_and_out_none_leaves_nothing(runs, db, tmp_path,
+                                                                      monkeypatch):
+    out = tmp_path / "two"
+    visgrab.run(db.path, runs["grasps"], hand=visgrab.Hand("sdh"), threads=2, out=out)
+    assert (out / "trials.csv").read_bytes() == (runs["module"] / "trials.csv").read_bytes()
+    scratch = tmp_path / "scratch"
+    scratch.mkdir()
+    monkeypatch.setattr(tempfile, "tempdir", str(scratch))
+    trials = visgrab.run(db, runs["grasps"], threads=2, scenes=SCENES[1])
+    assert os.listdir(scratch) == []
+    expected = [t for t in runs["trials"] if t.scene == SCENES[1]]
+    assert [(t.id, t.outcome, t.q_lift) for t in trials] == \
+        [(t.id, t.outcome, t.q_lift) for t in expected]
+
+
+def test_read_results_is_the_run(runs):
+    results = visgrab.read_results(runs["cli"])
+    assert results.scenes == visgrab.read_results(runs["module"]).scenes
+    assert results.methods == ["py"] and results.label == "results"
+    assert len(results) == 4 and [t.id for t in results] == [t.id for t in runs["trials"]]
+    assert results[-1].id == runs["trials"][3].id
+    assert "visgrab.Results('results', 4 trials" in repr(results)
+    assert repr(results[0]).startswith("visgrab.TrialResult(scene=")
+
+
+def test_rejected_grasps_have_the_cli_messages(runs, db, binary, test_db_path, tmp_path):
+    good = runs["grasps"][1]
+    bad = [
+        visgrab.Grasp.preshape(scene=SCENES[0], method="py", id="shape", preshape="SDH_NONE",
+                               position=[0, 0, 0.5], quaternion=DOWN),
+        visgrab.Grasp.preshape(scene="plain/single/cocacola/99", method="py", id="where",
+                               preshape="SDH_CYL", position=[0, 0, 0.5], quaternion=DOWN),
+        visgrab.Grasp.pose_q(scene=SCENES[0], method="py", id="q", q=[0.0] * 6,
+                             position=[0, 0, 0.5], quaternion=DOWN),
+    ]
+    out = tmp_path / "lenient"
+    trials = visgrab.run(db, [good] + bad, threads=1, out=out, strict=False)
+    assert [t.id for t in trials] == ["above"]
+    assert len(trials.rejected) == 3
+    # The CLI on the same grasp file prints the same diagnostics (file:line: error: ...).
+    result = cli(binary, "run", "--db", test_db_path, "--grasps", out / "grasps.csv", "--out",
+                 tmp_path / "cli", "--threads", "1", "--quiet")
+    printed = [line for line in result.stderr.splitlines() if ": error: " in line]
+    assert sorted(printed) == sorted(trials.rejected)
+    assert any('unknown pre-shape "SDH_NONE" for hand "SchunkHand"' in m for m in printed)
+    assert any('unknown scene "plain/single/cocacola/99"' in m for m in printed)
+    # strict=True (the default) raises them before anything runs.
+    for grasp in bad:
+        strict_out = tmp_path / f"strict-{grasp.id}"
+        with pytest.raises(ValueError) as error:
+            visgrab.run(db, [good, grasp], threads=1, out=strict_out)
+        message = str(error.value)
+        assert message.startswith(f"{strict_out / 'grasps.csv'}:")
+        # The same message but for the file's folder and line.
+        unplaced = lambda text: re.sub(r"\S*grasps\.csv:\d+:", "FILE:", text)
+        assert unplaced(message) in [unplaced(m) for m in trials.rejected], message
+        assert not (strict_out / "trials.csv").exists()
+
+
+def test_existing_results_need_resume_and_resume_completes(runs, db, tmp_path):
+    kept = (runs["module"] / "grasps.csv").read_bytes()
+    with pytest.raises(RuntimeError, match=r"trials\.csv already holds results; resume them "
+                                           r"\(resume=True\)"):
+        visgrab.run(db, runs["grasps"][:1], threads=1, out=runs["module"])
+    assert (runs["module"] / "grasps.csv").read_bytes() == kept
+    again = visgrab.run(db, runs["grasps"], threads=2, out=runs["module"], resume=True)
+    assert again.summary["resumed"] == 4 and again.summary["trials"] == 0
+
+
+def test_ctrl_c_stops_the_run_and_resume_gives_the_same_file(db, test_db_path, tmp_path):
+    # 20 grasps (about 80 ms each): SIGINT arrives after the first progress report (the run
+    # looks at Python's signals every 100 ms), the running trial finishes and the run stops.
+    grasps = []
+    for sid in SCENES:
+        p = db.scene(sid).ground_truth[0]["pose"][:3, 3]
+        grasps += [visgrab.Grasp.preshape(scene=sid, method="py", id=f"g{i}", preshape="SDH_CYL",
+                                          position=[p[0] + 0.004 * i, p[1], p[2] + 0.1],
+                                          quaternion=DOWN) for i in range(10)]
+    grasp_file = tmp_path / "grasps.csv"
+    visgrab.write_grasps(grasp_file, grasps)
+    out = tmp_path / "stopped"
+    script = textwrap.dedent(f"""
+        import os, signal, visgrab
+        grasps = visgrab.read_grasps({str(grasp_file)!r})
+        def progress(done, total):
+            os.kill(os.getpid(), signal.SIGINT)
+        try:
+            visgrab.run({str(test_db_path)!r}, grasps, threads=1, out={str(out)!r},
+                        progress=progress)
+        except KeyboardInterrupt:
+            print("interrupted")
+        """)
+    result = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                            env=os.environ)
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.strip() == "interrupted"
+    done = trials_rows(out / "trials.csv")
+    assert 1 <= len(done) < 20
+    resumed = visgrab.run(test_db_path, grasps, threads=2, out=out, resume=True)
+    assert resumed.summary["resumed"] == len(done)
+    whole = tmp_path / "whole"
+    visgrab.run(test_db_path, grasps, threads=1, out=whole)
+    assert (out / "trials.csv").read_bytes() == (whole / "trials.csv").read_bytes()
+
+
+def test_progress_callback_errors_stop_the_run(runs, db, tmp_path):
+    def progress(done, total):
+        raise ZeroDivisionError("from the callback")
+    with pytest.raises(ZeroDivisionError, match="from the callback"):
+        visgrab.run(db, runs["grasps"], threads=1, out=tmp_path / "cb", progress=progress)
+
+
+def test_read_results_errors(tmp_path):
+    with pytest.raises(OSError, match="trials.csv"):
+        visgrab.read_results(tmp_path)
+    broken = tmp_path / "broken"
+    broken.mkdir()
+    (broken / "trials.csv").write_text("scene,method\nnonsense\n")
+    with pytest.raises(OSError, match=r"trials\.csv:\d+"):
+        visgrab.read_results(broken)
+
+
+def test_analyze_writes_the_cli_report(runs, binary, tmp_path):
+    cli(binary, "analyze", runs["cli"], "--out", tmp_path / "cli-report", "--no-pictures",
+        "--quiet")
+    report = visgrab.analyze([runs["cli"]], out=tmp_path / "py-report", pictures=False)
+    assert report == str(tmp_path / "py-report" / "report.html")
+    names = sorted(os.listdir(tmp_path / "cli-report"))
+    assert names == sorted(os.listdir(tmp_path / "py-report"))
+    assert {"report.html", "report.md", "attempts.csv"} <= set(names)
+    match, mismatch, errors = filecmp.cmpfiles(tmp_path / "cli-report", tmp_path / "py-report",
+                                               [n for n in names if os.path.isfile(
+                                                   tmp_path / "cli-report" / n)], shallow=False)
+    assert mismatch == [] and errors == []
+    with pytest.raises(OSError):
+        visgrab.analyze([tmp_path / "none"], out=tmp_path / "x", pictures=False)
