@@ -39,7 +39,7 @@ packages=(build-essential cmake ninja-build pkg-config
   libegl-dev libegl-mesa0 libgl1-mesa-dri libgl-dev
   libcli11-dev python3-jsonschema
   pybind11-dev python3-dev python3-numpy  # the Python module (python/; docs/python.md)
-  python3-pytest python3-pandas python3-matplotlib  # its tests; pandas reads the result CSVs
+  python3-pytest python3-pandas python3-matplotlib python3-pil  # its tests and examples (pandas: the result CSVs; Pillow: independent PNG decoding)
   slurm-wlm munge  # the Slurm cluster test starts its own one-node cluster (docs/cluster.md)
   xvfb xauth clang-format python3
   clang libclang-rt-14-dev  # the fuzz stage: clang 14 with libFuzzer and the sanitizer runtimes
