@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -245,6 +246,34 @@ TEST(ResultsFileTest, TornLineThatLooksCompleteIsStillDropped) {
   EXPECT_TRUE(file.trials.empty());
   EXPECT_TRUE(file.tornLastLine);
   EXPECT_EQ(file.completeBytes, trialsHeader().size());
+}
+
+TEST(ResultsFileTest, EveryPrefixOfAFileReadsAsItsCompleteRecords) {
+  // A kill can cut the file after any byte: whatever the cut, the complete records are read,
+  // the rest is dropped without an error, and appending continues right after them.
+  std::string text = trialsHeader();
+  std::vector<std::size_t> ends;  // the byte after each record
+  for (std::size_t i = 0; i < kNastyFields.size(); ++i) {
+    TrialRecord t = makeTrial("s", kNastyFields[i].empty() ? "m" : kNastyFields[i],
+                              "g" + std::to_string(i), static_cast<int>(i), GraspOutcome::kStable);
+    t.detail = kNastyFields[(i + 3) % kNastyFields.size()];
+    text += formatTrialLine(t);
+    ends.push_back(text.size());
+  }
+  for (std::size_t cut = 0; cut <= text.size(); ++cut) {
+    const TrialsFile file = parseTrials(text.substr(0, cut), "trials.csv");
+    const auto complete =
+        static_cast<std::size_t>(std::upper_bound(ends.begin(), ends.end(), cut) - ends.begin());
+    ASSERT_EQ(file.trials.size(), complete) << "cut at " << cut;
+    const std::size_t expectedBytes =
+        complete > 0 ? ends[complete - 1]
+                     : (cut >= trialsHeader().size() ? trialsHeader().size() : 0);
+    EXPECT_EQ(file.completeBytes, expectedBytes) << "cut at " << cut;
+    EXPECT_EQ(file.tornLastLine, cut != expectedBytes && cut != 0) << "cut at " << cut;
+    if (complete > 0) {
+      EXPECT_EQ(file.trials.back().detail, kNastyFields[(complete + 2) % kNastyFields.size()]);
+    }
+  }
 }
 
 void expectLoadError(const std::string& text, const std::string& where, const std::string& what) {
