@@ -154,7 +154,7 @@ class InterruptedRun : public ::testing::Test {
     return pid;
   }
 
-  // Waits until `trials` holds the two header lines and `n` trials (true), or the child ended
+  // Waits until `trials` holds the column line and `n` trials (true), or the child ended
   // (false; `status` set) or two minutes passed (false).
   static bool waitForTrials(pid_t pid, const fs::path& trials, std::size_t n, int& status) {
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(2);
