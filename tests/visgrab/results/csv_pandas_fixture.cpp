@@ -91,9 +91,9 @@ Table parsedTable(const fs::path& dir, const std::string& file) {
 
 // Text that needs every rule of RFC 4180 (and some that needs none).
 const std::vector<std::string> kDetails = {
-    "",          "a,b",        "say \"hi\"", "x\ny",  "cr\rz", "crlf\r\nq", "back\\slash \\n",
-    " lead",     "trail ",     "\"",         "\n",    ",",     "ünïcødé ✓ 日本", "tab\tthere",
-    "a \"\" b",  "end\\"};
+    "",         "a,b",    "say \"hi\"", "x\ny", "cr\rz", "crlf\r\nq",      "back\\slash \\n",
+    " lead",    "trail ", "\"",         "\n",   ",",     "ünïcødé ✓ 日本", "tab\tthere",
+    "a \"\" b", "end\\"};
 
 RunResults makeRun() {
   using visgrab::database::SceneConditions;
@@ -119,8 +119,8 @@ RunResults makeRun() {
         t.method = method;
         t.graspId = graspIds[static_cast<std::size_t>(rank)];
         t.rank = rank;
-        t.outcome = rwsim::simulator::kOutcomeTable[n % rwsim::simulator::kOutcomeTable.size()]
-                        .outcome;
+        t.outcome =
+            rwsim::simulator::kOutcomeTable[n % rwsim::simulator::kOutcomeTable.size()].outcome;
         t.qLift = 0.1 * static_cast<double>(n);
         t.qGws = n % 3 == 0 ? std::nan("") : 1.0 / static_cast<double>(n + 1);
         t.qGwsUnit = n % 4 == 0 ? std::nan("") : 0.25 * static_cast<double>(n);
@@ -143,13 +143,12 @@ Table trialsTruth(const RunResults& run) {
   std::vector<TrialRecord> sorted = run.trials;
   visgrab::results::sortTrials(sorted, run.scenes, run.methods);
   for (const TrialRecord& t : sorted) {
-    table.rows.push_back({jsonString(t.sceneId), jsonString(t.method), jsonString(t.graspId),
-                          std::to_string(t.rank),
-                          jsonString(rwsim::simulator::outcomeName(t.outcome)),
-                          std::to_string(rwsim::simulator::robworkCode(t.outcome)),
-                          jsonNumber(t.qLift), jsonNumber(t.qGws), jsonNumber(t.qGwsUnit),
-                          std::to_string(t.object), jsonNumber(t.simulatedTime),
-                          jsonString(t.detail)});
+    table.rows.push_back(
+        {jsonString(t.sceneId), jsonString(t.method), jsonString(t.graspId), std::to_string(t.rank),
+         jsonString(rwsim::simulator::outcomeName(t.outcome)),
+         std::to_string(rwsim::simulator::robworkCode(t.outcome)), jsonNumber(t.qLift),
+         jsonNumber(t.qGws), jsonNumber(t.qGwsUnit), std::to_string(t.object),
+         jsonNumber(t.simulatedTime), jsonString(t.detail)});
   }
   return table;
 }
@@ -161,8 +160,8 @@ Table runTruth(const RunResults& run) {
   const Json none = "null";
   for (const auto& scene : run.scenes) {
     if (!scene.conditions) {
-      table.rows.push_back({jsonString("scene"), jsonString(scene.id), none, none, none, none,
-                            none, none});
+      table.rows.push_back(
+          {jsonString("scene"), jsonString(scene.id), none, none, none, none, none, none});
       continue;
     }
     const auto& c = *scene.conditions;
@@ -196,7 +195,8 @@ Table writeStages(const fs::path& dir) {
   double now = 0.0;
   visgrab::app::StageTimes times([&] { return now; }, [&] { return 2.0 * now; });
   const std::vector<std::pair<std::string, std::string>> stages = {
-      {"database", "432 scenes, \"generated\""}, {"trials", "first\nsecond\r\nthird"},
+      {"database", "432 scenes, \"generated\""},
+      {"trials", "first\nsecond\r\nthird"},
       {"re,port", ""}};
   Table table{"stages.csv", {"stage", "wall_s", "cpu_s", "note"}, {}};
   double total = 0.0;
@@ -237,8 +237,8 @@ int main(int argc, char** argv) {
     // The report of that run, read back as `visgrab analyze` reads it.
     visgrab::analysis::writeReport({visgrab::results::readResults(dir / "results")},
                                    dir / "report");
-    for (const char* file : {"distribution.csv", "quality.csv", "attempts.csv",
-                             "first_success.csv", "objects.csv"}) {
+    for (const char* file :
+         {"distribution.csv", "quality.csv", "attempts.csv", "first_success.csv", "objects.csv"}) {
       Table t = parsedTable(dir / "report", file);
       t.file = "report/" + t.file;
       tables.push_back(std::move(t));
