@@ -7,12 +7,15 @@ Trials are matched by (scene, method, grasp). Prints the trials only in one file
 outcome counts, the verdicts that differ (as "A -> B" pairs, most frequent first, and the first N
 of them with --list) and the simulated time of each run. Exit 0 when both files are read (the
 verdicts may differ), 1 when a file cannot be read or is not a trials.csv, 2 on a usage mistake.
+Reads every trials.csv version: 3 (RFC 4180, what `visgrab run` writes) and the older 1 and 2.
 docs/performance.md ("Where a trial's time goes") uses it to say how far a change moves verdicts.
 """
 
 import argparse
 import collections
 import csv
+import io
+import re
 import sys
 
 KEY = ("scene", "method", "grasp")
@@ -23,31 +26,58 @@ class BadFile(Exception):
     """A file that is not a readable trials.csv; the message names file and line."""
 
 
+def undo_backslash_escapes(text):
+    """A field of a version 1 or 2 trials.csv: quoted fields escaped \\, line feed and carriage
+    return as \\\\, \\n, \\r (an unquoted field never held a backslash)."""
+    return re.sub(r"\\(.)", lambda m: {"n": "\n", "r": "\r"}.get(m.group(1), m.group(1)), text)
+
+
 def load(path):
-    """The trials of one trials.csv, keyed by (scene, method, grasp)."""
+    """The trials of one trials.csv, keyed by (scene, method, grasp).
+
+    Version 3 is RFC 4180 (a record may span lines); versions 1 and 2 start with the comment line
+    "# visgrab trials N" and escape with backslashes.
+    """
     try:
         with open(path, newline="", encoding="utf-8") as f:
-            lines = f.readlines()
+            text = f.read()
     except OSError as e:
         raise BadFile(f"{path}: cannot read: {e.strerror}") from e
-    # Comment lines ("# visgrab trials 2") come before the header.
-    first = next((i for i, line in enumerate(lines) if not line.startswith("#")), len(lines))
-    reader = csv.DictReader(lines[first:])
+    except UnicodeDecodeError as e:
+        raise BadFile(f"{path}: not UTF-8 text: {e.reason}") from e
+    # Older versions: comment lines ("# visgrab trials 2") come before the header.
+    first = 0
+    while text.startswith("#"):
+        end = text.find("\n")
+        text = "" if end < 0 else text[end + 1:]
+        first += 1
+    legacy = first > 0
+    reader = csv.DictReader(io.StringIO(text, newline=""))
     missing = [c for c in NEEDED if c not in (reader.fieldnames or [])]
     if missing:
         raise BadFile(f"{path}:{first + 1}: expected a trials.csv header with "
                       f"{', '.join(NEEDED)}; missing {', '.join(missing)}")
     trials = {}
-    for number, row in enumerate(reader, start=first + 2):
-        key = tuple(row[c] for c in KEY)
-        if key in trials:
-            raise BadFile(f"{path}:{number}: trial {'/'.join(key)} appears twice")
-        try:
-            row["simulated_time"] = float(row["simulated_time"])
-        except (TypeError, ValueError) as e:
-            raise BadFile(f"{path}:{number}: simulated_time '{row['simulated_time']}' "
-                          "is not a number") from e
-        trials[key] = row
+    start = first + 2  # the line where the next record starts
+    try:
+        for row in reader:
+            number, start = start, first + reader.line_num + 1
+            if None in row or None in row.values():
+                raise BadFile(f"{path}:{number}: wrong number of fields (expected "
+                              f"{len(reader.fieldnames)})")
+            if legacy:
+                row = {k: undo_backslash_escapes(v) for k, v in row.items()}
+            key = tuple(row[c] for c in KEY)
+            if key in trials:
+                raise BadFile(f"{path}:{number}: trial {'/'.join(key)} appears twice")
+            try:
+                row["simulated_time"] = float(row["simulated_time"])
+            except (TypeError, ValueError) as e:
+                raise BadFile(f"{path}:{number}: simulated_time '{row['simulated_time']}' "
+                              "is not a number") from e
+            trials[key] = row
+    except csv.Error as e:
+        raise BadFile(f"{path}:{start}: {e}") from e
     return trials
 
 

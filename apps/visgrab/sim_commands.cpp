@@ -21,6 +21,7 @@
 #include "rwsim/simulator/simulator.hpp"
 #include "visgrab/database/database.hpp"
 #include "visgrab/grasp/hand_grasp_setup.hpp"
+#include "visgrab/results/csv.hpp"
 #include "visgrab/session/scene_loader.hpp"
 
 namespace visgrab::app {
@@ -100,9 +101,9 @@ std::map<std::string, std::vector<double>> numberLists(const Arguments& a,
 void writePoseRow(std::ostream& out, double t, const std::string& body, const Transform3D& X) {
   const Eigen::Quaterniond q(X.linear());
   const auto& p = X.translation();
-  out << fmt(t, 9) << "," << body << "," << fmt(p.x(), 9) << "," << fmt(p.y(), 9) << ","
-      << fmt(p.z(), 9) << "," << fmt(q.w(), 9) << "," << fmt(q.x(), 9) << "," << fmt(q.y(), 9)
-      << "," << fmt(q.z(), 9) << "\n"
+  out << fmt(t, 9) << "," << results::csvField(body) << "," << fmt(p.x(), 9) << "," << fmt(p.y(), 9)
+      << "," << fmt(p.z(), 9) << "," << fmt(q.w(), 9) << "," << fmt(q.x(), 9) << ","
+      << fmt(q.y(), 9) << "," << fmt(q.z(), 9) << "\n"
       << std::flush;
 }
 

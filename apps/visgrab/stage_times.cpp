@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "visgrab/results/csv.hpp"
+
 namespace visgrab::app {
 
 namespace {
@@ -28,17 +30,6 @@ StageTimes::Stage total(const std::vector<StageTimes::Stage>& stages) {
     sum.cpu += s.cpu;
   }
   return sum;
-}
-
-// A note as one CSV field: quoted when it holds a comma, a quote or a line break.
-std::string csvField(const std::string& text) {
-  if (text.find_first_of(",\"\n") == std::string::npos) return text;
-  std::string quoted = "\"";
-  for (const char c : text) {
-    if (c == '"') quoted += '"';
-    quoted += c;
-  }
-  return quoted + "\"";
 }
 
 }  // namespace
@@ -85,7 +76,7 @@ std::string StageTimes::csv() const {
   for (const auto& s : rows) {
     char numbers[64];
     std::snprintf(numbers, sizeof numbers, ",%.3f,%.3f,", s.wall, s.cpu);
-    text += csvField(s.name) + numbers + csvField(s.note) + "\n";
+    text += results::csvField(s.name) + numbers + results::csvField(s.note) + "\n";
   }
   return text;
 }

@@ -55,6 +55,37 @@ class CompareTrials(unittest.TestCase):
         self.assertEqual(lines[4], "  s1/m/g1: stable -> slipped")
         self.assertEqual(lines[5], "simulated time: A 3.8 s, B 3.5 s")
 
+    def test_reads_version_3_records_spanning_lines_and_older_escapes(self):
+        # Version 3 (RFC 4180): a key with a comma, a quote and a line break, details over
+        # several lines (CR LF too); version 2: the same keys with backslash escapes.
+        a = self.write("a.csv", HEADER +
+                       'plain/x,"m,1","g ""q""\nnext",0,stable,1,0,0,0,1,1.5,"a\nb\r\nc"\n' +
+                       'plain/x,m,"back\\slash",0,missed,3,0,0,0,1,0.5,"x\ny"\n')
+        b = self.write("b.csv", "# visgrab trials 2\n" + HEADER +
+                       'plain/x,"m,1","g ""q""\\nnext",0,slipped,1,0,0,0,1,1.5,"a\\nb"\n' +
+                       'plain/x,m,"back\\\\slash",0,missed,3,0,0,0,1,0.5,""\n')
+        out = self.run_script(a, b, "--list", "5")
+        self.assertEqual(out.returncode, 0, out.stderr)
+        lines = out.stdout.splitlines()
+        self.assertEqual(lines[0], "trials in both: 2 (only in A: 0, only in B: 0)")
+        self.assertEqual(lines[3], "verdicts that differ: 1 (stable -> slipped 1)")
+        self.assertEqual(lines[4], '  plain/x/m,1/g "q"')
+        self.assertEqual(lines[5], "next: stable -> slipped")
+        self.assertEqual(lines[6], "simulated time: A 2.0 s, B 2.0 s")
+
+    def test_line_numbers_are_where_records_start(self):
+        good = self.write("good.csv", HEADER + row("s1", "g1", "stable", 1.5))
+        # The first record spans lines 2-4: the repeated trial starts on line 5.
+        twice = self.write("twice.csv", HEADER +
+                           's1,m,g1,0,stable,1,0,0,0,1,1.5,"one\ntwo\nthree"\n' +
+                           row("s1", "g1", "missed", 1))
+        short = self.write("short.csv", HEADER + 's1,m,g1,0,stable,1,"x\ny"\n')
+        for path, message in [(twice, "twice.csv:5: trial s1/m/g1 appears twice"),
+                              (short, "short.csv:2: wrong number of fields (expected 12)")]:
+            out = self.run_script(good, path)
+            self.assertEqual(out.returncode, 1, path)
+            self.assertIn(message, out.stderr)
+
     def test_identical_runs_differ_nowhere(self):
         a = self.write("a.csv", HEADER + row("s1", "g1", "stable", 1.5))
         out = self.run_script(a, a)

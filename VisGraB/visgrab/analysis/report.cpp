@@ -37,11 +37,8 @@ std::string csvNumber(double value) {
   return std::isnan(value) ? std::string() : results::formatDouble(value);
 }
 
-std::string line(const std::vector<std::string>& fields) {
-  std::string text;
-  for (const std::string& f : fields) text += (text.empty() ? "" : ",") + results::csvField(f);
-  return text + "\n";
-}
+/// One record of a CSV table (RFC 4180: pandas.read_csv reads the tables with no options).
+std::string line(const std::vector<std::string>& fields) { return results::csvRecord(fields); }
 
 std::string subjectName(bool single, std::size_t index) {
   if (single) return std::string(database::objectName(static_cast<int>(index) + 1));

@@ -1,8 +1,10 @@
 #include "visgrab/results/results_file.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <map>
 #include <sstream>
@@ -40,69 +42,156 @@ constexpr std::size_t kRunFieldCount = 8;
   throw LoadError({d});
 }
 
-int currentVersion(std::string_view what) {
-  return what == "trials" ? kTrialsFormatVersion : kRunFormatVersion;
-}
-
-std::string versionLine(std::string_view what, int version) {
-  return "# visgrab " + std::string(what) + " " + std::to_string(version);
-}
-
-std::string versionLine(std::string_view what) { return versionLine(what, currentVersion(what)); }
-
-/// The lines of `text`: each with its 1-based number; `torn` tells whether the last one had no
-/// line break. A '\r' before the break is removed.
-struct Lines {
-  std::vector<std::string_view> lines;
-  bool torn = false;
-  std::size_t completeBytes = 0;
+/// One format of a result file: its version, column line and whether it is an older one that
+/// starts with a comment line `# visgrab <what> <version>` and escapes with backslashes.
+struct Format {
+  int version = 0;
+  std::string_view columns;
+  bool legacy = false;
 };
 
-Lines splitLines(std::string_view text) {
-  Lines out;
+constexpr std::array<Format, 3> kTrialsFormats = {{
+    {kTrialsFormatVersion, kTrialsColumns, false},
+    {2, kTrialsColumns, true},
+    {1, kTrialsColumnsVersion1, true},
+}};
+constexpr std::array<Format, 2> kRunFormats = {{
+    {kRunFormatVersion, kRunColumns, false},
+    {1, kRunColumns, true},
+}};
+
+std::string legacyHeader(std::string_view what, const Format& format) {
+  return "# visgrab " + std::string(what) + " " + std::to_string(format.version) + "\n" +
+         std::string(format.columns) + "\n";
+}
+
+/// The records after the column line, whatever the format.
+struct Body {
+  std::vector<CsvRecord> records;
+  /// The text ends in a record (or line) without its line break: dropped.
+  bool torn = false;
+  int tornLine = 0;
+  /// Bytes up to the end of the last complete record (0: not even the column line).
+  std::size_t completeBytes = 0;
+  /// The format found; nullptr when the column line is not complete.
+  const Format* format = nullptr;
+};
+
+/// Older files: one record per line, backslash escapes, the comment line first.
+void readLegacyBody(std::string_view text, const Format& format, const std::string& file,
+                    Body& body) {
   std::size_t start = 0;
+  int lineNo = 0;
   while (start < text.size()) {
+    ++lineNo;
     const std::size_t end = text.find('\n', start);
     if (end == std::string_view::npos) {
-      out.torn = true;
-      out.lines.push_back(text.substr(start));
+      body.torn = true;
+      body.tornLine = lineNo;
       break;
     }
     std::string_view line = text.substr(start, end - start);
     if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-    out.lines.push_back(line);
     start = end + 1;
-    out.completeBytes = start;
+    body.completeBytes = start;
+    if (lineNo == 1) continue;
+    if (lineNo == 2) {
+      if (line != format.columns) {
+        fail(file, 2, "expected the column line '" + std::string(format.columns) + "'");
+      }
+      continue;
+    }
+    CsvRecord record;
+    record.line = lineNo;
+    record.blank = line.empty();
+    if (!record.blank) {
+      try {
+        record.fields = splitLegacyCsvLine(line);
+      } catch (const std::invalid_argument& e) {
+        fail(file, lineNo, e.what());
+      }
+    }
+    body.records.push_back(std::move(record));
   }
-  return out;
+  if (lineNo - (body.torn ? 1 : 0) < 2) {
+    fail(file, 2, "expected the column line '" + std::string(format.columns) + "'");
+  }
 }
 
-// Checks the two header lines against the current version or, if given, an older `version`
-// with its `oldColumns`; returns the version found.
-int checkHeader(const Lines& lines, std::string_view what, std::string_view columns,
-                const std::string& file, int oldVersion = 0, std::string_view oldColumns = {}) {
-  const std::size_t complete = lines.lines.size() - (lines.torn ? 1 : 0);
-  const std::string expected = versionLine(what);
-  if (complete < 1) fail(file, 1, "missing header line '" + expected + "'");
-  const std::string_view first = lines.lines[0];
+/// Reads a result file of one of `formats` (the current one first). A text that is only the
+/// beginning of a column line (or of an older file's two header lines) gives no format.
+template <std::size_t N>
+Body readBody(std::string_view text, std::string_view what, const std::array<Format, N>& formats,
+              const std::string& file) {
+  Body body;
+  const Format& current = formats[0];
+  const std::string currentHeader = std::string(current.columns) + "\n";
   const std::string prefix = "# visgrab " + std::string(what) + " ";
-  if (first.substr(0, prefix.size()) != prefix) {
-    fail(file, 1,
-         "expected the header line '" + expected + "', found '" + std::string(first) + "'");
-  }
-  const bool old = oldVersion > 0 && first == versionLine(what, oldVersion);
-  if (first != expected && !old) {
-    std::string supported = std::to_string(currentVersion(what));
-    if (oldVersion > 0) supported += " or " + std::to_string(oldVersion);
+  const std::size_t firstBreak = text.find('\n');
+  std::string_view first = text.substr(0, firstBreak);
+  if (!first.empty() && first.back() == '\r') first.remove_suffix(1);
+  if (text.starts_with("#")) {
+    // An older format: its comment line names the version.
+    const std::size_t secondBreak =
+        firstBreak == std::string_view::npos ? firstBreak : text.find('\n', firstBreak + 1);
+    if (secondBreak == std::string_view::npos) {
+      for (const Format& f : formats) {
+        if (f.legacy && legacyHeader(what, f).starts_with(text)) {
+          body.torn = true;
+          body.tornLine = 1;
+          return body;
+        }
+      }
+    }
+    if (!first.starts_with(prefix)) {
+      fail(file, 1,
+           "expected the column line '" + std::string(current.columns) + "', found '" +
+               std::string(first) + "'");
+    }
+    for (const Format& f : formats) {
+      if (f.legacy && first == prefix + std::to_string(f.version)) {
+        body.format = &f;
+        readLegacyBody(text, f, file, body);
+        return body;
+      }
+    }
+    std::string older;
+    for (const Format& f : formats) {
+      if (f.legacy)
+        older += (older.empty() ? "'" : " or '") + prefix + std::to_string(f.version) + "'";
+    }
     fail(file, 1,
          "format version '" + std::string(first.substr(prefix.size())) +
-             "' is not supported (expected " + supported + ")");
+             "' is not supported (expected the column line '" + std::string(current.columns) +
+             "' of version " + std::to_string(current.version) + ", or " + older +
+             " of an older version)");
   }
-  const std::string_view wanted = old ? oldColumns : columns;
-  if (complete < 2 || lines.lines[1] != wanted) {
-    fail(file, 2, "expected the column line '" + std::string(wanted) + "'");
+  if (firstBreak == std::string_view::npos) {
+    if (!currentHeader.starts_with(text)) {
+      fail(file, 1, "expected the column line '" + std::string(current.columns) + "'");
+    }
+    body.torn = !text.empty();
+    body.tornLine = body.torn ? 1 : 0;
+    return body;
   }
-  return old ? oldVersion : currentVersion(what);
+  if (first != current.columns) {
+    fail(file, 1,
+         "expected the column line '" + std::string(current.columns) + "', found '" +
+             std::string(first) + "'");
+  }
+  CsvText csv;
+  try {
+    csv = parseCsv(text);
+  } catch (const CsvSyntaxError& e) {
+    fail(file, e.recordLine(), e.what());
+  }
+  body.format = &current;
+  body.torn = csv.torn;
+  body.tornLine = csv.tornLine;
+  body.completeBytes = csv.completeBytes;
+  body.records.assign(std::make_move_iterator(csv.records.begin() + 1),
+                      std::make_move_iterator(csv.records.end()));
+  return body;
 }
 
 // A Q value: empty means "not computed" (NaN).
@@ -173,9 +262,7 @@ std::string readWholeFile(const fs::path& path) {
 
 }  // namespace
 
-std::string trialsHeader() {
-  return versionLine("trials") + "\n" + std::string(kTrialsColumns) + "\n";
-}
+std::string trialsHeader() { return std::string(kTrialsColumns) + "\n"; }
 
 std::string formatTrialLine(const TrialRecord& t) {
   std::string line;
@@ -195,7 +282,7 @@ std::string formatTrialLine(const TrialRecord& t) {
 }
 
 std::string formatRunFile(const RunResults& run) {
-  std::string text = versionLine("run") + "\n" + std::string(kRunColumns) + "\n";
+  std::string text = std::string(kRunColumns) + "\n";
   for (const RunScene& scene : run.scenes) {
     text += "scene," + csvField(scene.id);
     if (scene.conditions) {
@@ -224,37 +311,22 @@ std::string formatRunFile(const RunResults& run) {
 
 TrialsFile parseTrials(std::string_view text, const std::string& file) {
   TrialsFile out;
-  const Lines lines = splitLines(text);
-  const std::size_t complete = lines.lines.size() - (lines.torn ? 1 : 0);
-  if (complete < 2) {
-    // Not even the header was written completely (a kill right after creating the file) or the
-    // file is empty: nothing to read; the writer starts the file afresh.
-    out.tornLastLine = lines.torn;
-    out.completeBytes = 0;
-    const std::string v1Header =
-        versionLine("trials", 1) + "\n" + std::string(kTrialsColumnsVersion1) + "\n";
-    if (!trialsHeader().starts_with(text) && !v1Header.starts_with(text)) {
-      checkHeader(lines, "trials", kTrialsColumns, file);
-    }
-    return out;
-  }
-  out.version = checkHeader(lines, "trials", kTrialsColumns, file, 1, kTrialsColumnsVersion1);
+  Body body = readBody(text, "trials", kTrialsFormats, file);
+  out.tornLastLine = body.torn;
+  out.tornLine = body.tornLine;
+  out.completeBytes = body.completeBytes;
+  // Not even the column line was written completely (a kill right after creating the file) or
+  // the file is empty: nothing to read; the writer starts the file afresh.
+  if (!body.format) return out;
+  out.version = body.format->version;
   const bool v1 = out.version == 1;
   const std::size_t fieldCount = v1 ? kTrialFieldCount - 1 : kTrialFieldCount;
-  const std::string_view columns = v1 ? kTrialsColumnsVersion1 : kTrialsColumns;
-  out.tornLastLine = lines.torn;
-  out.completeBytes = lines.completeBytes;
+  const std::string_view columns = body.format->columns;
   std::map<std::tuple<std::string, std::string, std::string>, int> seen;
-  for (std::size_t i = 2; i < complete; ++i) {
-    const int lineNo = static_cast<int>(i) + 1;
-    const std::string_view line = lines.lines[i];
-    if (line.empty()) fail(file, lineNo, "empty line (expected a trial)");
-    std::vector<std::string> f;
-    try {
-      f = splitCsvLine(line);
-    } catch (const std::invalid_argument& e) {
-      fail(file, lineNo, e.what());
-    }
+  for (CsvRecord& record : body.records) {
+    const int lineNo = record.line;
+    if (record.blank) fail(file, lineNo, "empty line (expected a trial)");
+    std::vector<std::string> f = std::move(record.fields);
     if (f.size() != fieldCount) {
       fail(file, lineNo,
            std::to_string(f.size()) + " fields, expected " + std::to_string(fieldCount) + " (" +
@@ -313,21 +385,19 @@ TrialsFile parseTrials(std::string_view text, const std::string& file) {
 
 RunResults parseRunFile(std::string_view text, const std::string& file) {
   RunResults run;
-  const Lines lines = splitLines(text);
-  if (lines.torn) {
-    fail(file, static_cast<int>(lines.lines.size()), "the last line has no line break");
+  Body body = readBody(text, "run", kRunFormats, file);
+  if (!body.format && !body.torn) {
+    fail(file, 1, "missing the column line '" + std::string(kRunColumns) + "'");
   }
-  checkHeader(lines, "run", kRunColumns, file);
+  if (body.torn) {
+    fail(file, body.tornLine, "the last record has no line break (the file was cut off)");
+  }
   std::map<std::string, int> seenScenes;
   std::map<std::string, int> seenMethods;
-  for (std::size_t i = 2; i < lines.lines.size(); ++i) {
-    const int lineNo = static_cast<int>(i) + 1;
-    std::vector<std::string> f;
-    try {
-      f = splitCsvLine(lines.lines[i]);
-    } catch (const std::invalid_argument& e) {
-      fail(file, lineNo, e.what());
-    }
+  for (CsvRecord& record : body.records) {
+    const int lineNo = record.line;
+    if (record.blank) fail(file, lineNo, "empty line (expected a record)");
+    std::vector<std::string> f = std::move(record.fields);
     if (f.size() != kRunFieldCount) {
       fail(file, lineNo,
            std::to_string(f.size()) + " fields, expected " + std::to_string(kRunFieldCount) + " (" +
@@ -427,8 +497,8 @@ RunResults readResults(const fs::path& dir, std::vector<Diagnostic>* warnings) {
     Diagnostic d;
     d.severity = Diagnostic::Severity::kWarning;
     d.file = trialsPath.string();
-    d.line = static_cast<int>(std::count(text.begin(), text.end(), '\n')) + 1;
-    d.message = "the last line has no line break (a write cut off by a kill): dropped";
+    d.line = trials.tornLine;
+    d.message = "the last record has no line break (a write cut off by a kill): dropped";
     warnings->push_back(d);
   }
   const std::size_t listedScenes = run.scenes.size();

@@ -9,32 +9,42 @@
 #include "rw/common/diagnostic.hpp"
 #include "visgrab/results/trial_record.hpp"
 
-/// The files of a run's result folder (docs/report.md describes them):
-///  - `trials.csv`: the line `# visgrab trials 2`, the column line
-///    `scene,method,grasp,rank,outcome,robwork_code,q_lift,q_gws,q_gws_unit,object,
-///    simulated_time,detail` (one line), then one line per finished trial (detail always quoted,
-///    see csvField; an empty q_gws or q_gws_unit is "not computed", NaN). Version 1 files (no
-///    q_gws_unit) are still read: their q_gws was computed with unit normal forces, so it becomes
-///    qGwsUnit and qGws is NaN (the paper's Q_GWS was not computed).
-///  - `run.csv`: the line `# visgrab run <version>`, the column line
-///    `record,id,texture,kind,arrangement,objects,pose,count`, then one `scene` record per scene
-///    (conditions empty when unknown; objects separated by spaces), one `method` record per
-///    method and one `rejected` record (count in the last column) per method with rejected grasps.
+/// The files of a run's result folder (docs/report.md describes them). Both are RFC 4180 CSV
+/// (csv.hpp), so `pandas.read_csv(path)` and Python's csv module read them with no options:
+/// the first line is the column line, fields holding a comma, a double quote or a line break
+/// (or beginning or ending with a space) are quoted with quotes doubled, line breaks stay literal
+/// inside quotes (a record may then span lines), nothing is escaped with backslashes.
+///  - `trials.csv` (version 3): the column line `scene,method,grasp,rank,outcome,robwork_code,
+///    q_lift,q_gws,q_gws_unit,object,simulated_time,detail` (one line), then one record per
+///    finished trial (detail always quoted; an empty q_gws or q_gws_unit is "not computed", NaN).
+///  - `run.csv` (version 2): the column line `record,id,texture,kind,arrangement,objects,pose,
+///    count`, then one `scene` record per scene (conditions empty when unknown; objects separated
+///    by spaces), one `method` record per method, one `rejected` record (count in the last
+///    column) per method with rejected grasps, and `database`, `grasps`, `hand` records naming
+///    the run's inputs.
+/// The column line identifies the format: a later version that changes what a column means
+/// changes the column line. Older files are still read: they start with a comment line
+/// `# visgrab trials 1|2` or `# visgrab run 1` before the column line, hold one record per line
+/// and escape `\`, line feed and carriage return inside quotes as `\\`, `\n`, `\r`. trials.csv
+/// version 1 has no q_gws_unit: its q_gws was computed with unit normal forces, so it becomes
+/// qGwsUnit and qGws is NaN (the paper's Q_GWS was not computed); version 2 has the columns of 3.
 namespace visgrab::results {
 
 /// Name of the trials file in a result folder.
 inline constexpr std::string_view kTrialsFileName = "trials.csv";
 /// Name of the run file in a result folder.
 inline constexpr std::string_view kRunFileName = "run.csv";
-/// Format version written in the first line of trials.csv (2: q_gws is the paper's Q_GWS and
-/// q_gws_unit the unit-force one; 1: q_gws was the unit-force one, no q_gws_unit).
-inline constexpr int kTrialsFormatVersion = 2;
-/// Format version written in the first line of run.csv.
-inline constexpr int kRunFormatVersion = 1;
+/// Format version of the trials.csv written (3: RFC 4180, no comment line; 2: the same columns
+/// after `# visgrab trials 2`, backslash escapes; 1: no q_gws_unit, q_gws was the unit-force one).
+inline constexpr int kTrialsFormatVersion = 3;
+/// Format version of the run.csv written (2: RFC 4180, no comment line; 1: `# visgrab run 1`
+/// first, backslash escapes).
+inline constexpr int kRunFormatVersion = 2;
 
-/// The two header lines of trials.csv (each ending in '\n').
+/// The column line of trials.csv (ending in '\n'): what an empty result folder's file holds.
 std::string trialsHeader();
-/// One line of trials.csv for `trial`, ending in '\n'.
+/// The record of trials.csv for `trial`, ending in '\n' (it spans lines when a field holds a
+/// line break).
 std::string formatTrialLine(const TrialRecord& trial);
 /// The whole run.csv for `run`'s scenes, methods and rejected counts (its trials are ignored).
 std::string formatRunFile(const RunResults& run);
@@ -43,26 +53,31 @@ std::string formatRunFile(const RunResults& run);
 struct TrialsFile {
   /// The trials, in file order (conditions not set).
   std::vector<TrialRecord> trials;
-  /// 1-based line of each trial.
+  /// 1-based line where each trial's record starts.
   std::vector<int> lines;
-  /// The file ended in a line without a line break (a write cut off by a kill): it was dropped.
+  /// The file ended in a record without its line break (a write cut off by a kill, possibly
+  /// inside a quoted field): it was dropped.
   bool tornLastLine = false;
-  /// Bytes up to and including the last complete line (where appending may continue); 0 when
-  /// not even the header is complete.
+  /// 1-based line where the dropped record starts (0 when none was dropped).
+  int tornLine = 0;
+  /// Bytes up to and including the line break of the last complete record (where appending may
+  /// continue); 0 when not even the column line (or an older file's two header lines) is
+  /// complete.
   std::size_t completeBytes = 0;
-  /// Format version of the file (kTrialsFormatVersion or 1; see above).
+  /// Format version of the file (kTrialsFormatVersion, 2 or 1; see above).
   int version = kTrialsFormatVersion;
 };
 
-/// Reads trials.csv text of version 2 or 1; `file` names it in errors. A last line without a
-/// line break is torn (see TrialsFile) and dropped, whatever it holds. @throws
-/// rw::common::LoadError with `file:line` for a wrong header or version, a malformed line, an
-/// unknown outcome, a RobWork code that does not match the outcome, or a trial (scene, method,
-/// grasp) given twice.
+/// Reads trials.csv text of version 3, 2 or 1; `file` names it in errors. A last record without
+/// its line break is torn (see TrialsFile) and dropped, whatever it holds. @throws
+/// rw::common::LoadError with `file:line` (the line where the record starts; the message gives
+/// the column) for a wrong column line or version, a malformed record, an unknown outcome, a
+/// RobWork code that does not match the outcome, or a trial (scene, method, grasp) given twice.
 TrialsFile parseTrials(std::string_view text, const std::string& file);
 
-/// Reads run.csv text (scenes, methods, rejected; no trials). @throws rw::common::LoadError with
-/// `file:line` for a malformed file, unknown conditions or a scene given twice.
+/// Reads run.csv text of version 2 or 1 (scenes, methods, rejected, inputs; no trials).
+/// @throws rw::common::LoadError with `file:line` for a malformed or cut-off file, unknown
+/// conditions or a scene given twice.
 RunResults parseRunFile(std::string_view text, const std::string& file);
 
 /// Puts trials in the canonical order: scene (position in `scenes`, unlisted scenes after them
@@ -73,7 +88,7 @@ void sortTrials(std::vector<TrialRecord>& trials, const std::vector<RunScene>& s
 /// Reads a result folder: run.csv (if present) and trials.csv. Trials get their scene's
 /// conditions; scenes only in trials.csv are added (conditions from the id, warning when run.csv
 /// exists), so are methods; trials are sorted with sortTrials; label is the folder's name.
-/// A torn last line of trials.csv is dropped with a warning in `warnings` (if given).
+/// A torn last record of trials.csv is dropped with a warning in `warnings` (if given).
 /// @throws rw::common::LoadError (file:line) for corrupt files or a missing trials.csv.
 RunResults readResults(const std::filesystem::path& dir,
                        std::vector<rw::common::Diagnostic>* warnings = nullptr);

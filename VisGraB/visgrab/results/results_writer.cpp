@@ -66,7 +66,8 @@ ResultsWriter::ResultsWriter(fs::path dir, Options options)
   }
   fd_ = ::open(trialsPath.c_str(), O_WRONLY | O_CREAT | O_CLOEXEC, 0644);
   if (fd_ < 0) rw::common::throwWriteError(trialsPath);
-  // Cut off a torn last line (or a torn header) so that appended lines start on a fresh line.
+  // Cut off a torn last record (or a torn header) so that appended records start on a fresh
+  // line.
   if (::ftruncate(fd_, static_cast<off_t>(keep)) != 0 ||
       ::lseek(fd_, static_cast<off_t>(keep), SEEK_SET) < 0) {
     const int why = errno;
@@ -112,9 +113,9 @@ void ResultsWriter::writeAll(std::string_view bytes) {
   struct stat status {};
   if (why == 0 && ::fstat(fd_, &status) == 0 && status.st_nlink == 0) why = ENOENT;
   if (why != 0) {
-    // Take back a part of the line (disk full in mid-line), so that the file ends in a complete
-    // line; a resumed run finds a torn line anyway if even that fails. Nothing is appended after
-    // a failure: a later line must never follow a torn one.
+    // Take back a part of the record (disk full in mid-record), so that the file ends in a
+    // complete record; a resumed run finds a torn record anyway if even that fails. Nothing is
+    // appended after a failure: a later record must never follow a torn one.
     if (written > 0 && ::ftruncate(fd_, static_cast<off_t>(size_)) == 0) {
       ::lseek(fd_, static_cast<off_t>(size_), SEEK_SET);
     }

@@ -15,14 +15,15 @@
 namespace visgrab::results {
 
 /// Writes a run's result folder as the run goes (see results_file.hpp for the formats): every
-/// finished trial is appended to trials.csv as one line and handed to the operating system at
-/// once (one write() per line, no buffer in the process), so a killed run loses nothing but the
-/// trial being written. A failed write (disk full, the folder deleted) takes back the part of
-/// the line it wrote, if it can, and ends appending: the file never holds a line after a torn
-/// one. Opening a folder that has a trials.csv reads it back for resume (contains()); a torn
-/// last line is dropped and cut off. A trials.csv of an older format version is rewritten in the
-/// current one first (atomically); its trials keep the values they had (version 1: q_gws not
-/// computed, see parseTrials).
+/// finished trial is appended to trials.csv as one record (several lines when a field holds a
+/// line break) and handed to the operating system at once (one write() per record, no buffer in
+/// the process), so a killed run loses nothing but the trial being written. A failed write (disk
+/// full, the folder deleted) takes back the part of the record it wrote, if it can, and ends
+/// appending: the file never holds a record after a torn one. Opening a folder that has a
+/// trials.csv reads it back for resume (contains()); a torn last record (cut anywhere, inside
+/// quotes too) is dropped and cut off. A trials.csv of an older format version (1 or 2) is
+/// rewritten in the current one first (atomically); its trials keep the values they had
+/// (version 1: q_gws not computed, see parseTrials).
 /// append(), contains(), trials() and writeRun() may be called from several threads.
 class ResultsWriter {
  public:
@@ -46,7 +47,7 @@ class ResultsWriter {
   const std::filesystem::path& dir() const { return dir_; }
   /// Number of trials read back when the writer was opened.
   std::size_t resumedCount() const { return resumed_; }
-  /// True if the file ended in a torn line when opened (it was dropped).
+  /// True if the file ended in a torn record when opened (it was dropped).
   bool droppedTornLine() const { return droppedTorn_; }
   /// True if trial (scene, method, graspId) is in the file (read back or appended).
   bool contains(std::string_view scene, std::string_view method, std::string_view graspId) const;
@@ -75,7 +76,7 @@ class ResultsWriter {
   Options options_;
   mutable std::mutex mutex_;
   int fd_ = -1;
-  /// Bytes of trials.csv up to its last complete line.
+  /// Bytes of trials.csv up to its last complete record.
   std::size_t size_ = 0;
   /// Why the last write failed (appends throw from then on).
   std::error_code failure_;

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -35,6 +36,11 @@ TrialRecord makeTrial(const std::string& scene, const std::string& method, const
   return t;
 }
 
+constexpr std::string_view kVersion2Header =
+    "# visgrab trials 2\n"
+    "scene,method,grasp,rank,outcome,robwork_code,q_lift,q_gws,q_gws_unit,object,simulated_time,"
+    "detail\n";
+
 constexpr std::string_view kVersion1Header =
     "# visgrab trials 1\n"
     "scene,method,grasp,rank,outcome,robwork_code,q_lift,q_gws,object,simulated_time,detail\n";
@@ -60,21 +66,101 @@ RunResults smallRun() {
   return run;
 }
 
-TEST(CsvTest, FieldsRoundTripThroughOneLine) {
-  const std::vector<std::string> fields = {"plain", "a,b", "say \"hi\"", "x\ny\r\\z", "", " pad "};
-  std::string line;
-  for (const auto& f : fields) line += (line.empty() ? "" : ",") + csvField(f);
-  EXPECT_EQ(line.find('\n'), std::string::npos);
-  EXPECT_EQ(splitCsvLine(line), fields);
+// Text that needs every rule of RFC 4180, and text that needs none of them.
+const std::vector<std::string> kNastyFields = {
+    "plain",           "a,b",       "say \"hi\"", "x\ny",   "cr\rz", "crlf\r\nq",
+    "back\\slash \\n", "",          " lead",      "trail ", "\"",    "\n",
+    "ünïcødé ✓ 日本",  "tab\there", "a\\"};
+
+TEST(CsvTest, NastyFieldsRoundTripAsOneRecord) {
+  const std::string text = csvRecord(kNastyFields);
+  // RFC 4180: quotes doubled, line breaks literal (the record spans lines), backslashes as is.
+  EXPECT_EQ(text.rfind("plain,\"a,b\",\"say \"\"hi\"\"\",\"x\ny\",\"cr\rz\",\"crlf\r\nq\",", 0), 0u)
+      << text;
+  EXPECT_NE(text.find(",back\\slash \\n,,\" lead\",\"trail \",\"\"\"\""), std::string::npos)
+      << text;
+  const CsvText csv = parseCsv(text + "next,1\n");
+  ASSERT_EQ(csv.records.size(), 2u);
+  EXPECT_EQ(csv.records[0].fields, kNastyFields);
+  EXPECT_EQ(csv.records[0].line, 1);
+  // The first record spans lines 1-4: line feeds in x\ny, crlf\r\nq and \n, then its own.
+  EXPECT_EQ(csv.records[1].line, 5);
+  EXPECT_EQ(csv.records[1].fields, (std::vector<std::string>{"next", "1"}));
+  EXPECT_FALSE(csv.torn);
+  EXPECT_EQ(csv.completeBytes, text.size() + 7);
   EXPECT_EQ(csvField("", true), "\"\"");
+  EXPECT_EQ(csvField("a\\b"), "a\\b");
 }
 
-TEST(CsvTest, MalformedLinesSayTheColumn) {
+TEST(CsvTest, CrLfLineBreaksAreAcceptedAndQuotedOnesKept) {
+  const CsvText csv = parseCsv("a,b\r\nc,\"d\r\ne\"\r\n\r\n,\r\n");
+  ASSERT_EQ(csv.records.size(), 4u);
+  EXPECT_EQ(csv.records[0].fields, (std::vector<std::string>{"a", "b"}));
+  EXPECT_EQ(csv.records[1].fields, (std::vector<std::string>{"c", "d\r\ne"}));
+  EXPECT_EQ(csv.records[2].line, 4);
+  EXPECT_TRUE(csv.records[2].blank);
+  EXPECT_EQ(csv.records[3].fields, (std::vector<std::string>{"", ""}));
+  EXPECT_FALSE(csv.records[3].blank);
+  EXPECT_FALSE(parseCsv("\"\"\n").records[0].blank);
+}
+
+TEST(CsvTest, TornLastRecordIsDroppedWhateverItHolds) {
+  const std::string done = "a,b\n\"x\ny\",z\n";
+  for (const std::string& torn :
+       {std::string("c,\"open"), std::string("c,\"line\n"), std::string("c,\"line\nbreak\""),
+        std::string("c,mid-fie"), std::string("c,d\r"), std::string("c,\"q\"x"),
+        std::string("\"")}) {
+    const CsvText csv = parseCsv(done + torn);
+    EXPECT_TRUE(csv.torn) << torn;
+    EXPECT_EQ(csv.tornLine, 4) << torn;
+    EXPECT_EQ(csv.records.size(), 2u) << torn;
+    EXPECT_EQ(csv.completeBytes, done.size()) << torn;
+  }
+  const CsvText whole = parseCsv(done);
+  EXPECT_FALSE(whole.torn);
+  EXPECT_EQ(whole.tornLine, 0);
+  EXPECT_EQ(whole.completeBytes, done.size());
+  EXPECT_TRUE(parseCsv("").records.empty());
+}
+
+TEST(CsvTest, SyntaxErrorsSayTheRecordLineAndWhereTheErrorIs) {
+  auto expectError = [](const std::string& text, int recordLine, const std::string& what) {
+    try {
+      parseCsv(text);
+      FAIL() << "no error for " << text;
+    } catch (const CsvSyntaxError& e) {
+      EXPECT_EQ(e.recordLine(), recordLine) << text;
+      EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+    }
+  };
+  // The record starts on line 2; its bad character is on line 3, column 3.
+  expectError("h\n\"a\nb\"x,c\nnext\n", 2, "line 3, column 3: text after a closing quote");
+  expectError("h\nab\"c\n", 2, "column 3: quote inside an unquoted field");
+  expectError("h\nab\rc\n", 2, "column 3: carriage return outside quotes");
+  expectError("h\nok,\"q\"\nx\"\n", 3, "column 2: quote inside");
+}
+
+TEST(CsvTest, SplitCsvLineReadsOneRfc4180Line) {
+  EXPECT_EQ(splitCsvLine("a,\"b,c\",\"say \"\"x\"\"\",back\\n,"),
+            (std::vector<std::string>{"a", "b,c", "say \"x\"", "back\\n", ""}));
   EXPECT_THROW(splitCsvLine("a,\"open"), std::invalid_argument);
   EXPECT_THROW(splitCsvLine("\"a\"b"), std::invalid_argument);
   try {
+    splitCsvLine("ab,\"open");
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("column 4: quoted field is not closed"), std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(CsvTest, LegacyLinesUndoBackslashEscapesAndSayTheColumn) {
+  EXPECT_EQ(splitLegacyCsvLine("a,\"x\\ny\\r\\\\z\",\"q\"\"\""),
+            (std::vector<std::string>{"a", "x\ny\r\\z", "q\""}));
+  EXPECT_THROW(splitLegacyCsvLine("a,\"open"), std::invalid_argument);
+  try {
     // a b , " x \ : the bad escape starts at the 6th character.
-    splitCsvLine("ab,\"x\\q\"");
+    splitLegacyCsvLine("ab,\"x\\q\"");
     FAIL();
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("column 6"), std::string::npos) << e.what();
@@ -120,14 +206,20 @@ TEST(ResultsFileTest, RoundTripKeepsEveryField) {
     EXPECT_EQ(b.detail, a.detail);
     EXPECT_EQ(b.conditions, run.scenes[i].conditions);
   }
-  // The file itself: version line, columns, one line per trial with the RobWork code.
+  // The file itself: the column line first, one record per trial with the RobWork code, the
+  // first one's detail spanning two lines (RFC 4180: no backslash escapes).
   const std::string text = readText(dir.path() / "trials.csv");
-  EXPECT_EQ(text.rfind("# visgrab trials 2\nscene,method,grasp,rank,outcome,robwork_code,q_lift,"
-                       "q_gws,q_gws_unit,object,",
+  EXPECT_EQ(text.rfind("scene,method,grasp,rank,outcome,robwork_code,q_lift,q_gws,q_gws_unit,"
+                       "object,simulated_time,detail\n",
                        0),
             0u);
   EXPECT_NE(text.find(",in_collision,2,"), std::string::npos);
+  EXPECT_NE(text.find(",\"line one\nline \"\"two\"\", with \\ backslash\"\n"), std::string::npos)
+      << text;
   EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 5);
+  const std::string runText = readText(dir.path() / "run.csv");
+  EXPECT_EQ(runText.rfind("record,id,texture,kind,arrangement,objects,pose,count\nscene,", 0), 0u);
+  EXPECT_NE(runText.find("\nscene,\"my/odd,scene\",,,,,,\n"), std::string::npos) << runText;
 }
 
 TEST(ResultsFileTest, TornLastLineIsDroppedWithAWarning) {
@@ -142,6 +234,7 @@ TEST(ResultsFileTest, TornLastLineIsDroppedWithAWarning) {
   const RunResults back = readResults(dir.path(), &warnings);
   EXPECT_EQ(back.trials.size(), 3u);
   ASSERT_EQ(warnings.size(), 1u);
+  // Column line 1, the first trial on lines 2-3 (its detail holds a line break), then 4 and 5.
   EXPECT_EQ(warnings[0].line, 6);
   EXPECT_NE(warnings[0].message.find("dropped"), std::string::npos);
 }
@@ -153,6 +246,34 @@ TEST(ResultsFileTest, TornLineThatLooksCompleteIsStillDropped) {
   EXPECT_TRUE(file.trials.empty());
   EXPECT_TRUE(file.tornLastLine);
   EXPECT_EQ(file.completeBytes, trialsHeader().size());
+}
+
+TEST(ResultsFileTest, EveryPrefixOfAFileReadsAsItsCompleteRecords) {
+  // A kill can cut the file after any byte: whatever the cut, the complete records are read,
+  // the rest is dropped without an error, and appending continues right after them.
+  std::string text = trialsHeader();
+  std::vector<std::size_t> ends;  // the byte after each record
+  for (std::size_t i = 0; i < kNastyFields.size(); ++i) {
+    TrialRecord t = makeTrial("s", kNastyFields[i].empty() ? "m" : kNastyFields[i],
+                              "g" + std::to_string(i), static_cast<int>(i), GraspOutcome::kStable);
+    t.detail = kNastyFields[(i + 3) % kNastyFields.size()];
+    text += formatTrialLine(t);
+    ends.push_back(text.size());
+  }
+  for (std::size_t cut = 0; cut <= text.size(); ++cut) {
+    const TrialsFile file = parseTrials(text.substr(0, cut), "trials.csv");
+    const auto complete =
+        static_cast<std::size_t>(std::upper_bound(ends.begin(), ends.end(), cut) - ends.begin());
+    ASSERT_EQ(file.trials.size(), complete) << "cut at " << cut;
+    const std::size_t expectedBytes =
+        complete > 0 ? ends[complete - 1]
+                     : (cut >= trialsHeader().size() ? trialsHeader().size() : 0);
+    EXPECT_EQ(file.completeBytes, expectedBytes) << "cut at " << cut;
+    EXPECT_EQ(file.tornLastLine, cut != expectedBytes && cut != 0) << "cut at " << cut;
+    if (complete > 0) {
+      EXPECT_EQ(file.trials.back().detail, kNastyFields[(complete + 2) % kNastyFields.size()]);
+    }
+  }
 }
 
 void expectLoadError(const std::string& text, const std::string& where, const std::string& what) {
@@ -169,22 +290,40 @@ void expectLoadError(const std::string& text, const std::string& where, const st
 TEST(ResultsFileTest, CorruptLinesGiveFileAndLine) {
   const std::string h = trialsHeader();
   const std::string good = "s,m,g,0,stable,1,0.9,0.5,0.25,5,1.2,\"\"\n";
-  expectLoadError(h + good + "s,m,g2,0,stable,1,0.9\n" + good, "r/trials.csv:4", "7 fields");
-  expectLoadError(h + good + "s,m,g2,0,wobbly,1,0,0,0,0,0,\"\"\n", "r/trials.csv:4",
+  // A record spanning lines 3 and 4 (its detail holds a line break) moves the later lines down.
+  const std::string twoLines = "s,m,g1,0,stable,1,0.9,0.5,0.25,5,1.2,\"a\nb\"\n";
+  expectLoadError(h + good + "s,m,g2,0,stable,1,0.9\n" + good, "r/trials.csv:3", "7 fields");
+  expectLoadError(h + good + twoLines + "s,m,g2,0,stable,1,\"0.9\n\"\n", "r/trials.csv:5",
+                  "7 fields");
+  expectLoadError(h + good + twoLines + "s,m,g2,0,wobbly,1,0,0,0,0,0,\"\"\n", "r/trials.csv:5",
                   "unknown outcome 'wobbly'");
-  expectLoadError(h + good + "s,m,g2,0,stable,3,0,0,0,0,0,\"\"\n", "r/trials.csv:4",
+  expectLoadError(h + good + "s,m,g2,0,stable,3,0,0,0,0,0,\"\"\n", "r/trials.csv:3",
                   "RobWork code 3 does not match");
-  expectLoadError(h + good + "s,m,g2,zero,stable,1,0,0,0,0,0,\"\"\n", "r/trials.csv:4",
+  expectLoadError(h + good + "s,m,g2,zero,stable,1,0,0,0,0,0,\"\"\n", "r/trials.csv:3",
                   "'zero' is not an integer");
-  expectLoadError(h + good + "s,m,g2,0,stable,1,0,0,0,0,0,\"open\n", "r/trials.csv:4",
-                  "not closed");
-  expectLoadError(h + good + good, "r/trials.csv:4", "given twice (first at line 3)");
-  expectLoadError(h + "\n" + good, "r/trials.csv:3", "empty line");
+  // Syntax errors: the line where the record starts, and the error's own line and column.
+  expectLoadError(h + good + "s,m,\"g\nx\"y,0,stable,1,0,0,0,0,0,\"\"\n" + good, "r/trials.csv:3",
+                  "line 4, column 3: text after a closing quote");
+  expectLoadError(h + good + "s,m,g\"2,0,stable,1,0,0,0,0,0,\"\"\n", "r/trials.csv:3",
+                  "column 6: quote inside an unquoted field");
+  expectLoadError(h + good + good, "r/trials.csv:3", "given twice (first at line 2)");
+  expectLoadError(h + good + twoLines + twoLines, "r/trials.csv:5",
+                  "given twice (first at line 3)");
+  expectLoadError(h + "\n" + good, "r/trials.csv:2", "empty line");
   expectLoadError("# visgrab trials 7\n" + good, "r/trials.csv:1", "version '7'");
-  expectLoadError("scene,method\n" + good, "r/trials.csv:1", "header line");
-  // A version 1 line (11 fields) under a version 2 header, and the other way round.
-  expectLoadError(h + "s,m,g,0,stable,1,0.9,0.5,5,1.2,\"\"\n", "r/trials.csv:3", "11 fields");
+  expectLoadError("scene,method\n" + good, "r/trials.csv:1", "expected the column line");
+  expectLoadError("sc\"ene", "r/trials.csv:1", "expected the column line");
+  // A version 1 line (11 fields) under the current column line, and the other way round.
+  expectLoadError(h + "s,m,g,0,stable,1,0.9,0.5,5,1.2,\"\"\n", "r/trials.csv:2", "11 fields");
   expectLoadError(std::string(kVersion1Header) + good, "r/trials.csv:3", "12 fields, expected 11");
+  // Older files keep their rules: a backslash escape it does not know, a line break at the end
+  // of a line inside quotes.
+  expectLoadError(std::string(kVersion2Header) + "s,m,g,0,stable,1,0,0,0,0,0,\"\\q\"\n",
+                  "r/trials.csv:3", "unknown escape");
+  expectLoadError(std::string(kVersion2Header) + "s,m,g,0,stable,1,0,0,0,0,0,\"a\nb\"\n",
+                  "r/trials.csv:3", "not closed");
+  expectLoadError("# visgrab trials 2\nscene,method\n" + good, "r/trials.csv:2",
+                  "expected the column line");
 }
 
 TEST(ResultsFileTest, EmptyQualityMeansNotComputed) {
@@ -220,6 +359,74 @@ TEST(ResultsFileTest, Version1FilesAreReadWithTheirQGwsAsTheUnitColumn) {
   EXPECT_EQ(file.completeBytes, text.size());
   // A torn version 1 header starts the file afresh like a torn current one.
   EXPECT_TRUE(parseTrials(std::string(kVersion1Header).substr(0, 30), "t").trials.empty());
+}
+
+TEST(ResultsFileTest, Version2FilesAreReadWithTheirBackslashEscapes) {
+  const std::string text = std::string(kVersion2Header) +
+                           "s,\"m,1\",g,0,stable,1,0.9,,0.25,5,1.5,\"a\\nb \\\\ \"\"c\"\"\\r\"\n"
+                           "s,m,h,1,missed,3,0,0,0,0,2,\"\"\n"
+                           "s,m,i,2,miss";
+  const TrialsFile file = parseTrials(text, "trials.csv");
+  EXPECT_EQ(file.version, 2);
+  ASSERT_EQ(file.trials.size(), 2u);
+  EXPECT_EQ(file.trials[0].method, "m,1");
+  EXPECT_EQ(file.trials[0].detail, "a\nb \\ \"c\"\r");
+  EXPECT_TRUE(std::isnan(file.trials[0].qGws));
+  EXPECT_EQ(file.trials[0].qGwsUnit, 0.25);
+  EXPECT_EQ(file.lines, (std::vector<int>{3, 4}));
+  EXPECT_TRUE(file.tornLastLine);
+  EXPECT_EQ(file.tornLine, 5);
+  EXPECT_EQ(file.completeBytes, text.size() - 12);
+  // A torn version 2 header starts the file afresh.
+  const TrialsFile fresh = parseTrials(std::string(kVersion2Header).substr(0, 40), "t");
+  EXPECT_TRUE(fresh.trials.empty());
+  EXPECT_EQ(fresh.completeBytes, 0u);
+}
+
+TEST(ResultsFileTest, Version1RunFilesAreReadWithTheirBackslashEscapes) {
+  const RunResults run = parseRunFile(
+      "# visgrab run 1\nrecord,id,texture,kind,arrangement,objects,pose,count\n"
+      "scene,plain/single/cocacola/03,plain,single,standing,5,3,\n"
+      "scene,\"odd\\nscene\",,,,,,\n"
+      "method,\"m,\\\\x\",,,,,,\n"
+      "rejected,\"m,\\\\x\",,,,,,3\n",
+      "run.csv");
+  ASSERT_EQ(run.scenes.size(), 2u);
+  EXPECT_EQ(run.scenes[1].id, "odd\nscene");
+  EXPECT_FALSE(run.scenes[1].conditions);
+  ASSERT_TRUE(run.scenes[0].conditions);
+  EXPECT_EQ(run.scenes[0].conditions->pose, 3);
+  EXPECT_EQ(run.methods, (std::vector<std::string>{"m,\\x"}));
+  EXPECT_EQ(run.rejected, (std::vector<std::pair<std::string, int>>{{"m,\\x", 3}}));
+}
+
+TEST(ResultsFileTest, RunFileRecordsMaySpanLines) {
+  RunResults run = smallRun();
+  run.scenes[2].id = "two\nlines, \"quoted\"";
+  run.methods = {"s2EGA1", "s3\r\nEGA1"};
+  run.rejected = {{"s3\r\nEGA1", 4}};
+  run.sources.database = "/data/my db, v2";
+  run.sources.grasps = {"a\nb.csv"};
+  run.sources.hand = "sdh";
+  const std::string text = formatRunFile(run);
+  const RunResults back = parseRunFile(text, "run.csv");
+  ASSERT_EQ(back.scenes.size(), 3u);
+  EXPECT_EQ(back.scenes[2].id, run.scenes[2].id);
+  EXPECT_EQ(back.methods, run.methods);
+  EXPECT_EQ(back.rejected, run.rejected);
+  EXPECT_EQ(back.sources.database, run.sources.database);
+  EXPECT_EQ(back.sources.grasps, run.sources.grasps);
+  EXPECT_EQ(back.sources.hand, run.sources.hand);
+  // run.csv is written atomically: a cut-off one is an error, at the line its record starts.
+  const std::string cut = text.substr(0, text.find("two\nlines") + 4);
+  try {
+    parseRunFile(cut, "r/run.csv");
+    FAIL();
+  } catch (const rw::common::LoadError& e) {
+    EXPECT_NE(std::string(e.what()).find("r/run.csv:4: error: the last record has no line break"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(ResultsFileTest, CorruptRunFileGivesFileAndLine) {

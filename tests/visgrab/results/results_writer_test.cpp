@@ -135,13 +135,75 @@ TEST(ResultsWriterTest, TornLastLineIsCutOffOnResume) {
                       formatTrialLine(trials[2]));
 }
 
+TEST(ResultsWriterTest, TornMultiLineRecordIsCutOffOnResume) {
+  // Trials whose details span lines: a kill after the quoted line break of the third leaves an
+  // open quote on a line of its own.
+  test::TempDir dir;
+  std::vector<TrialRecord> trials = allTrials();
+  for (std::size_t i = 0; i < 3; ++i) trials[i].detail = "first line\nsecond, \"quoted\"\r\nthird";
+  {
+    ResultsWriter writer(dir.path());
+    writer.append(trials[0]);
+    writer.append(trials[1]);
+  }
+  const std::string complete = readText(dir.path() / "trials.csv");
+  EXPECT_EQ(std::count(complete.begin(), complete.end(), '\n'), 7);
+  const std::string third = formatTrialLine(trials[2]);
+  for (const std::size_t cut : {third.find("second"), third.find("third") + 2, third.size() - 1}) {
+    test::writeFile(dir.path() / "trials.csv", complete + third.substr(0, cut));
+    {
+      ResultsWriter writer(dir.path());
+      EXPECT_TRUE(writer.droppedTornLine()) << cut;
+      EXPECT_EQ(writer.resumedCount(), 2u) << cut;
+      EXPECT_EQ(writer.trials()[1].detail, trials[1].detail);
+      EXPECT_FALSE(writer.contains(trials[2].sceneId, trials[2].method, trials[2].graspId));
+      writer.append(trials[2]);
+    }
+    EXPECT_EQ(readText(dir.path() / "trials.csv"), complete + third) << cut;
+    EXPECT_EQ(readResults(dir.path()).trials.size(), 3u);
+  }
+}
+
+TEST(ResultsWriterTest, ResumingAVersion2FileRewritesItInTheCurrentFormat) {
+  // Version 2 escaped line breaks with backslashes; its trials keep their text, and the file
+  // becomes RFC 4180 before anything is appended (it never mixes formats).
+  test::TempDir dir;
+  const std::vector<TrialRecord> trials = allTrials();
+  test::writeFile(dir.path() / "trials.csv",
+                  "# visgrab trials 2\n"
+                  "scene,method,grasp,rank,outcome,robwork_code,q_lift,q_gws,q_gws_unit,object,"
+                  "simulated_time,detail\n" +
+                      trials[0].sceneId + ",zeta,g1,1,stable,1,0.875,0.5,0.25,3,1.5,\"a\\nb\"\n" +
+                      trials[0].sceneId + ",zeta,g2,2,sta");
+  {
+    ResultsWriter writer(dir.path());
+    EXPECT_EQ(writer.resumedCount(), 1u);
+    EXPECT_TRUE(writer.droppedTornLine());
+    writer.append(trials[0]);
+  }
+  const std::string text = readText(dir.path() / "trials.csv");
+  EXPECT_EQ(text, trialsHeader() + trials[0].sceneId +
+                      ",zeta,g1,1,stable,1,0.875,0.5,0.25,3,1.5,\"a\nb\"\n" +
+                      formatTrialLine(trials[0]));
+  const TrialsFile back = parseTrials(text, "trials.csv");
+  EXPECT_EQ(back.version, kTrialsFormatVersion);
+  ASSERT_EQ(back.trials.size(), 2u);
+  EXPECT_EQ(back.trials[0].detail, "a\nb");
+  EXPECT_EQ(back.lines, (std::vector<int>{2, 4}));
+}
+
 TEST(ResultsWriterTest, TornHeaderStartsTheFileAfresh) {
   test::TempDir dir;
-  test::writeFile(dir.path() / "trials.csv", "# visgrab tri");
-  ResultsWriter writer(dir.path());
-  EXPECT_EQ(writer.resumedCount(), 0u);
-  writer.append(allTrials()[0]);
-  EXPECT_EQ(readText(dir.path() / "trials.csv"), trialsHeader() + formatTrialLine(allTrials()[0]));
+  for (const std::string torn : {"# visgrab tri", "scene,method,gr", ""}) {
+    test::writeFile(dir.path() / "trials.csv", torn);
+    {
+      ResultsWriter writer(dir.path());
+      EXPECT_EQ(writer.resumedCount(), 0u);
+      writer.append(allTrials()[0]);
+    }
+    EXPECT_EQ(readText(dir.path() / "trials.csv"),
+              trialsHeader() + formatTrialLine(allTrials()[0]));
+  }
 }
 
 TEST(ResultsWriterTest, CorruptExistingFileIsAnErrorWithItsLine) {
@@ -151,7 +213,7 @@ TEST(ResultsWriterTest, CorruptExistingFileIsAnErrorWithItsLine) {
     ResultsWriter writer(dir.path());
     FAIL();
   } catch (const rw::common::LoadError& e) {
-    EXPECT_NE(std::string(e.what()).find("trials.csv:3: error: 3 fields"), std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("trials.csv:2: error: 3 fields"), std::string::npos)
         << e.what();
   }
 }
