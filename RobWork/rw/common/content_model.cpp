@@ -22,8 +22,7 @@ bool isNameStart(char c) {
 }
 
 bool isNameChar(char c) {
-  return isNameStart(c) || std::isdigit(static_cast<unsigned char>(c)) != 0 || c == '-' ||
-         c == '.';
+  return isNameStart(c) || std::isdigit(static_cast<unsigned char>(c)) != 0 || c == '-' || c == '.';
 }
 
 std::string tag(const std::string& name) { return "<" + name + ">"; }
@@ -147,7 +146,8 @@ namespace {
 /// after `from`, reach a set where `done` holds, when `path` (the shortest such insertion) is one
 /// name long; `path` itself otherwise.
 template <typename Done>
-std::string insertionText(const ContentModel::Automaton& a, const ContentModel::Automaton::Set& from,
+std::string insertionText(const ContentModel::Automaton& a,
+                          const ContentModel::Automaton::Set& from,
                           const std::vector<std::string>& path, Done done) {
   if (path.size() != 1) return tagList(path);
   std::vector<std::string> options;
@@ -315,14 +315,14 @@ std::string ContentModel::explain(const std::vector<std::string>& children,
   if (!k) {
     const Automaton::Set end = a.run(children, children.size());
     if (a.accepting(end)) return {};
-    const auto missing = a.shortestPath(end, [&](const Automaton::Set& s) {
-      return a.accepting(s);
-    });
+    const auto missing =
+        a.shortestPath(end, [&](const Automaton::Set& s) { return a.accepting(s); });
     if (!missing || missing->empty()) return "incomplete content in " + parent;
     return "missing " +
-           insertionText(a, end, *missing, [&](const Automaton::Set& s) { return a.accepting(s); }) +
-           " (required " +
-           (children.empty() ? "in " + parent : "after " + tag(children.back())) + ")";
+           insertionText(a, end, *missing,
+                         [&](const Automaton::Set& s) { return a.accepting(s); }) +
+           " (required " + (children.empty() ? "in " + parent : "after " + tag(children.back())) +
+           ")";
   }
   const std::string& x = children[*k];
   const int symbol = a.symbolOf(x);
@@ -350,8 +350,8 @@ std::string ContentModel::explain(const std::vector<std::string>& children,
   }
   if (const auto insertion = a.shortestPath(here, reaches); insertion && !insertion->empty()) {
     const bool givenLater = std::all_of(insertion->begin(), insertion->end(), [&](const auto& n) {
-      return std::find(children.begin() + static_cast<std::ptrdiff_t>(*k) + 1, children.end(),
-                       n) != children.end();
+      return std::find(children.begin() + static_cast<std::ptrdiff_t>(*k) + 1, children.end(), n) !=
+             children.end();
     });
     if (givenLater) return tag(x) + " is out of order: it must come after " + tagList(*insertion);
     return "missing " + insertionText(a, here, *insertion, reaches) + " (required before " +
