@@ -443,6 +443,20 @@ TEST_F(ShardedRun, ResumingAnotherShardsFolderFails) {
     EXPECT_NE(std::string(e.what()).find("holds shard 1 of 3, not shard 2 of 3"), std::string::npos)
         << e.what();
   }
+  // Resumed as a whole run.
+  o.shard.reset();
+  try {
+    visgrab::runner::runBenchmark(o);
+    ADD_FAILURE() << "resumed shard 1's folder as the whole run";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("holds shard 1 of 3 of a run; resume it with --shard 1 "
+                                         "--of 3"),
+              std::string::npos)
+        << e.what();
+  }
+  // Nothing was changed.
+  EXPECT_EQ(fileBytes(copy / "shard.txt"), fileBytes(dirs[0] / "shard.txt"));
+  EXPECT_EQ(fileBytes(copy / "trials.csv"), fileBytes(dirs[0] / "trials.csv"));
 }
 
 }  // namespace

@@ -16,7 +16,6 @@ Usage: slurm_cluster_test.py VISGRAB DATABASE GRASPS HAND WORKDIR
 
 import os
 import pwd
-import shutil
 import signal
 import socket
 import subprocess
@@ -47,6 +46,15 @@ def find(program):
     return None
 
 
+def file_tail(path, lines=15):
+    """The last lines of a daemon's log, for the reason of a skip or failure."""
+    try:
+        with open(path, errors="replace") as f:
+            return "".join(f.readlines()[-lines:])
+    except OSError:
+        return "(no log at " + path + ")"
+
+
 def free_ports(n):
     """n distinct TCP ports free on this host now (bound to port 0, then released)."""
     sockets = []
@@ -74,12 +82,8 @@ class Cluster:
     def path(self, *parts):
         return os.path.join(self.root, *parts)
 
-    def log_tail(self, name, lines=15):
-        try:
-            with open(self.path("log", name), errors="replace") as f:
-                return "".join(f.readlines()[-lines:])
-        except OSError:
-            return "(no log)"
+    def log_tail(self, name):
+        return file_tail(self.path("log", name))
 
     def start(self):
         for program in ("munged", "slurmctld", "slurmd", "sbatch", "squeue", "sinfo", "scancel"):
@@ -113,14 +117,7 @@ class Cluster:
                    "--seed-file=" + os.path.join(folder, "munged.seed")]
         self.spawn("munged", command, user=user.pw_uid, group=user.pw_gid)
         self.wait_for(lambda: os.path.exists(self.socket), "munged's socket",
-                      lambda: self.file_tail(os.path.join(folder, "munged.log")))
-
-    def file_tail(self, path):
-        try:
-            with open(path, errors="replace") as f:
-                return "".join(f.readlines()[-15:])
-        except OSError:
-            return "(no log)"
+                      lambda: file_tail(os.path.join(folder, "munged.log")))
 
     def start_slurm(self):
         host = socket.gethostname().split(".")[0]
@@ -285,9 +282,14 @@ def check(visgrab, database, grasps, hand, work, cluster):
 
     logs = os.path.join(out, "slurm", "logs")
     jobcomp = cluster.path("log", "jobcomp.txt")
-    records = open(jobcomp).read() if os.path.exists(jobcomp) else ""
-    states = [w.split("=", 1)[1] for line in records.splitlines() for w in line.split()
-              if w.startswith("JobState=")]
+    # The job record is written as each job ends; give the last line a moment.
+    for _ in range(20):
+        records = open(jobcomp).read() if os.path.exists(jobcomp) else ""
+        states = [w.split("=", 1)[1] for line in records.splitlines() for w in line.split()
+                  if w.startswith("JobState=")]
+        if len(states) >= SHARDS + 1:
+            break
+        time.sleep(0.5)
     if len(states) != SHARDS + 1 or any(s != "COMPLETED" for s in states):
         raise Failure(f"expected {SHARDS + 1} completed jobs, the job record says {states}:\n"
                       + records)
@@ -316,6 +318,8 @@ def main():
     if os.geteuid() != 0:
         print("SKIPPED: not root: munged, slurmctld and slurmd of a test cluster need root")
         return SKIP
+    # A SIGTERM (ctest stopping the test, say) ends the test through the finally below.
+    signal.signal(signal.SIGTERM, lambda signum, frame: sys.exit(1))
     cluster = Cluster(os.path.join(work, "cluster"), work)
     os.makedirs(cluster.root)
     try:

@@ -357,7 +357,15 @@ RunSummary finishRun(RunPlan& plan, results::ResultsWriter& writer) {
 RunSummary runBenchmark(const RunOptions& options,
                         const std::function<void(const RunProgress&)>& progress) {
   const auto start = std::chrono::steady_clock::now();
-  if (options.shard) checkShardSpec(*options.shard);
+  if (options.shard) {
+    checkShardSpec(*options.shard);
+  } else if (options.resume && fs::exists(options.out / kShardRecordFileName)) {
+    // A shard's folder resumed as a whole run would mix the two.
+    const ShardSpec s = readShardRecord(options.out).shard;
+    throw std::runtime_error(options.out.string() + " holds " + describe(s) +
+                             " of a run; resume it with --shard " + std::to_string(s.index) +
+                             " --of " + std::to_string(s.count));
+  }
   const RunInputs in = openInputs(options);
   // After openInputs: the loader keeps the address of in.db.
   const session::SceneLoader loader(in.db, *in.hand);

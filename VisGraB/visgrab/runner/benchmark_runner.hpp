@@ -87,7 +87,8 @@ struct RunSummary {
 /// @throws rw::common::LoadError for an unreadable database, grasp file, hand description or
 /// scene file, rw::common::WriteError (file and reason) for a failed write,
 /// rw::common::StopRequested when options.stop ended the run early, std::runtime_error for an
-/// existing result folder without `resume` or a shard folder of another shard or run,
+/// existing result folder without `resume`, a shard folder of another shard or run, or a shard
+/// folder resumed without `shard`,
 /// std::invalid_argument for a shard outside 1..count.
 RunSummary runBenchmark(const RunOptions& options,
                         const std::function<void(const RunProgress&)>& progress = {});
