@@ -259,8 +259,8 @@ int runSlurm(const Arguments& a) {
   plan.pictures = !a.flag("no-pictures");
   if (a.flag("dry-run") && a.flag("submit"))
     throw UsageError("--dry-run and --submit exclude each other");
-  for (const auto& p : {plan.database}) {
-    if (!fs::exists(p)) throw std::runtime_error("--db " + p.string() + " does not exist");
+  if (!fs::exists(plan.database)) {
+    throw std::runtime_error("--db " + plan.database.string() + " does not exist");
   }
   for (const auto& p : plan.grasps) {
     if (!fs::exists(p)) throw std::runtime_error("--grasps " + p.string() + " does not exist");
