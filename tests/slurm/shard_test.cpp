@@ -295,6 +295,19 @@ TEST_F(ShardedRun, MergedShardsAreByteIdenticalToTheOneMachineRun) {
   EXPECT_EQ(scenes, wholeScenes);
 }
 
+TEST_F(ShardedRun, SevenShardsSomeEmptyMergeToTheOneMachineRun) {
+  // Six of the 20 scenes have grasps: some of the seven shards hold only scenes without grasps,
+  // or none.
+  const auto dirs = shards(7);
+  int empty = 0;
+  for (const auto& d : dirs) {
+    if (visgrab::results::readResults(d).trials.empty()) ++empty;
+  }
+  EXPECT_GE(empty, 1);
+  mergeShards(dirs, tmp_.path() / "merged");
+  expectSameAsWhole(tmp_.path() / "merged");
+}
+
 TEST_F(ShardedRun, ShardsDoNotDependOnTheThreadCount) {
   const auto dirs = shards(3);
   // shards() ran shard 2 on one thread; again on two.

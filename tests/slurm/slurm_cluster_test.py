@@ -254,7 +254,7 @@ def check(visgrab, database, grasps, hand, work, cluster):
     out = os.path.join(work, "sweep")
     submit = cluster.run([visgrab, "slurm", "--db", database, "--grasps", grasps, "--hand", hand,
                           "--shards", str(SHARDS), "--cpus-per-task", "1", "--out", out,
-                          "--time", "10", "--no-analyze", "--submit"], timeout=60)
+                          "--time", "10", "--no-pictures", "--submit"], timeout=60)
     if submit.returncode != 0:
         raise Failure("visgrab slurm --submit failed:\n" + submit.stdout + submit.stderr)
     print(submit.stdout, end="")
@@ -303,6 +303,9 @@ def check(visgrab, database, grasps, hand, work, cluster):
         if read_bytes(os.path.join(merged, f)) != read_bytes(os.path.join(whole, f)):
             raise Failure(f"the merged {f} differs from the one-machine run's "
                           f"({merged} vs {whole})")
+    report = os.path.join(out, "report", "report.md")
+    if not os.path.exists(report):
+        raise Failure("the merge job wrote no report (" + report + ")")
     trials = read_bytes(os.path.join(merged, "trials.csv")).count(b"\n")
     shard_trials = [read_bytes(os.path.join(out, "shards", name, f"shard-{k}", "trials.csv"))
                     .count(b"\n") for k in range(1, SHARDS + 1)]
