@@ -111,10 +111,11 @@ std::string trialsScript(const SlurmPlan& plan) {
   s += "  *) echo \"array task $task is beyond the " + std::to_string(tasks) +
        " tasks of this job\" >&2; exit 2 ;;\n";
   s += "esac\n";
-  s += "echo \"run $name, shard $shard of $shards on $(hostname)" +
-       std::string(", restart ${SLURM_RESTART_COUNT:-0}\"\n");
+  s +=
+      R"(echo "run $name, shard $shard of $shards on $(hostname), restart ${SLURM_RESTART_COUNT:-0}")"
+      "\n";
   s += "exec " + quoted(plan.visgrab) + " run --db " + quoted(plan.database) +
-       " --grasps \"$grasps\" --hand \"$hand\"";
+       R"( --grasps "$grasps" --hand "$hand")";
   if (!plan.scenes.empty()) s += " --scenes " + quoted(plan.scenes);
   s += " \\\n  --shard \"$shard\" --of \"$shards\" --threads " + std::to_string(plan.cpusPerTask) +
        " --resume --quiet \\\n  --out " + quoted(plan.out / "shards") +
@@ -179,6 +180,7 @@ std::string runCaptured(const std::vector<std::string>& argv) {
     ::close(pipeFds[0]);
     ::close(pipeFds[1]);
     std::vector<char*> args;
+    args.reserve(argv.size() + 1);
     for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
     args.push_back(nullptr);
     ::execvp(args[0], args.data());
