@@ -143,6 +143,42 @@ TEST(ShardRecord, RoundTrips) {
   EXPECT_EQ(visgrab::runner::contentHash("a"), "af63dc4c8601ec8c");
 }
 
+TEST(ShardRecord, TheFingerprintFollowsEveryInputsContent) {
+  const visgrab::test::TempDir tmp;
+  const fs::path db = tmp.path() / "db";
+  visgrab::test::writeFile(db / "index.xml", "<index/>\n");
+  visgrab::test::writeFile(tmp.path() / "grasps" / "a.txt", "a\n");
+  visgrab::test::writeFile(tmp.path() / "grasps" / ".hidden", "ignored\n");
+  const fs::path b = visgrab::test::writeFile(tmp.path() / "b.txt", "b\n");
+  const fs::path hand = visgrab::test::writeFile(tmp.path() / "hand" / "h.grasp.xml", "<h/>\n");
+  const auto fingerprint = [&] {
+    return visgrab::runner::fingerprintRun(db, {tmp.path() / "grasps", b}, hand, "plain");
+  };
+  const auto before = fingerprint();
+  EXPECT_EQ(fingerprint(), before);
+  // Dot files are not grasp files (taskio::readGraspFolder skips them).
+  visgrab::test::writeFile(tmp.path() / "grasps" / ".hidden", "changed\n");
+  EXPECT_EQ(fingerprint(), before);
+  visgrab::test::writeFile(b, "b changed\n");
+  auto after = fingerprint();
+  EXPECT_NE(after.grasps, before.grasps);
+  EXPECT_EQ(after.database, before.database);
+  EXPECT_EQ(visgrab::runner::describeDifference(before, after), "the grasp files");
+  visgrab::test::writeFile(hand, "<h2/>\n");
+  visgrab::test::writeFile(db / "index.xml", "<index2/>\n");
+  after = fingerprint();
+  EXPECT_NE(after.hand, before.hand);
+  EXPECT_NE(after.database, before.database);
+  EXPECT_EQ(visgrab::runner::describeDifference(before, after),
+            "the database (index), the grasp files, the hand");
+  // A hand given as its folder: every file of the folder.
+  const auto folder = visgrab::runner::fingerprintRun(db, {b}, hand.parent_path(), "");
+  visgrab::test::writeFile(hand.parent_path() / "h.wc.xml", "<wc/>\n");
+  EXPECT_NE(visgrab::runner::fingerprintRun(db, {b}, hand.parent_path(), "").hand, folder.hand);
+  EXPECT_THROW(visgrab::runner::fingerprintRun(db, {tmp.path() / "missing.txt"}, hand, ""),
+               rw::common::LoadError);
+}
+
 // The message of parsing `text`, expected to fail.
 std::string recordError(const std::string& text) {
   try {

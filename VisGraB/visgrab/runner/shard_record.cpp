@@ -57,19 +57,13 @@ rw::common::LoadError loadError(const std::string& file, int line, const std::st
   return rw::common::LoadError({d});
 }
 
-/// The regular files of `folder` whose names do not start with '.', by name (recursive: with
-/// their paths relative to `folder`).
-std::vector<fs::path> folderFiles(const fs::path& folder, bool recursive) {
+/// The regular files of `folder` whose names do not start with '.', by name.
+std::vector<fs::path> folderFiles(const fs::path& folder) {
   std::vector<fs::path> files;
-  const auto add = [&](const fs::directory_entry& e) {
+  for (const auto& e : fs::directory_iterator(folder)) {
     if (e.is_regular_file() && !e.path().filename().string().starts_with('.')) {
       files.push_back(e.path());
     }
-  };
-  if (recursive) {
-    for (const auto& e : fs::recursive_directory_iterator(folder)) add(e);
-  } else {
-    for (const auto& e : fs::directory_iterator(folder)) add(e);
   }
   std::sort(files.begin(), files.end());
   return files;
@@ -107,7 +101,7 @@ RunFingerprint fingerprintRun(const fs::path& database, const std::vector<fs::pa
     Fnv1a hash;
     for (const fs::path& source : grasps) {
       if (fs::is_directory(source)) {
-        for (const fs::path& f : folderFiles(source, false)) {
+        for (const fs::path& f : folderFiles(source)) {
           addFile(hash, f, f.filename().string());
         }
       } else {
@@ -118,10 +112,10 @@ RunFingerprint fingerprintRun(const fs::path& database, const std::vector<fs::pa
   }
   {
     Fnv1a hash;
-    const fs::path folder = fs::is_directory(hand) ? hand : hand.parent_path();
-    hash.addField(fs::is_directory(hand) ? std::string() : hand.filename().string());
-    for (const fs::path& f : folderFiles(folder.empty() ? fs::path(".") : folder, true)) {
-      addFile(hash, f, f.lexically_relative(folder.empty() ? fs::path(".") : folder).string());
+    if (fs::is_directory(hand)) {
+      for (const fs::path& f : folderFiles(hand)) addFile(hash, f, f.filename().string());
+    } else {
+      addFile(hash, hand, hand.filename().string());
     }
     out.hand = hash.hex();
   }

@@ -22,7 +22,8 @@ struct RunFingerprint {
   std::string database;
   /// The grasp files in the order the run reads them (a folder's files by name): names and bytes.
   std::string grasps;
-  /// The hand: the grasp description's name and every file of its folder (names and bytes).
+  /// The hand: its grasp description (name and bytes), or every file of its folder when the
+  /// hand is given as a folder.
   std::string hand;
   /// The scene filter (--scenes), as given; empty: all scenes.
   std::string scenes;
