@@ -1,9 +1,11 @@
 #include "baseline_commands.hpp"
 #include "command_line.hpp"
 #include "db_commands.hpp"
+#include "merge_commands.hpp"
 #include "render_commands.hpp"
 #include "run_commands.hpp"
 #include "sim_commands.hpp"
+#include "slurm_commands.hpp"
 #include "wc_commands.hpp"
 
 namespace visgrab::app {
@@ -14,6 +16,8 @@ std::unique_ptr<CommandLine> makeCommandLine() {
   addSimulationCommands(*cli);
   addDatabaseCommands(*cli);
   addRunCommands(*cli);
+  addMergeCommands(*cli);
+  addSlurmCommands(*cli);
   addBaselineCommands(*cli);
   addRenderCommands(*cli);
   return cli;

@@ -73,6 +73,19 @@ int runRun(const Arguments& a) {
   options.scenes = scenesFilter(a);
   options.threads = threadsOption(a);
   options.resume = a.flag("resume");
+  const auto shard = a.option("shard");
+  const auto of = a.option("of");
+  if (shard.has_value() != of.has_value()) {
+    throw UsageError("--shard K and --of N go together");
+  }
+  if (shard) {
+    options.shard =
+        runner::ShardSpec{integerOption(a, "shard", 1, 1), integerOption(a, "of", 1, 1)};
+    if (options.shard->index > options.shard->count) {
+      throw UsageError("--shard " + *shard + " is beyond --of " + *of +
+                       " (shards are numbered 1 to N)");
+    }
+  }
   const bool quiet = a.flag("quiet");
   const auto done = runStoppable(options, quiet, "run");
   if (!done) return rw::common::stopExitCode(rw::common::stopSignal());
@@ -83,7 +96,9 @@ int runRun(const Arguments& a) {
             << summary.methods << " methods\n";
   for (const auto& [outcome, n] : summary.outcomes)
     std::cout << "  " << outcome << " " << n << "\n";
-  std::cout << "results in " << options.out.string() << "\n";
+  std::cout << "results in " << options.out.string();
+  if (options.shard) std::cout << " (" << runner::describe(*options.shard) << ")";
+  std::cout << "\n";
   return 0;
 }
 
@@ -249,6 +264,17 @@ void addRunCommands(CommandLine& cli) {
   addFlag(run, "--resume", kResumeHelp);
   run.add_option("--hand", kHandHelp)->type_name("DIR|GRASP.xml");
   addScenesOption(run);
+  run.add_option("--shard",
+                 "Run only shard K of the work cut into --of N shards (K from 1 to N): whole "
+                 "scenes in database order in N contiguous blocks balanced by grasp count, the "
+                 "same for any --threads; RESULTS/shard.txt says which shard of which run it "
+                 "is and whether it finished; `visgrab merge` joins the N folders "
+                 "(docs/cluster.md)")
+      ->type_name("K")
+      ->check(integerAtLeast(1));
+  run.add_option("--of", "The number of shards the work is cut into (with --shard)")
+      ->type_name("N")
+      ->check(integerAtLeast(1));
   addDataOption(run);
   addQuietFlag(run);
 

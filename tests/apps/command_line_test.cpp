@@ -72,7 +72,8 @@ TEST(CommandLineHelp, EveryVisgrabCommandListsEveryOptionInItsHelp) {
   }
   EXPECT_EQ(leaves, (std::vector<std::string>{"wc info", "wc check", "sim", "grasp", "db generate",
                                               "db list", "db show", "db stereo-accuracy", "run",
-                                              "benchmark", "analyze", "baseline", "render"}));
+                                              "benchmark", "analyze", "merge", "slurm", "baseline",
+                                              "render"}));
   for (const CLI::App* cmd : commands) {
     const std::string words = wordsAfterProgram(*cmd);
     const RunResult help = visgrab::test::runProgram(VISGRAB_BINARY, words + " --help");

@@ -17,6 +17,7 @@
 #include "visgrab/grasp/hand_grasp_setup.hpp"
 #include "visgrab/results/results_file.hpp"
 #include "visgrab/results/results_writer.hpp"
+#include "visgrab/runner/shard_record.hpp"
 #include "visgrab/session/grasp_order.hpp"
 #include "visgrab/session/scene_loader.hpp"
 #include "visgrab/session/scene_selection.hpp"
@@ -167,6 +168,55 @@ RunPlan planRun(const RunOptions& options, const RunInputs& in) {
   return plan;
 }
 
+/// Keeps only `shard`'s scenes in `plan` (planShards over every selected scene's grasp count);
+/// the grasps rejected before the run (unparsable, unknown scene) stay with the first shard.
+void restrictToShard(RunPlan& plan, const ShardSpec& shard) {
+  std::vector<std::size_t> counts;
+  counts.reserve(plan.order.scenes.size());
+  for (const auto& s : plan.order.scenes) counts.push_back(s.grasps.size());
+  const SceneBlock block =
+      planShards(counts, shard.count)[static_cast<std::size_t>(shard.index - 1)];
+  const auto first = static_cast<std::ptrdiff_t>(block.begin);
+  const auto last = static_cast<std::ptrdiff_t>(block.end);
+  plan.order.scenes = {plan.order.scenes.begin() + first, plan.order.scenes.begin() + last};
+  plan.run.scenes = {plan.run.scenes.begin() + first, plan.run.scenes.begin() + last};
+  if (shard.index != 1) {
+    plan.rejected.clear();
+    plan.rejectedPerMethod.clear();
+  }
+}
+
+/// The record of the shard `options` runs, written "running" into options.out; a resumed shard
+/// folder must hold the same shard of the same run.
+ShardRecord startShard(const RunOptions& options) {
+  ShardRecord record;
+  record.shard = *options.shard;
+  record.inputs = fingerprintRun(options.database, options.grasps, options.hand, options.scenes);
+  if (options.resume && fs::exists(options.out / kShardRecordFileName)) {
+    const ShardRecord old = readShardRecord(options.out);
+    if (old.shard.index != record.shard.index || old.shard.count != record.shard.count) {
+      throw std::runtime_error(options.out.string() + " holds " + describe(old.shard) + ", not " +
+                               describe(record.shard) + "; give each shard its own folder");
+    }
+    if (old.inputs != record.inputs) {
+      throw std::runtime_error(options.out.string() + " holds " + describe(old.shard) +
+                               " of another run (" + describeDifference(old.inputs, record.inputs) +
+                               " differ); choose another folder");
+    }
+  }
+  writeShardRecord(options.out, record);
+  return record;
+}
+
+/// Marks the shard finished, with the hashes of its finished files.
+void finishShard(const fs::path& out, ShardRecord record, std::size_t trials) {
+  record.finished = true;
+  record.trials = trials;
+  record.trialsHash = contentHash(readFileBytes(out / results::kTrialsFileName));
+  record.runHash = contentHash(readFileBytes(out / results::kRunFileName));
+  writeShardRecord(out, record);
+}
+
 /// The scenes with trials not yet in `writer` (resume) and how many trials they hold.
 PendingWork pendingScenes(const std::vector<SceneGraspList>& work,
                           const results::ResultsWriter& writer) {
@@ -307,10 +357,24 @@ RunSummary finishRun(RunPlan& plan, results::ResultsWriter& writer) {
 RunSummary runBenchmark(const RunOptions& options,
                         const std::function<void(const RunProgress&)>& progress) {
   const auto start = std::chrono::steady_clock::now();
+  if (options.shard) {
+    checkShardSpec(*options.shard);
+  } else if (options.resume && fs::exists(options.out / kShardRecordFileName)) {
+    // A shard's folder resumed as a whole run would mix the two.
+    const ShardSpec s = readShardRecord(options.out).shard;
+    throw std::runtime_error(options.out.string() + " holds " + describe(s) +
+                             " of a run; resume it with --shard " + std::to_string(s.index) +
+                             " --of " + std::to_string(s.count));
+  }
   const RunInputs in = openInputs(options);
   // After openInputs: the loader keeps the address of in.db.
   const session::SceneLoader loader(in.db, *in.hand);
   RunPlan plan = planRun(options, in);
+  std::optional<ShardRecord> shard;
+  if (options.shard) {
+    restrictToShard(plan, *options.shard);
+    shard = startShard(options);
+  }
   results::ResultsWriter writer(options.out);
   PendingWork pending = pendingScenes(plan.order.scenes, writer);
   writeRunFile(plan, writer);
@@ -328,7 +392,11 @@ RunSummary runBenchmark(const RunOptions& options,
         std::to_string(pending.progress.trialsTotal) + " trials; the finished ones are in " +
         (options.out / results::kTrialsFileName).string() + "; --resume continues the run");
   }
-  return finishRun(plan, writer);
+  RunSummary summary = finishRun(plan, writer);
+  if (shard) {
+    finishShard(options.out, *shard, static_cast<std::size_t>(summary.trials + summary.resumed));
+  }
+  return summary;
 }
 
 }  // namespace visgrab::runner

@@ -4,10 +4,12 @@
 #include <filesystem>
 #include <functional>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "rw/common/diagnostic.hpp"
+#include "visgrab/runner/shard_plan.hpp"
 
 /// The headless benchmark run: every grasp of every scene through the simulator.
 namespace visgrab::runner {
@@ -29,6 +31,12 @@ struct RunOptions {
   int threads = 1;
   /// Continue an interrupted run in `out` (without it, an existing trials.csv is an error).
   bool resume = false;
+  /// Run only this shard of the work (planShards over the selected scenes' grasp counts): its
+  /// scenes in run.csv and trials.csv, and `out`/shard.txt (shard_record.hpp) saying which
+  /// shard of which run it is, "running" until the shard has finished. The first shard also
+  /// counts the grasps rejected before any scene runs (unparsable, unknown scene), so that
+  /// mergeShards sums every rejection once. Nullopt: the whole run.
+  std::optional<ShardSpec> shard;
   /// Set (by a SIGINT/SIGTERM handler, say: rw::common::catchStopSignals) to stop early: the
   /// running trials finish and are written, no new one starts, and runBenchmark throws
   /// rw::common::StopRequested; `resume` completes the run later. Null: never. Must outlive the
@@ -79,7 +87,9 @@ struct RunSummary {
 /// @throws rw::common::LoadError for an unreadable database, grasp file, hand description or
 /// scene file, rw::common::WriteError (file and reason) for a failed write,
 /// rw::common::StopRequested when options.stop ended the run early, std::runtime_error for an
-/// existing result folder without `resume`.
+/// existing result folder without `resume`, a shard folder of another shard or run, or a shard
+/// folder resumed without `shard`,
+/// std::invalid_argument for a shard outside 1..count.
 RunSummary runBenchmark(const RunOptions& options,
                         const std::function<void(const RunProgress&)>& progress = {});
 

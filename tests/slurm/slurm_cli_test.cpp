@@ -1,0 +1,162 @@
+// `visgrab run --shard`, `visgrab merge` and `visgrab slurm` through the binary, without Slurm:
+// the written job scripts, run by bash with the array task ids Slurm would give, reproduce a
+// one-machine run; --submit chains the merge job on the array's id from `sbatch --parsable`
+// (a stand-in sbatch records its arguments); mistakes are clear errors.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include "shard_test_grasps.hpp"
+#include "support/test_database.hpp"
+#include "support/test_support.hpp"
+#include "visgrab/taskio/grasp_list.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using visgrab::test::runProgram;
+using visgrab::test::shellQuoted;
+
+std::string fileBytes(const fs::path& f) {
+  std::ifstream in(f, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+bool contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+class SlurmCommand : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    using visgrab::test::kTestSceneIds;
+    visgrab::taskio::writeGraspList(
+        visgrab::test::cylinderGrasps(
+            {kTestSceneIds[1], kTestSceneIds[3], kTestSceneIds[11], kTestSceneIds[17]}, 2, "top"),
+        grasps());
+  }
+  fs::path grasps() const { return tmp_.path() / "top.txt"; }
+  std::string common() const {
+    return " --db " + shellQuoted(visgrab::test::testDatabasePath()) + " --grasps " +
+           shellQuoted(grasps()) + " --hand " + shellQuoted(visgrab::test::sdhHandFile());
+  }
+  visgrab::test::TempDir tmp_;
+};
+
+TEST_F(SlurmCommand, DryRunPrintsTheScriptsAndWritesNothing) {
+  const fs::path out = tmp_.path() / "sweep";
+  const auto r =
+      runProgram(VISGRAB_BINARY,
+                 "slurm" + common() + " --grasps " + shellQuoted(grasps()) + " --hand " +
+                     shellQuoted(visgrab::test::sourceDir() / "scenes/hands/pg70") +
+                     " --shards 3 --cpus-per-task 4 --partition short --time 0:10:00 --account lab "
+                     "--mem 2G --sbatch-option=--qos=low --dry-run --out " +
+                     shellQuoted(out));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  // 2 grasp sets x 2 hands x 3 shards.
+  EXPECT_TRUE(contains(r.output, "#SBATCH --array=0-11\n")) << r.output;
+  EXPECT_TRUE(contains(r.output, "#SBATCH --cpus-per-task=4\n"));
+  EXPECT_TRUE(contains(r.output, "#SBATCH --partition=short\n"));
+  EXPECT_TRUE(contains(r.output, "#SBATCH --time=0:10:00\n"));
+  EXPECT_TRUE(contains(r.output, "#SBATCH --account=lab\n"));
+  EXPECT_TRUE(contains(r.output, "#SBATCH --mem=2G\n"));
+  EXPECT_TRUE(contains(r.output, "#SBATCH --qos=low\n"));
+  EXPECT_TRUE(contains(
+      r.output, "#SBATCH --output=" + (out / "slurm/logs").string() + "/trials-%A_%a.out\n"));
+  EXPECT_TRUE(contains(r.output, "--threads 4 --resume"));
+  EXPECT_TRUE(contains(r.output, "name='top-sdh'"));
+  EXPECT_TRUE(contains(r.output, "name='top-pg70'"));
+  EXPECT_TRUE(contains(r.output, "name='top-sdh-2'")) << r.output;
+  EXPECT_TRUE(contains(r.output, "--dependency=afterok:"));
+  EXPECT_TRUE(contains(r.output, " analyze "));
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST_F(SlurmCommand, ScriptsRunWithoutSlurmGiveTheOneMachineResults) {
+  const fs::path out = tmp_.path() / "sweep";
+  auto r = runProgram(
+      VISGRAB_BINARY,
+      "slurm" + common() + " --shards 3 --cpus-per-task 2 --no-pictures --out " + shellQuoted(out));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const fs::path scripts = out / "slurm";
+  EXPECT_TRUE(fs::is_directory(scripts / "logs"));
+  // The array's tasks in any order; task 1 twice (a requeued task resumes its finished shard).
+  for (const int task : {2, 0, 1, 1}) {
+    r = runProgram("/bin/bash", shellQuoted(scripts / "trials.sbatch") + " 2>&1");
+    EXPECT_NE(r.exitCode, 0) << "ran without SLURM_ARRAY_TASK_ID";
+    r = runProgram("/usr/bin/env", "SLURM_ARRAY_TASK_ID=" + std::to_string(task) + " /bin/bash " +
+                                       shellQuoted(scripts / "trials.sbatch"));
+    ASSERT_EQ(r.exitCode, 0) << task << "\n" << r.output;
+  }
+  r = runProgram("/usr/bin/env",
+                 "SLURM_ARRAY_TASK_ID=3 /bin/bash " + shellQuoted(scripts / "trials.sbatch"));
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+  EXPECT_TRUE(contains(r.output, "beyond the 3 tasks")) << r.output;
+  r = runProgram("/bin/bash", shellQuoted(scripts / "merge.sbatch"));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_TRUE(fs::exists(out / "report" / "report.md"));
+
+  const fs::path whole = tmp_.path() / "whole";
+  r = runProgram(VISGRAB_BINARY,
+                 "run" + common() + " --quiet --threads 2 --out " + shellQuoted(whole));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  for (const auto name : {"trials.csv", "run.csv"}) {
+    EXPECT_EQ(fileBytes(out / "results" / "top" / name), fileBytes(whole / name)) << name;
+  }
+}
+
+TEST_F(SlurmCommand, SubmitChainsTheMergeJobOnTheArraysId) {
+  const fs::path calls = tmp_.path() / "calls.txt";
+  const fs::path sbatch = visgrab::test::writeFile(
+      tmp_.path() / "sbatch",
+      "#!/bin/sh\necho \"$@\" >> " + shellQuoted(calls) +
+          "\nif [ \"$#\" = 2 ]; then echo '4242;cluster'; else echo 4243; fi\n");
+  fs::permissions(sbatch, fs::perms::owner_all);
+  const fs::path out = tmp_.path() / "sweep";
+  auto r = runProgram(VISGRAB_BINARY, "slurm" + common() + " --shards 2 --submit --sbatch " +
+                                          shellQuoted(sbatch) + " --out " + shellQuoted(out));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_TRUE(contains(r.output, "trials job 4242, merge job 4243")) << r.output;
+  EXPECT_EQ(fileBytes(calls), "--parsable " + (out / "slurm/trials.sbatch").string() +
+                                  "\n--parsable --dependency=afterok:4242 " +
+                                  (out / "slurm/merge.sbatch").string() + "\n");
+  // An sbatch that prints no job id, or fails: a clear error.
+  visgrab::test::writeFile(sbatch, "#!/bin/sh\necho 'sbatch: error: invalid partition'\n");
+  r = runProgram(VISGRAB_BINARY, "slurm" + common() + " --shards 2 --submit --sbatch " +
+                                     shellQuoted(sbatch) + " --out " + shellQuoted(out));
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_TRUE(contains(r.output, "expected a job id")) << r.output;
+  visgrab::test::writeFile(sbatch, "#!/bin/sh\nexit 3\n");
+  r = runProgram(VISGRAB_BINARY, "slurm" + common() + " --shards 2 --submit --sbatch " +
+                                     shellQuoted(sbatch) + " --out " + shellQuoted(out));
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_TRUE(contains(r.output, "failed (exit code 3)")) << r.output;
+}
+
+TEST_F(SlurmCommand, ShardOptionsAndMergeMistakesAreClearErrors) {
+  auto r = runProgram(VISGRAB_BINARY, "run" + common() + " --shard 3 --of 2 --out " +
+                                          shellQuoted(tmp_.path() / "x"));
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_TRUE(contains(r.output, "--shard 3 is beyond --of 2")) << r.output;
+  r = runProgram(VISGRAB_BINARY,
+                 "run" + common() + " --shard 1 --out " + shellQuoted(tmp_.path() / "x"));
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_TRUE(contains(r.output, "--shard K and --of N go together")) << r.output;
+  r = runProgram(VISGRAB_BINARY,
+                 "run" + common() + " --shard 0 --of 2 --out " + shellQuoted(tmp_.path() / "x"));
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+  EXPECT_FALSE(fs::exists(tmp_.path() / "x"));
+  r = runProgram(VISGRAB_BINARY, "merge " + shellQuoted(tmp_.path()) + " --out " +
+                                     shellQuoted(tmp_.path() / "merged"));
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_TRUE(contains(r.output, "not the result folder of a shard")) << r.output;
+  r = runProgram(VISGRAB_BINARY, "slurm" + common() + " --shards 2 --dry-run --submit --out " +
+                                     shellQuoted(tmp_.path() / "s"));
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+}
+
+}  // namespace
