@@ -48,7 +48,7 @@ std::vector<std::string> graspProblems(const OpenDatabase& d, const Hand& hand,
     if (r.kind == grasp::GraspKind::kContacts) continue;
     const grasp::ResolvedGrasp resolved = grasp::resolve(r, *hand.setup);
     if (resolved.status == grasp::ResolveStatus::kInputError) {
-      problem.message = "grasp " + r.id + ": " + resolved.message;
+      problem.message = "grasp " + r.id + ": " + resolved.reason;
       problems.push_back(problem.format());
     }
   }

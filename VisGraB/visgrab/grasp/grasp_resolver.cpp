@@ -21,6 +21,7 @@ std::string where(const GraspRequest& r) {
 ResolvedGrasp inputError(const GraspRequest& r, const std::string& what) {
   ResolvedGrasp out;
   out.status = ResolveStatus::kInputError;
+  out.reason = what;
   out.message = where(r) + what;
   return out;
 }
@@ -60,6 +61,7 @@ ResolvedGrasp resolveContacts(const GraspRequest& r, const HandGraspSetup& setup
     ResolvedGrasp out = ok(ik.parameters());
     if (!ik.valid) {
       out.status = ResolveStatus::kInvalidContacts;
+      out.reason = ik.reason;
       out.message = where(r) + ik.reason;
     }
     out.ik = std::move(ik);
@@ -76,7 +78,8 @@ ResolvedGrasp resolveContacts(const GraspRequest& r, const HandGraspSetup& setup
                   placement.candidates, options.contactSlack * 1e3,
                   placement.check.penetration * 1e3);
     out.status = ResolveStatus::kInCollision;
-    out.message = where(r) + buffer + placement.check.detail;
+    out.reason = buffer + placement.check.detail;
+    out.message = where(r) + out.reason;
   }
   out.ik = placement.ik;
   out.placement = std::move(placement);

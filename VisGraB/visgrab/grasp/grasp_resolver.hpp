@@ -27,6 +27,9 @@ struct ResolvedGrasp {
   rwsim::simulator::GraspParameters parameters;
   /// Empty when ok; else "FILE:LINE: grasp ID: what is wrong" (FILE:LINE omitted if unknown).
   std::string message;
+  /// What is wrong, without the FILE:LINE and grasp id of `message` (for messages that give
+  /// those themselves, e.g. a rw::common::Diagnostic).
+  std::string reason;
   /// Details of the contact IK (kContacts requests only).
   std::optional<ContactIkResult> ik;
   /// The placement search (kContacts requests resolved in a scene, when the IK was valid).

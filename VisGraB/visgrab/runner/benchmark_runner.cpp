@@ -60,7 +60,7 @@ class SceneRunner {
     const grasp::GraspRequest& r = *job.request;
     const grasp::ResolvedGrasp resolved = session_.resolve(r);
     if (resolved.status == grasp::ResolveStatus::kInputError) {
-      rejected = rejection(r, resolved.message);
+      rejected = rejection(r, resolved.reason);
       return std::nullopt;
     }
     results::TrialRecord record;

@@ -2,9 +2,11 @@
 // the objects' ground-truth poses: each grasp representation, rejected input, and a run killed with
 // SIGKILL and resumed against an uninterrupted one (byte-equal results).
 #include <gtest/gtest.h>
+
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
+#include <algorithm>
 
 #include <chrono>
 #include <filesystem>
@@ -192,7 +194,15 @@ TEST(BenchmarkRun, MalformedGraspsAreRejectedAndTheOthersRun) {
   for (const auto& d : summary.rejected) {
     EXPECT_NE(d.file.find("mixed.txt"), std::string::npos) << d.format();
     EXPECT_GT(d.line, 0) << d.format();
+    // The location is given once, by the diagnostic (not again inside its message).
+    EXPECT_EQ(d.message.find("mixed.txt"), std::string::npos) << d.format();
   }
+  const auto shape =
+      std::find_if(summary.rejected.begin(), summary.rejected.end(),
+                   [](const auto& d) { return d.message.find("NO_SUCH") != d.message.npos; });
+  ASSERT_NE(shape, summary.rejected.end());
+  EXPECT_EQ(shape->message.rfind("grasp bad_shape: unknown pre-shape \"NO_SUCH_SHAPE\"", 0), 0u)
+      << shape->format();
   const auto run = visgrab::results::readResults(options.out);
   int rejected = 0;
   for (const auto& [method, n] : run.rejected) rejected += n;
