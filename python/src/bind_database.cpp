@@ -95,6 +95,20 @@ py::array rgbArray(const cv::Mat& bgr) {
   return imageArray<std::uint8_t>(rgb);
 }
 
+/// A Scene property that reads one of the scene's images with `read` (a Database member) without
+/// the GIL and gives it to Python with `convert`.
+template <typename Read, typename Convert>
+auto sceneImage(Read read, Convert convert) {
+  return [read, convert](const SceneView& s) {
+    cv::Mat image;
+    {
+      py::gil_scoped_release release;
+      image = read(*s.db, s.entry.id);
+    }
+    return convert(image);
+  };
+}
+
 py::object conditionsDict(const std::optional<database::SceneConditions>& c,
                           const database::ObjectCatalog& catalog) {
   if (!c) return py::none();
@@ -334,26 +348,15 @@ the table frame is `cloud_frame` (= calibration["X_table_camera"]).
           "show --json` lists them.")
       .def_property_readonly(
           "left",
-          [](const SceneView& s) {
-            cv::Mat bgr;
-            {
-              py::gil_scoped_release release;
-              bgr = s.db->leftImage(s.entry.id);
-            }
-            return rgbArray(bgr);
-          },
+          sceneImage(
+              [](const database::Database& db, const std::string& id) { return db.leftImage(id); },
+              [](const cv::Mat& image) { return rgbArray(image); }),
           "The rectified left image: HxWx3 uint8 in RGB order (not OpenCV's BGR).")
-      .def_property_readonly(
-          "right",
-          [](const SceneView& s) {
-            cv::Mat bgr;
-            {
-              py::gil_scoped_release release;
-              bgr = s.db->rightImage(s.entry.id);
-            }
-            return rgbArray(bgr);
-          },
-          "The rectified right image: HxWx3 uint8 in RGB order.")
+      .def_property_readonly("right",
+                             sceneImage([](const database::Database& db,
+                                           const std::string& id) { return db.rightImage(id); },
+                                        [](const cv::Mat& image) { return rgbArray(image); }),
+                             "The rectified right image: HxWx3 uint8 in RGB order.")
       .def_property_readonly(
           "raw_left", [](const SceneView& s) { return rawImage(s.entry.rawLeftImage); },
           "The raw left sensor image as stored (Bayer mosaic, distorted, unrectified; HxW "
@@ -397,38 +400,23 @@ r g b (0..255). frame="camera" (default): as stored, in the rectified left camer
 cloud_frame); frame="table": moved into the table (world) frame.)doc")
       .def_property_readonly(
           "depth",
-          [](const SceneView& s) {
-            cv::Mat depth;
-            {
-              py::gil_scoped_release release;
-              depth = s.db->depthImage(s.entry.id);
-            }
-            return imageArray<float>(depth);
-          },
+          sceneImage(
+              [](const database::Database& db, const std::string& id) { return db.depthImage(id); },
+              [](const cv::Mat& image) { return imageArray<float>(image); }),
           "Ground-truth depth of the rectified left view: HxW float32, camera z in metres, 0.0 "
           "where nothing was drawn (depth.png holds 0.1 mm units; this is that / 10000).")
       .def_property_readonly(
           "mask",
-          [](const SceneView& s) {
-            cv::Mat mask;
-            {
-              py::gil_scoped_release release;
-              mask = s.db->instanceMask(s.entry.id);
-            }
-            return imageArray<std::uint8_t>(mask);
-          },
+          sceneImage([](const database::Database& db,
+                        const std::string& id) { return db.instanceMask(id); },
+                     [](const cv::Mat& image) { return imageArray<std::uint8_t>(image); }),
           "Ground-truth instance mask of the rectified left view: HxW uint8, 0 background, 255 "
           "table, the object id (1..18) on object pixels.")
       .def_property_readonly(
           "disparity",
-          [](const SceneView& s) {
-            cv::Mat disparity;
-            {
-              py::gil_scoped_release release;
-              disparity = s.db->disparityImage(s.entry.id);
-            }
-            return imageArray<float>(disparity);
-          },
+          sceneImage([](const database::Database& db,
+                        const std::string& id) { return db.disparityImage(id); },
+                     [](const cv::Mat& image) { return imageArray<float>(image); }),
           "The stereo matcher's disparity of the rectified pair: HxW float32 pixels, -1.0 where "
           "there is none.")
       .def_property_readonly(
