@@ -1,6 +1,8 @@
 #pragma once
 
 #include <filesystem>
+#include <string>
+#include <vector>
 
 /// Where visgrab and visgrab-viewer find the project's scene data (hands, objects, cameras,
 /// materials) when neither --data nor $VISGRAB_DATA names it.
@@ -14,5 +16,14 @@ std::filesystem::path defaultDataFolder(const std::filesystem::path& buildTreeSc
 /// The installed data folder of a program at `executable` (`<its folder>/../share/visgrab/scenes`),
 /// whether or not it exists.
 std::filesystem::path installedDataFolder(const std::filesystem::path& executable);
+
+/// The hands in `data`/hands: the folders that hold a `*.grasp.xml`, sorted by name.
+std::vector<std::string> knownHands(const std::filesystem::path& data);
+
+/// The hand `text` names on a command line or to the Python module's Hand(): an existing file or
+/// folder, or text that looks like a path (holds '/' or ends in ".xml"), as it is (a missing one
+/// is the loader's error); otherwise a hand's name, `data`/hands/`text` ("sdh", "pg70", ...).
+/// @throws std::invalid_argument for an unknown name, listing the known ones.
+std::filesystem::path handPath(const std::string& text, const std::filesystem::path& data);
 
 }  // namespace visgrab::cli

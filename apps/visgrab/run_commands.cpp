@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "baseline_commands.hpp"
+#include "cli_common/data_folder.hpp"
 #include "progress_reporter.hpp"
 #include "rw/common/diagnostic.hpp"
 #include "rw/common/stop_signals.hpp"
@@ -63,13 +64,19 @@ std::optional<runner::RunSummary> runStoppable(runner::RunOptions& options, bool
   }
 }
 
+/// --hand: a folder, a grasp description or a hand's name in DATA/hands (default: the SDH).
+fs::path handOption(const Arguments& a, const fs::path& data) {
+  const auto hand = a.option("hand");
+  return hand ? cli::handPath(*hand, data) : data / "hands/sdh/sdh.grasp.xml";
+}
+
 int runRun(const Arguments& a) {
   runner::RunOptions options;
   const auto grasps = a.values("grasps");
   options.database = a.option("db").value();
   options.grasps.assign(grasps.begin(), grasps.end());
   options.out = a.option("out").value();
-  options.hand = a.option("hand").value_or((dataFolder(a) / "hands/sdh/sdh.grasp.xml").string());
+  options.hand = handOption(a, dataFolder(a));
   options.scenes = scenesFilter(a);
   options.threads = threadsOption(a);
   options.resume = a.flag("resume");
@@ -216,7 +223,7 @@ int runBenchmarkCommand(const Arguments& a) {
   options.database = db;
   options.grasps = graspSources;
   options.out = fs::path(*out) / "results";
-  options.hand = a.option("hand").value_or((data / "hands/sdh/sdh.grasp.xml").string());
+  options.hand = handOption(a, data);
   options.scenes = scenes;
   options.threads = threads;
   options.resume = a.flag("resume");
@@ -246,7 +253,8 @@ int runBenchmarkCommand(const Arguments& a) {
 
 void addRunCommands(CommandLine& cli) {
   constexpr const char* kHandHelp =
-      "The hand: its folder or grasp description (default: the SDH, DATA/hands/sdh)";
+      "The hand: its name in DATA/hands (sdh, pg70, ...), its folder or its grasp description "
+      "(default: the SDH, DATA/hands/sdh)";
   constexpr const char* kResumeHelp =
       "Continue a killed run: keep the trials already in the results, run the rest";
   CLI::App& run = cli.addCommand(
@@ -262,7 +270,7 @@ void addRunCommands(CommandLine& cli) {
   run.add_option("--out", "The result folder to write")->required()->type_name("RESULTS");
   addThreadsOption(run);
   addFlag(run, "--resume", kResumeHelp);
-  run.add_option("--hand", kHandHelp)->type_name("DIR|GRASP.xml");
+  run.add_option("--hand", kHandHelp)->type_name("NAME|DIR|GRASP.xml");
   addScenesOption(run);
   run.add_option("--shard",
                  "Run only shard K of the work cut into --of N shards (K from 1 to N): whole "
@@ -298,7 +306,7 @@ void addRunCommands(CommandLine& cli) {
       ->default_str("database");
   addThreadsOption(benchmark);
   addFlag(benchmark, "--resume", kResumeHelp);
-  benchmark.add_option("--hand", kHandHelp)->type_name("DIR|GRASP.xml");
+  benchmark.add_option("--hand", kHandHelp)->type_name("NAME|DIR|GRASP.xml");
   addScenesOption(benchmark);
   addDataOption(benchmark);
   addFlag(benchmark, "--no-pictures", "Leave the report's pictures out");

@@ -12,6 +12,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "cli_common/data_folder.hpp"
 #include "visgrab/database/atomic_file.hpp"
 
 namespace visgrab::app {
@@ -241,7 +242,9 @@ int runSlurm(const Arguments& a) {
                                      : fs::read_symlink("/proc/self/exe").lexically_normal();
   plan.database = abs(a.option("db").value());
   for (const auto& g : a.values("grasps")) plan.grasps.push_back(abs(g));
-  for (const auto& h : a.values("hand")) plan.hands.push_back(abs(h));
+  for (const auto& h : a.values("hand")) {
+    plan.hands.push_back(abs(cli::handPath(h, dataFolder(a)).string()));
+  }
   if (plan.hands.empty())
     plan.hands.push_back(abs((dataFolder(a) / "hands/sdh/sdh.grasp.xml").string()));
   plan.scenes = scenesFilter(a);
@@ -340,7 +343,8 @@ void addSlurmCommands(CommandLine& cli) {
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   slurm
       .add_option("--hand",
-                  "A hand (folder or grasp description; default: the SDH): every --grasps "
+                  "A hand (name in DATA/hands, folder or grasp description; default: the SDH): "
+                  "every --grasps "
                   "runs with every --hand; repeatable")
       ->type_name("DIR|GRASP.xml")
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "cli_common/data_folder.hpp"
 #include "common.hpp"
 #include "visgrab/grasp/hand_grasp_setup.hpp"
 #include "visgrab/taskio/grasp_file.hpp"
@@ -105,41 +106,15 @@ GraspRequest graspFromLine(const std::string& line, const std::string& origin) {
   return g;
 }
 
-// The hands in DATA/hands (folders with a grasp description), sorted.
-std::vector<std::string> knownHands(const fs::path& data) {
-  std::vector<std::string> names;
-  std::error_code error;
-  for (const auto& e : fs::directory_iterator(data / "hands", error)) {
-    if (!e.is_directory()) continue;
-    for (const auto& f : fs::directory_iterator(e.path(), error)) {
-      const std::string name = f.path().filename().string();
-      if (name.size() > 10 && name.ends_with(".grasp.xml")) {
-        names.push_back(e.path().filename().string());
-        break;
-      }
-    }
-  }
-  std::sort(names.begin(), names.end());
-  return names;
-}
-
-// Hand(name|folder|file): the grasp description file it names.
+// Hand(name|folder|file): the grasp description file it names (cli::handPath's rules).
 fs::path findHand(const std::string& text, const fs::path& data) {
+  const fs::path path = cli::handPath(text, data);
   std::error_code error;
-  if (!text.empty() && fs::exists(text, error)) return grasp::graspDescriptionFile(text);
-  const bool looksLikePath = text.find('/') != std::string::npos || text.ends_with(".xml");
-  if (looksLikePath) {
+  if (!fs::exists(path, error)) {
     throw rw::common::LoadError({rw::common::Diagnostic{
         rw::common::Diagnostic::Severity::kError, text, 0, 0, "no such file or folder", {}}});
   }
-  if (!text.empty() && fs::is_directory(data / "hands" / text, error)) {
-    return grasp::graspDescriptionFile(data / "hands" / text);
-  }
-  std::string known;
-  for (const auto& h : knownHands(data)) known += (known.empty() ? "" : ", ") + h;
-  throw py::value_error("unknown hand \"" + text + "\": not a file or folder, and " +
-                        (data / "hands").string() + " has no hand of that name (known: " + known +
-                        ")");
+  return grasp::graspDescriptionFile(path);
 }
 
 py::dict preshapeDict(const grasp::PreShape& p) {

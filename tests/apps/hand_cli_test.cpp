@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <string>
 
 #include "support/test_database.hpp"
@@ -96,6 +97,32 @@ TEST(HandCli, Mistakes) {
               " --hand " + shellQuoted(empty.path()));
   EXPECT_EQ(r.exitCode, 1) << r.output;
   EXPECT_NE(r.output.find("holds no grasp description"), std::string::npos) << r.output;
+}
+
+// `run --hand NAME` takes a hand of DATA/hands by name, as Python's Hand("pg70") does; an
+// unknown name lists the known ones and writes nothing.
+TEST(HandCli, RunTakesAHandByName) {
+  visgrab::test::TempDir tmp;
+  {
+    std::FILE* f = std::fopen((tmp.path() / "g.csv").c_str(), "w");
+    ASSERT_NE(f, nullptr);
+    std::fprintf(f, "%s, m, g1, preshape, 0,0,0.5, 1,0,0,0, NOPE\n", kScene);
+    std::fclose(f);
+  }
+  const std::string common = "run --db " + shellQuoted(visgrab::test::testDatabasePath()) +
+                             " --grasps " + shellQuoted(tmp.path() / "g.csv") + " --out ";
+  RunResult r = visgrab(common + shellQuoted(tmp.path() / "a") + " --hand pg70");
+  EXPECT_EQ(r.exitCode, 0) << r.output;
+  // The pre-shape is looked up in the PG70's description: the name chose that hand.
+  EXPECT_NE(r.output.find("g.csv:1: error: grasp g1: unknown pre-shape \"NOPE\" for hand "
+                          "\"PG70\" (known: PG70, PG70_SMALL)"),
+            std::string::npos)
+      << r.output;
+  r = visgrab(common + shellQuoted(tmp.path() / "b") + " --hand pg7");
+  EXPECT_EQ(r.exitCode, 1) << r.output;
+  EXPECT_NE(r.output.find("unknown hand \"pg7\""), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("(known: pg70, robotiq2f85, sdh)"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(tmp.path() / "b"));
 }
 
 }  // namespace
