@@ -158,8 +158,13 @@ class SetupBuilder {
   }
 
   void buildTauRule(const TauRuleSpec& spec) {
-    if (!length(spec.base, "<TauMax> base", spec.where)) return;
-    s_.tauRule_.base = toQ(spec.base);
+    // One value stands for every DOF.
+    const std::vector<double> base =
+        spec.base.size() == 1
+            ? std::vector<double>(static_cast<std::size_t>(s_.dof()), spec.base.front())
+            : spec.base;
+    if (!length(base, "<TauMax> base", spec.where)) return;
+    s_.tauRule_.base = toQ(base);
     for (const TauAdjustSpec& a : spec.adjust) {
       TauAdjust r;
       r.angleIndex = joint(a.angleJoint, a.where);

@@ -51,6 +51,22 @@ class DynamicWorkCellLoader : public ::testing::Test {
   std::vector<Diagnostic> warnings_;
 };
 
+// One P and D pair in <PDParams> stands for every DOF (issue 20): the same gains as seven pairs.
+TEST_F(DynamicWorkCellLoader, OnePdPairIsTheSameForEveryDof) {
+  const auto one = load(SceneDir::dwc(sdhDevice() + sdhController(1)));
+  ASSERT_TRUE(one);
+  const auto seven = load(SceneDir::dwc(sdhDevice() + sdhController(7)));
+  ASSERT_TRUE(seven);
+  const auto* a = one->findController("GraspController");
+  const auto* b = seven->findController("GraspController");
+  ASSERT_NE(a, nullptr);
+  ASSERT_NE(b, nullptr);
+  EXPECT_EQ(a->p, Eigen::VectorXd::Constant(7, 10.0));
+  EXPECT_EQ(a->d, Eigen::VectorXd::Constant(7, 0.003));
+  EXPECT_EQ(a->p, b->p);
+  EXPECT_EQ(a->d, b->d);
+}
+
 TEST_F(DynamicWorkCellLoader, LoadsBodiesDevicesAndControllers) {
   const auto dwc = load(SceneDir::dwc(R"(<Gravity>0 0 -9.81</Gravity>
 <FixedBody frame="Table"><MaterialID>Rubber</MaterialID></FixedBody>

@@ -258,6 +258,25 @@ TEST(GraspDescription, SchemaErrorsSayWhatIsWrong) {
   }
 }
 
+// One value in <TauMax base> stands for every DOF (issue 20): the same rule as seven equal ones.
+TEST(GraspDescription, OneTauMaxBaseValueIsTheSameForEveryDof) {
+  const std::string seven = description("tcp=\"SDHTCP\"", "qOpen=\"0 0 0 0 0 0 0\"");
+  std::string one = seven;
+  one.replace(one.find("base=\"2 2 10 2 2 2 2\""), 21, "base=\"3\"");
+  std::string equal = seven;
+  equal.replace(equal.find("base=\"2 2 10 2 2 2 2\""), 21, "base=\"3 3 3 3 3 3 3\"");
+  const auto a = loadHandGraspSetupFromString(one, virtualFile());
+  const auto b = loadHandGraspSetupFromString(equal, virtualFile());
+  EXPECT_EQ(a->tauRule().base, rw::math::Q::Constant(7, 3.0));
+  EXPECT_EQ(a->tauRule().base, b->tauRule().base);
+  const rw::math::Q q = rw::math::Q::Constant(7, 0.3);
+  EXPECT_EQ(a->tauRule().evaluate(q), b->tauRule().evaluate(q));
+  // Two values for seven DOF stay an error.
+  std::string two = seven;
+  two.replace(two.find("base=\"2 2 10 2 2 2 2\""), 21, "base=\"3 4\"");
+  EXPECT_THROW(loadHandGraspSetupFromString(two, virtualFile()), rw::common::LoadError);
+}
+
 TEST(GraspDescription, DuplicatePreshapeName) {
   std::string xml = description();
   const std::string line =

@@ -397,11 +397,17 @@ void Builder::addController(const ControllerDesc& c) {
   if (!c.gains) return;  // reported by the parser
   const Device& device = *dwc_->device(index).device;
   const auto dof = static_cast<std::size_t>(device.dof());
-  if (c.gains->size() != 2 * dof) {
+  // One P and D pair stands for every DOF (this project's extension; RobWork wants a pair per DOF).
+  std::vector<double> gains = *c.gains;
+  if (gains.size() == 2 && dof > 1) {
+    for (std::size_t i = 1; i < dof; ++i) gains.insert(gains.end(), {gains[0], gains[1]});
+  }
+  if (gains.size() != 2 * dof) {
     sink_.error(c.gainsLocation, "<PDParams>: expected " + std::to_string(2 * dof) +
                                      " numbers (a P and a D gain for each of the " +
                                      std::to_string(dof) + " DOF of device \"" + c.device +
-                                     "\"), got " + std::to_string(c.gains->size()));
+                                     "\", or one pair for all), got " +
+                                     std::to_string(c.gains->size()));
     return;
   }
   rwsim::dynamics::PDController controller;
@@ -412,8 +418,8 @@ void Builder::addController(const ControllerDesc& c) {
   controller.p.resize(static_cast<Eigen::Index>(dof));
   controller.d.resize(static_cast<Eigen::Index>(dof));
   for (std::size_t i = 0; i < dof; ++i) {
-    controller.p[static_cast<Eigen::Index>(i)] = (*c.gains)[2 * i];
-    controller.d[static_cast<Eigen::Index>(i)] = (*c.gains)[2 * i + 1];
+    controller.p[static_cast<Eigen::Index>(i)] = gains[2 * i];
+    controller.d[static_cast<Eigen::Index>(i)] = gains[2 * i + 1];
   }
   try {
     dwc_->addController(std::move(controller));
