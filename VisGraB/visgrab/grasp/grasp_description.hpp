@@ -154,8 +154,9 @@ struct GraspDescription {
   std::string tcp;
   /// Pre-shapes in file order.
   std::vector<PreShapeSpec> preshapes;
-  /// Closing rule of pose + q grasps.
-  std::vector<CloseOffsetSpec> closing;
+  /// Closing rule of pose + q grasps (and of contact grasps without their own); nullopt: the
+  /// description has no <Closing> (a hand that runs only pre-shape and raw grasps).
+  std::optional<std::vector<CloseOffsetSpec>> closing;
   /// Torque-limit rule.
   TauRuleSpec tauRule;
   /// Contact IK settings (nullopt: the hand cannot solve contact grasps).

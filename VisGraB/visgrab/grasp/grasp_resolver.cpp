@@ -116,6 +116,11 @@ ResolvedGrasp resolveRequest(const GraspRequest& r, const HandGraspSetup& setup,
       return ok(r.X_W_tcp * p->X_shapeTcp_tcp, p->qOpen, p->qClosed, p->tauMax);
     }
     case GraspKind::kPoseAndQ: {
+      if (!setup.hasClosingRule()) {
+        return inputError(r, "hand \"" + setup.deviceName() +
+                                 "\" has no closing rule (no <Closing> in its grasp description), "
+                                 "which pose + q grasps need; use a pre-shape or raw grasp");
+      }
       if (const std::string e = checkQ(r.qOpen, "q", setup); !e.empty()) return inputError(r, e);
       return ok(r.X_W_tcp, r.qOpen, r.qOpen + setup.closeOffset(),
                 setup.tauRule().evaluate(r.qOpen));

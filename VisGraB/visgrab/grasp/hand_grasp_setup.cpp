@@ -74,7 +74,8 @@ class SetupBuilder {
     s_.tcpName_ = s_.workcell_->frames().frame(s_.tcp_).name();
     s_.X_base_tcp_ = relative(s_.device_->base(), s_.tcp_);
     buildTauRule(d.tauRule);
-    s_.closeOffset_ = closing(d.closing);
+    s_.hasClosingRule_ = d.closing.has_value();
+    s_.closeOffset_ = closing(d.closing.value_or(std::vector<CloseOffsetSpec>{}));
     for (const PreShapeSpec& p : d.preshapes) buildPreshape(p);
     if (d.contactIk) buildContactIk(*d.contactIk);
     return !sink_.hasErrors();
@@ -247,6 +248,12 @@ class SetupBuilder {
     for (const auto& seed : g.seeds) {
       ok = length(seed, "<Seed> q", g.where) && ok;
       out.seeds.push_back(toQ(seed));
+    }
+    if (!g.closing && !s_.hasClosingRule_) {
+      error(g.where,
+            "this contact grasp has no closing rule: give it a <Closing> or give the "
+            "description one (after the <PreShape>s)");
+      ok = false;
     }
     out.closeOffset = g.closing ? closing(*g.closing) : s_.closeOffset_;
     if (ok) ik.grasps.push_back(std::move(out));

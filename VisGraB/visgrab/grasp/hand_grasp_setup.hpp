@@ -146,8 +146,10 @@ class HandGraspSetup {
   const std::vector<PreShape>& preshapes() const { return preshapes_; }
   /// The pre-shape with this name or alias (exact match), or nullptr.
   const PreShape* findPreshape(std::string_view name) const;
-  /// Closing offsets of pose + q grasps, one per DOF (rad or m).
+  /// Closing offsets of pose + q grasps, one per DOF (rad or m); zero when there is no rule.
   const rw::math::Q& closeOffset() const { return closeOffset_; }
+  /// False when the grasp description has no <Closing>: pose + q grasps cannot run.
+  bool hasClosingRule() const { return hasClosingRule_; }
   /// The torque rule.
   const TauRule& tauRule() const { return tauRule_; }
   /// Contact IK settings, or nullptr if the hand has none.
@@ -169,6 +171,7 @@ class HandGraspSetup {
   rw::math::Transform3D X_base_tcp_ = rw::math::Transform3D::Identity();
   std::vector<PreShape> preshapes_;
   rw::math::Q closeOffset_;
+  bool hasClosingRule_ = true;
   TauRule tauRule_;
   std::optional<ContactIkSettings> contactIk_;
   rw::kinematics::State defaultState_;

@@ -8,13 +8,19 @@
 
 #include "grasp_test_support.hpp"
 #include "rw/common/diagnostic.hpp"
+#include "visgrab/grasp/grasp_resolver.hpp"
 #include "visgrab/grasp/hand_grasp_setup.hpp"
 
 namespace {
 
 using rw::math::Q;
+using visgrab::grasp::GraspKind;
+using visgrab::grasp::GraspRequest;
 using visgrab::grasp::HandGraspSetup;
 using visgrab::grasp::loadHandGraspSetupFromString;
+using visgrab::grasp::resolve;
+using visgrab::grasp::ResolvedGrasp;
+using visgrab::grasp::ResolveStatus;
 using visgrab::test::grasp::kDeg;
 using visgrab::test::grasp::makeQ;
 using visgrab::test::grasp::pg70;
@@ -238,7 +244,7 @@ TEST(GraspDescription, SchemaErrorsSayWhatIsWrong) {
   misspelt.replace(misspelt.find("</Closing>"), 10, "</Closng>");
   const BadCase cases[] = {
       {"missing", withoutTau, 6, "missing <TauMax> (required before <ContactIK>)"},
-      {"out of order", swapped, 3, "<TauMax> is out of order: it must come after <Closing>"},
+      {"out of order", swapped, 6, "<Closing> is out of order: it must come before <TauMax>"},
       {"twice", twice, 9,
        "<TauMax> is given twice; <GraspDescription> allows only one (the first is at line 6)"},
       {"misspelt", misspelt, 3,
@@ -255,6 +261,51 @@ TEST(GraspDescription, SchemaErrorsSayWhatIsWrong) {
       EXPECT_EQ(e.diagnostics()[0].line, c.line) << e.what();
       EXPECT_EQ(e.diagnostics()[0].message, c.message) << e.what();
     }
+  }
+}
+
+// <Closing> is optional (issue 20): without it the hand loads and runs pre-shape grasps; pose + q
+// grasps are rejected with a message naming the missing rule; a contact grasp needs its own.
+TEST(GraspDescription, WithoutClosingPoseAndQGraspsAreRejectedWithTheReason) {
+  const std::string full = description("tcp=\"SDHTCP\"", "qOpen=\"0 0 0 0 0 0 0\"");
+  const std::size_t closingBegin = full.find("  <Closing>");
+  const std::size_t closingEnd = full.find("  <TauMax");
+  std::string noClosing = full;
+  noClosing.erase(closingBegin, closingEnd - closingBegin);
+  // The contact IK's grasp gets a closing rule of its own.
+  noClosing.replace(noClosing.find("</Grasp>"), 8,
+                    "<Closing><Offset joint=\"f2.Joint2\" value=\"20\"/></Closing></Grasp>");
+  const auto setup = loadHandGraspSetupFromString(noClosing, virtualFile());
+  EXPECT_FALSE(setup->hasClosingRule());
+  EXPECT_TRUE(loadHandGraspSetupFromString(full, virtualFile())->hasClosingRule());
+
+  GraspRequest poseQ;
+  poseQ.id = "g1";
+  poseQ.kind = GraspKind::kPoseAndQ;
+  poseQ.qOpen = rw::math::Q::Zero(7);
+  const ResolvedGrasp rejected = resolve(poseQ, *setup);
+  EXPECT_EQ(rejected.status, ResolveStatus::kInputError);
+  EXPECT_EQ(rejected.reason,
+            "hand \"SchunkHand\" has no closing rule (no <Closing> in its grasp description), "
+            "which pose + q grasps need; use a pre-shape or raw grasp");
+  GraspRequest shape;
+  shape.id = "g2";
+  shape.kind = GraspKind::kPreshape;
+  shape.preshape = "P";
+  EXPECT_TRUE(resolve(shape, *setup).ok()) << resolve(shape, *setup).message;
+
+  // Without its own <Closing> the contact grasp has no rule either: an error at its line.
+  std::string bare = full;
+  bare.erase(closingBegin, closingEnd - closingBegin);
+  try {
+    loadHandGraspSetupFromString(bare, virtualFile());
+    ADD_FAILURE() << "loaded";
+  } catch (const rw::common::LoadError& e) {
+    ASSERT_EQ(e.diagnostics().size(), 1u) << e.what();
+    EXPECT_EQ(e.diagnostics()[0].line, 9) << e.what();
+    EXPECT_NE(e.diagnostics()[0].message.find("this contact grasp has no closing rule"),
+              std::string::npos)
+        << e.what();
   }
 }
 
