@@ -44,6 +44,14 @@ std::size_t editDistance(std::string_view a, std::string_view b) {
   return row[b.size()];
 }
 
+std::uint64_t fnv1a(std::string_view bytes, std::uint64_t state) {
+  for (const char c : bytes) {
+    state ^= static_cast<unsigned char>(c);
+    state *= 0x100000001b3ULL;
+  }
+  return state;
+}
+
 std::string_view closestMatch(std::string_view wanted, const std::vector<std::string>& candidates) {
   const std::size_t allowed = std::max<std::size_t>(2, wanted.size() / 4);
   std::string_view best;

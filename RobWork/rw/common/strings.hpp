@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -16,6 +17,13 @@ std::size_t editDistance(std::string_view a, std::string_view b);
 /// The candidate closest to `wanted` by editDistance if it is close enough to be a misspelling
 /// (at most max(2, |wanted| / 4) edits; the first of equally close ones), or an empty view.
 std::string_view closestMatch(std::string_view wanted, const std::vector<std::string>& candidates);
+
+/// 64-bit FNV-1a offset basis: the state of fnv1a before any byte.
+inline constexpr std::uint64_t kFnv1aBasis = 0xcbf29ce484222325ULL;
+
+/// 64-bit FNV-1a of `bytes`, continuing from `state` (kFnv1aBasis for a fresh hash): a stable
+/// hash for seeds and file fingerprints (the same on every platform and run).
+std::uint64_t fnv1a(std::string_view bytes, std::uint64_t state = kFnv1aBasis);
 
 /// The parts of `text` between the `separator`s (n separators give n + 1 parts, empty ones too).
 std::vector<std::string_view> split(std::string_view text, char separator);

@@ -1,5 +1,7 @@
 #include "visgrab/analysis/attempts.hpp"
 
+#include "rw/common/strings.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -12,12 +14,8 @@ namespace {
 
 /// FNV-1a of `text`, mixed with `seed` and `trial` by SplitMix64.
 std::uint64_t mixSeed(std::uint64_t seed, int trial, std::string_view text) {
-  std::uint64_t h = 1469598103934665603ULL;
-  for (const char c : text) {
-    h ^= static_cast<unsigned char>(c);
-    h *= 1099511628211ULL;
-  }
-  std::uint64_t z = h ^ (seed + 0x9e3779b97f4a7c15ULL * (static_cast<std::uint64_t>(trial) + 1));
+  std::uint64_t z = rw::common::fnv1a(text) ^
+                    (seed + 0x9e3779b97f4a7c15ULL * (static_cast<std::uint64_t>(trial) + 1));
   z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
   z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
   return z ^ (z >> 31);

@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "rw/common/strings.hpp"
 #include "rw/proximity/convex_shape.hpp"
 #include "rw/proximity/gjk.hpp"
 
@@ -99,12 +100,7 @@ std::string sceneIdOf(const database::SceneConditions& scene,
 
 Random::Random(std::uint64_t seed, std::string_view key) : state_(mix(seed)) {
   // FNV-1a of the key, mixed into the seed.
-  std::uint64_t h = 0xcbf29ce484222325ULL;
-  for (const char c : key) {
-    h ^= static_cast<unsigned char>(c);
-    h *= 0x100000001b3ULL;
-  }
-  state_ = mix(state_ ^ h);
+  state_ = mix(state_ ^ rw::common::fnv1a(key));
 }
 
 std::uint64_t Random::next() {

@@ -11,6 +11,7 @@
 
 #include "rw/common/stop_signals.hpp"
 #include "rw/common/task_pool.hpp"
+#include "rw/common/text_file.hpp"
 #include "rwsim/simulator/grasp_trial.hpp"
 #include "visgrab/database/database.hpp"
 #include "visgrab/grasp/grasp_resolver.hpp"
@@ -212,8 +213,8 @@ ShardRecord startShard(const RunOptions& options) {
 void finishShard(const fs::path& out, ShardRecord record, std::size_t trials) {
   record.finished = true;
   record.trials = trials;
-  record.trialsHash = contentHash(readFileBytes(out / results::kTrialsFileName));
-  record.runHash = contentHash(readFileBytes(out / results::kRunFileName));
+  record.trialsHash = contentHash(rw::common::readTextFileOrThrow(out / results::kTrialsFileName));
+  record.runHash = contentHash(rw::common::readTextFileOrThrow(out / results::kRunFileName));
   writeShardRecord(out, record);
 }
 

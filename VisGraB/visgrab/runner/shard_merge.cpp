@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "rw/common/text_file.hpp"
 #include "visgrab/results/results_file.hpp"
 #include "visgrab/runner/shard_record.hpp"
 
@@ -29,7 +30,7 @@ std::runtime_error shardError(const fs::path& dir, const std::string& message) {
 void checkFinishedFile(const fs::path& dir, std::string_view name, const std::string& hash) {
   const fs::path file = dir / name;
   if (!fs::exists(file)) throw shardError(dir, std::string(name) + " is missing");
-  const std::string bytes = readFileBytes(file);
+  const std::string bytes = rw::common::readTextFileOrThrow(file);
   if (name == results::kTrialsFileName) {
     const results::TrialsFile parsed = results::parseTrials(bytes, file.string());
     if (parsed.tornLastLine) {

@@ -3,12 +3,12 @@
 #include <algorithm>
 #include <charconv>
 #include <cstdint>
-#include <fstream>
-#include <iterator>
 #include <map>
 #include <sstream>
 
 #include "rw/common/diagnostic.hpp"
+#include "rw/common/strings.hpp"
+#include "rw/common/text_file.hpp"
 #include "visgrab/database/atomic_file.hpp"
 
 namespace visgrab::runner {
@@ -22,12 +22,7 @@ constexpr std::string_view kFirstLine = "visgrab shard 1";
 /// 64-bit FNV-1a, continued over several pieces.
 class Fnv1a {
  public:
-  void add(std::string_view bytes) {
-    for (const char c : bytes) {
-      state_ ^= static_cast<std::uint8_t>(c);
-      state_ *= 0x100000001b3ULL;
-    }
-  }
+  void add(std::string_view bytes) { state_ = rw::common::fnv1a(bytes, state_); }
   /// A piece with its length first, so that ("ab", "c") and ("a", "bc") differ.
   void addField(std::string_view bytes) {
     add(std::to_string(bytes.size()));
@@ -46,7 +41,7 @@ class Fnv1a {
   }
 
  private:
-  std::uint64_t state_ = 0xcbf29ce484222325ULL;
+  std::uint64_t state_ = rw::common::kFnv1aBasis;
 };
 
 rw::common::LoadError loadError(const std::string& file, int line, const std::string& message) {
@@ -71,7 +66,7 @@ std::vector<fs::path> folderFiles(const fs::path& folder) {
 
 void addFile(Fnv1a& hash, const fs::path& file, const std::string& name) {
   hash.addField(name);
-  hash.addField(readFileBytes(file));
+  hash.addField(rw::common::readTextFileOrThrow(file));
 }
 
 }  // namespace
@@ -82,20 +77,12 @@ std::string contentHash(std::string_view bytes) {
   return hash.hex();
 }
 
-std::string readFileBytes(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw loadError(file.string(), 0, "cannot be read");
-  std::string bytes{std::istreambuf_iterator<char>(in), {}};
-  if (in.bad()) throw loadError(file.string(), 0, "cannot be read");
-  return bytes;
-}
-
 RunFingerprint fingerprintRun(const fs::path& database, const std::vector<fs::path>& grasps,
                               const fs::path& hand, const std::string& scenes) {
   RunFingerprint out;
   {
     const fs::path index = fs::is_directory(database) ? database / "index.xml" : database;
-    out.database = contentHash(readFileBytes(index));
+    out.database = contentHash(rw::common::readTextFileOrThrow(index));
   }
   {
     Fnv1a hash;
@@ -239,7 +226,7 @@ ShardRecord readShardRecord(const fs::path& dir) {
                     "missing: " + dir.string() +
                         " is not the result folder of a shard (visgrab run --shard K --of N)");
   }
-  return parseShardRecord(readFileBytes(file), file.string());
+  return parseShardRecord(rw::common::readTextFileOrThrow(file), file.string());
 }
 
 void writeShardRecord(const fs::path& dir, const ShardRecord& record) {

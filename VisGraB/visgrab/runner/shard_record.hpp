@@ -52,10 +52,6 @@ struct ShardRecord {
 /// 64-bit FNV-1a of `bytes`, as 16 lower-case hex digits.
 std::string contentHash(std::string_view bytes);
 
-/// The whole content of `file` (binary). @throws rw::common::LoadError naming it if it cannot
-/// be read.
-std::string readFileBytes(const std::filesystem::path& file);
-
 /// The fingerprint of a run over `database`, the grasp sources `grasps` (files or folders, as
 /// taskio::readGraspSources reads them), the hand description or folder `hand` and the scene
 /// filter `scenes`. @throws rw::common::LoadError naming a file that cannot be read.
