@@ -39,9 +39,7 @@ std::vector<std::string> graspProblems(const OpenDatabase& d, const Hand& hand,
     problem.file = r.sourceFile;
     problem.line = r.sourceLine;
     if (!d.db->contains(r.sceneId)) {
-      const auto close = d.db->closestIds(r.sceneId);
-      problem.message = "grasp " + r.id + ": unknown scene \"" + r.sceneId + "\"" +
-                        (close.empty() ? "" : " (did you mean " + close.front() + "?)");
+      problem.message = "grasp " + r.id + ": " + runner::unknownSceneReason(*d.db, r.sceneId);
       problems.push_back(problem.format());
       continue;
     }

@@ -161,9 +161,7 @@ RunPlan planRun(const RunOptions& options, const RunInputs& in) {
   plan.order = session::benchmarkOrder(in.db, in.selected, in.grasps.requests);
   run.methods = plan.order.methods;
   for (const auto* r : plan.order.unknownScene) {
-    const auto close = in.db.closestIds(r->sceneId);
-    std::string hint = close.empty() ? "" : " (did you mean " + close.front() + "?)";
-    plan.rejected.push_back(rejection(*r, "unknown scene \"" + r->sceneId + "\"" + hint));
+    plan.rejected.push_back(rejection(*r, unknownSceneReason(in.db, r->sceneId)));
     ++plan.rejectedPerMethod[r->method];
   }
   return plan;
@@ -354,6 +352,12 @@ RunSummary finishRun(RunPlan& plan, results::ResultsWriter& writer) {
 }
 
 }  // namespace
+
+std::string unknownSceneReason(const database::Database& db, const std::string& sceneId) {
+  const auto close = db.closestIds(sceneId);
+  return "unknown scene \"" + sceneId + "\"" +
+         (close.empty() ? "" : " (did you mean " + close.front() + "?)");
+}
 
 RunSummary runBenchmark(const RunOptions& options,
                         const std::function<void(const RunProgress&)>& progress) {

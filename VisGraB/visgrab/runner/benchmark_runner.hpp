@@ -11,6 +11,10 @@
 #include "rw/common/diagnostic.hpp"
 #include "visgrab/runner/shard_plan.hpp"
 
+namespace visgrab::database {
+class Database;
+}  // namespace visgrab::database
+
 /// The headless benchmark run: every grasp of every scene through the simulator.
 namespace visgrab::runner {
 
@@ -90,6 +94,11 @@ struct RunSummary {
 /// existing result folder without `resume`, a shard folder of another shard or run, or a shard
 /// folder resumed without `shard`,
 /// std::invalid_argument for a shard outside 1..count.
+/// Why a grasp of scene `sceneId`, which `db` does not hold, is rejected: "unknown scene \"ID\""
+/// and the closest id as a "did you mean" (the runner's words; the Python module's check before a
+/// run uses them too).
+std::string unknownSceneReason(const database::Database& db, const std::string& sceneId);
+
 RunSummary runBenchmark(const RunOptions& options,
                         const std::function<void(const RunProgress&)>& progress = {});
 
