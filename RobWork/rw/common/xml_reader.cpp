@@ -265,27 +265,40 @@ std::string suggestElement(const std::string& name, const std::vector<std::strin
 }
 
 // Why the children of `open` do not fit the content model `model` (Xerces's text), at the child
-// concerned; empty if the model cannot be read.
+// concerned; empty if the model cannot be read or no reading of it agrees with Xerces.
+// `rejected` is the child Xerces names as not allowed ("" when it reports missing elements).
+// Xerces prints a group's own minOccurs/maxOccurs nowhere in that text: a device body, an
+// unbounded choice, reads "(Frame|Joint|...)", as if it allowed one child. So the model as
+// printed is taken when its verdict is Xerces's (the same child rejected, or none), else the
+// model repeated, "(model)*"; an explanation of another child than the one Xerces rejected
+// would send the author to the wrong line.
 std::string explainChildren(const XmlElement& open, const std::string& model,
-                            SourceLocation& where) {
-  const auto parsed = ContentModel::parse(model);
-  if (!parsed) return {};
+                            const std::string& rejected, SourceLocation& where) {
   std::vector<std::string> names;
   names.reserve(open.children.size());
   for (const XmlElement& c : open.children) names.push_back(c.name);
-  std::size_t index = 0;
-  std::string message = parsed->explain(names, open.describe(), &index);
-  if (message.empty()) return {};
-  where = index < open.children.size() ? open.children[index].location : open.location;
-  if (message.find(" is given twice") != std::string::npos) {
-    for (std::size_t j = 0; j < index; ++j) {
-      if (open.children[j].name == names[index]) {
-        message += " (the first is at line " + std::to_string(open.children[j].location.line) + ")";
-        break;
+  for (const std::string& reading : {model, "(" + model + ")*"}) {
+    const auto parsed = ContentModel::parse(reading);
+    if (!parsed) return {};
+    std::size_t index = 0;
+    std::string message = parsed->explain(names, open.describe(), &index);
+    if (message.empty()) continue;
+    const bool agrees =
+        rejected.empty() ? index == names.size() : index < names.size() && names[index] == rejected;
+    if (!agrees) continue;
+    where = index < open.children.size() ? open.children[index].location : open.location;
+    if (message.find(" is given twice") != std::string::npos) {
+      for (std::size_t j = 0; j < index; ++j) {
+        if (open.children[j].name == names[index]) {
+          message +=
+              " (the first is at line " + std::to_string(open.children[j].location.line) + ")";
+          break;
+        }
       }
     }
+    return message;
   }
-  return message;
+  return {};
 }
 
 // Receives the SAX events of one parse and builds the element tree.
@@ -471,7 +484,9 @@ std::string TreeBuilder::explainContentError(const std::string& xerces, const Xm
       xerces.find("is not allowed for content model") != std::string::npos ||
       xerces.find("missing elements in content model") != std::string::npos;
   if (contentModelError && !isWrapper) {
-    std::string message = explainChildren(open, quotedAfter(xerces, "content model"), where);
+    const bool notAllowed = xerces.find("is not allowed for content model") != std::string::npos;
+    std::string message = explainChildren(open, quotedAfter(xerces, "content model"),
+                                          notAllowed ? quotedAfter(xerces, "element") : "", where);
     if (!message.empty()) return message;
   }
   if (xerces.find("is not allowed for content model") != std::string::npos) {

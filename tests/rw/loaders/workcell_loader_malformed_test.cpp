@@ -255,6 +255,14 @@ std::vector<Case> cases() {
        "main.wc.xml",
        3,
        "<Q> is not allowed in <WorkCell name=\"w\">"},
+      // A workcell-level element inside a device (RobWork's MARVIN cells do this): reported as
+      // itself, not as an earlier child "out of order" (Xerces prints a device body's unbounded
+      // choice without its repetition).
+      {"CalibrationInADevice",
+       {{"main.wc.xml", device("  <Calibration file=\"c.xml\"/>")}},
+       "main.wc.xml",
+       5,
+       "<Calibration> is not allowed in <TreeDevice name=\"D\">"},
       {"DhJointWithTwoForms",
        {{"main.wc.xml",
          device("  <DHJoint name=\"j1\" alpha=\"0\" a=\"0\" d=\"0\" theta=\"0\" offset=\"0\"/>")}},
