@@ -43,6 +43,10 @@ int robworkCode(GraspOutcome outcome) {
   return kOutcomeTable[static_cast<std::size_t>(outcome)].robworkCode;
 }
 
+bool closingHitCap(std::string_view detail) {
+  return detail.find(kClosingCapNote) != std::string_view::npos;
+}
+
 std::optional<GraspOutcome> outcomeFromName(std::string_view name) {
   for (const OutcomeInfo& row : kOutcomeTable) {
     if (row.name == name) return row.outcome;

@@ -228,6 +228,7 @@ class TrialRun {
   bool inCollision(const rw::kinematics::State& state);
   bool advance(std::string_view phase);
   bool close();
+  void noteClosingCap(const Q& v, const Q& restSpeed);
   bool lift(const Transform3D& X_W_base);
   void finish(GraspOutcome outcome, std::string detail = {}) {
     result_.outcome = outcome;
@@ -235,6 +236,7 @@ class TrialRun {
   }
   void evaluate(const Transform3D& X_h0, const Transform3D& X_o0);
   GraspTrialResult withMessages() {
+    if (!closingNote_.empty()) result_.detail += " [" + closingNote_ + "]";
     if (!sim_.odeMessages().empty()) result_.detail += " [" + sim_.odeMessages() + "]";
     return result_;
   }
@@ -248,6 +250,7 @@ class TrialRun {
   control::PDController pd_;
   double dt_;
   GraspTrialResult result_;
+  std::string closingNote_;
 };
 
 bool TrialRun::inCollision(const rw::kinematics::State& state) {
@@ -301,9 +304,28 @@ bool TrialRun::close() {
     } else {
       restSince = -1.0;
     }
-    if (t >= setup_.closeTimeLimit) break;
+    if (t >= setup_.closeTimeLimit) {
+      noteClosingCap(v, restSpeed);
+      break;
+    }
   }
   return true;
+}
+
+void TrialRun::noteClosingCap(const Q& v, const Q& restSpeed) {
+  Eigen::Index fastest = 0;
+  (v.cwiseAbs().array() / restSpeed.array()).maxCoeff(&fastest);
+  const auto& tree = dwc_.workcell().frames();
+  const auto joint =
+      dwc_.device(data_.hand).device->activeJoints()[static_cast<std::size_t>(fastest)];
+  const bool prismatic = tree.frame(joint).type() == rw::kinematics::FrameType::kPrismatic;
+  char text[160];
+  std::snprintf(text, sizeof(text),
+                ": %.3g s simulated with %s still at %.3g %s (at rest below %.3g)",
+                setup_.closeTimeLimit, tree.frame(joint).name().c_str(), std::abs(v[fastest]),
+                prismatic ? "m/s" : "rad/s", restSpeed[fastest]);
+  result_.closingCapped = true;
+  closingNote_ = std::string(kClosingCapNote) + text;
 }
 
 bool TrialRun::lift(const Transform3D& X_W_base) {

@@ -54,6 +54,13 @@ int robworkCode(GraspOutcome outcome);
 /// The outcome with this name (as in kOutcomeTable), if any.
 std::optional<GraspOutcome> outcomeFromName(std::string_view name);
 
+/// The words a trial's detail carries when its closing ran into GraspTrialSetup::closeTimeLimit
+/// before the fingers came to rest (the grasp was then judged as it stood); see
+/// GraspTrialResult::closingCapped.
+inline constexpr std::string_view kClosingCapNote = "closing hit the cap";
+/// Whether a trial's detail (as written to trials.csv) says its closing hit the cap.
+bool closingHitCap(std::string_view detail);
+
 /// The grasp to execute: paper eq. 1.
 struct GraspParameters {
   /// World pose of the hand's TCP frame at the grasp.
@@ -155,8 +162,11 @@ struct GraspTrialResult {
   std::vector<TrialContact> contacts;
   /// Simulated time used, s.
   double simulatedTime = 0.0;
-  /// Free text about failures.
+  /// Free text about failures; ends with "[closing hit the cap: ...]" when closingCapped.
   std::string detail;
+  /// The closing phase ran into GraspTrialSetup::closeTimeLimit with the fingers still moving
+  /// (the rest test not met): the grasp was judged as it stood.
+  bool closingCapped = false;
   /// Hand displacement during the lift (paper eq. 5, h), m.
   rw::math::Vector3D handLift = rw::math::Vector3D::Zero();
   /// Object displacement during the lift (paper eq. 5, o), m.

@@ -267,8 +267,16 @@ void Simulator::Impl::driveMotors() {
       if (j.id == nullptr) continue;
       if (j.owner) {
         const SimJoint& o = dev.joints[*j.owner];
+        // Follow the owner: its motion over the step (feed-forward) plus this joint's whole
+        // error. The feed-forward is the owner's mean speed over the last two steps, not its
+        // latest speed: the motor's torque also acts on the owner's link, and when the owner's
+        // link or this one presses on something (a linked finger closing on an object) feeding
+        // the latest speed forward locks the two joints into a period-2 oscillation (the owner
+        // moving +-0.03 rad every step, +-6 rad/s) that never lets the fingers come to rest
+        // (issue 20; tests/rwsim/simulator/linked_finger_test.cpp). The mean over two steps has
+        // no component at that period, and lags smooth motion by only its change over a step.
         const double err = j.gain * ode->jointPosition(o) + j.offset - ode->jointPosition(j);
-        const double v = j.gain * ode->jointVelocity(o) + err / options.timeStep;
+        const double v = j.gain * o.meanVelocity + err / options.timeStep;
         rows += ode->setMotor(j, v, j.forceLimit);
       } else if (j.activeIndex >= 0) {
         rows += ode->setMotor(j, j.velocityTarget, j.forceLimit);

@@ -58,6 +58,9 @@ struct MethodColumn {
   std::string method;
   /// Grasps of this method rejected before simulation (malformed input).
   int rejected = 0;
+  /// Trials of this method whose closing hit the closing cap (their detail says so: see
+  /// rwsim::simulator::closingHitCap); judged as they stood, they cost the cap's simulated time.
+  int closingCapped = 0;
 };
 
 /// Analysis 1 (Figure 6): distribution of the outcomes. Every scene of the group has weight

@@ -343,12 +343,13 @@ std::string htmlReport(const Analysis& a, const std::vector<Showcase>& showcases
           ". Definitions: docs/report.md.</p>\n";
   html +=
       "<table>\n<thead><tr><th>#</th><th>run</th><th>method</th><th>rejected grasps</th>"
-      "</tr></thead>\n<tbody>\n";
+      "<th title=\"trials whose closing ran into the closing cap before the fingers came to "
+      "rest\">closings at the cap</th></tr></thead>\n<tbody>\n";
   for (std::size_t c = 0; c < a.columns.size(); ++c) {
     const MethodColumn& m = a.columns[c];
     html += "<tr><td>" + std::to_string(c + 1) + "</td><td>" + escapeHtml(a.runLabels[m.run]) +
             "</td><td>" + escapeHtml(m.label) + "</td><td>" + std::to_string(m.rejected) +
-            "</td></tr>\n";
+            "</td><td>" + std::to_string(m.closingCapped) + "</td></tr>\n";
   }
   html += "</tbody>\n</table>\n";
 

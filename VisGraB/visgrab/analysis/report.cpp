@@ -267,9 +267,10 @@ std::string markdownReport(const Analysis& a, const std::vector<Showcase>& showc
       "Definitions: docs/report.md. Success = stable grasp or object slipped. Randomized "
       "trials: " +
       std::to_string(a.options.randomTrials) + ", seed " + std::to_string(a.options.seed) + ".\n\n";
-  md += mdRow({"run", "method", "rejected grasps"}) + mdRule(3);
+  md += mdRow({"run", "method", "rejected grasps", "closings at the cap"}) + mdRule(4);
   for (const MethodColumn& c : a.columns) {
-    md += mdRow({a.runLabels[c.run], c.label, std::to_string(c.rejected)});
+    md += mdRow(
+        {a.runLabels[c.run], c.label, std::to_string(c.rejected), std::to_string(c.closingCapped)});
   }
   // Figure 6.
   md +=

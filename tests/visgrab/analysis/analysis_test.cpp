@@ -44,6 +44,8 @@ TEST_F(AnalysisTest, GroupsAndColumns) {
   EXPECT_EQ(a.columns[1].label, "runB: A");
   EXPECT_EQ(a.columns[2].label, "x<&>\"");
   EXPECT_EQ(a.columns[0].rejected, 2);
+  EXPECT_EQ(a.columns[0].closingCapped, 2);
+  EXPECT_EQ(a.columns[1].closingCapped, 0);
   EXPECT_EQ(a.maxAttempts, 4);  // S1 has the most grasps
 }
 

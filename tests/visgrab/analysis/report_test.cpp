@@ -138,6 +138,10 @@ TEST_F(ReportFilesTest, MarkdownAndCsvHaveTheNumbers) {
   EXPECT_NE(md.find("| textured, single, standing | runA: A | 0.50 | 1.67 |"), std::string::npos);
   EXPECT_NE(md.find("| textured, all | runA: A | 0.60 | 1.72 |"), std::string::npos);
   EXPECT_NE(md.find("x<&>\""), std::string::npos);
+  // The runs' table: rejected grasps and closings that hit the cap per method.
+  EXPECT_NE(md.find("| run | method | rejected grasps | closings at the cap |"), std::string::npos);
+  EXPECT_NE(md.find("| runA | runA: A | 2 | 2 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| runB | runB: A | 0 | 0 |"), std::string::npos) << md;
 
   const std::string first = readText(dir.path() / "first_success.csv");
   EXPECT_EQ(first.rfind("group,method,scenes,scenes_with_success,p,ga,", 0), 0u);

@@ -267,7 +267,12 @@ double OdeWorld::jointPosition(const SimJoint& joint) const {
 
 void OdeWorld::trackJoints() {
   for (auto& device : devices_) {
-    for (auto& joint : device.joints) joint.lastRelative = jointPosition(joint) - joint.q0;
+    for (auto& joint : device.joints) {
+      joint.lastRelative = jointPosition(joint) - joint.q0;
+      const double v = jointVelocity(joint);
+      joint.meanVelocity = 0.5 * (joint.lastVelocity + v);
+      joint.lastVelocity = v;
+    }
   }
 }
 

@@ -57,6 +57,11 @@ struct SimJoint {
   double q0 = 0.0;
   /// q - q0 after the last step, to unwrap ODE's hinge angle (it wraps at +-pi).
   double lastRelative = 0.0;
+  /// Joint speed after the last step.
+  double lastVelocity = 0.0;
+  /// Mean joint speed over the last two steps (what a dependent joint follows; see
+  /// Simulator's driveMotors).
+  double meanVelocity = 0.0;
   /// DOF index of an active joint; -1 for dependent and passive joints.
   int activeIndex = -1;
   /// For a dependent joint, the index of its owner in SimDevice::joints.
