@@ -45,6 +45,10 @@ Q collect(const FrameTree& tree, const std::vector<FrameId>& joints, Get get) {
 
 Device::Device(Spec spec, const FrameTree& tree) : spec_(std::move(spec)), tree_(&tree) {
   if (!spec_.base.valid()) throw std::invalid_argument("device \"" + spec_.name + "\" has no base");
+  if (spec_.kind == Kind::kParallel) {
+    throw std::invalid_argument("device \"" + spec_.name +
+                                "\": a parallel device needs its ParallelStructure");
+  }
   for (const FrameId end : spec_.ends) {
     for (const FrameId f : pathFromBase(tree, spec_.base, end, spec_.name)) {
       const Frame& frame = tree.frame(f);
@@ -55,7 +59,27 @@ Device::Device(Spec spec, const FrameTree& tree) : spec_(std::move(spec)), tree_
       if (frame.isActiveJoint()) active_.push_back(f);
     }
   }
-  // The device's frames: the base and everything below it that lives in the device's scope.
+  collectFrames();
+}
+
+Device::Device(Spec spec, const FrameTree& tree, ParallelStructure structure)
+    : spec_(std::move(spec)), tree_(&tree) {
+  if (spec_.kind != Kind::kParallel) {
+    throw std::invalid_argument("device \"" + spec_.name +
+                                "\": a parallel structure needs Kind::kParallel");
+  }
+  if (!spec_.base.valid()) throw std::invalid_argument("device \"" + spec_.name + "\" has no base");
+  parallel_.emplace(tree, std::move(structure), spec_.name);
+  joints_ = parallel_->allJoints();
+  for (const FrameId f : joints_) {
+    if (tree.frame(f).isActiveJoint()) active_.push_back(f);
+  }
+  collectFrames();
+}
+
+// The device's frames: the base and everything below it that lives in the device's scope.
+void Device::collectFrames() {
+  const FrameTree& tree = *tree_;
   const std::string prefix = spec_.name + ".";
   std::vector<FrameId> stack{spec_.base};
   while (!stack.empty()) {
@@ -77,7 +101,7 @@ Q Device::getQ(const State& state) const {
   return q;
 }
 
-void Device::setQ(const Q& q, State& state) const {
+void Device::setActive(const Q& q, State& state) const {
   if (q.size() != dof()) {
     throw std::invalid_argument("device \"" + spec_.name + "\" has " + std::to_string(dof()) +
                                 " DOF, got a configuration of " + std::to_string(q.size()));
@@ -85,6 +109,17 @@ void Device::setQ(const Q& q, State& state) const {
   for (std::size_t i = 0; i < active_.size(); ++i) {
     tree_->frame(active_[i]).setJointValue(state, q[static_cast<Eigen::Index>(i)]);
   }
+}
+
+void Device::setQ(const Q& q, State& state) const {
+  if (!parallel_) {
+    setActive(q, state);
+    return;
+  }
+  State closed = state;
+  setActive(q, closed);
+  parallel_->close(closed);
+  state = std::move(closed);
 }
 
 Q Device::lowerLimits() const {
