@@ -89,6 +89,8 @@ class ParallelKinematics {
 
   /// The junctions.
   const std::vector<Junction>& junctions() const { return structure_.junctions; }
+  /// Every frame of the device in document order.
+  const std::vector<rw::kinematics::FrameId>& frames() const { return structure_.frames; }
   /// Every joint in document order (RobWork's getAllJoints()).
   const std::vector<rw::kinematics::FrameId>& allJoints() const { return all_; }
   /// Joints that move with q (RobWork's getActiveJoints()): active independent joints and the
