@@ -190,7 +190,7 @@ Q ParallelKinematics::fullUpperLimits() const {
 // Residual (and Jacobian) of every junction: for each leg i > 0, the position of its end minus
 // leg 0's and the rotation vector of R_i R_0^T, all in the junction's start frame.
 void ParallelKinematics::evaluate(const State& state, bool withJacobian, Evaluation& out) const {
-  const Eigen::Index n = static_cast<Eigen::Index>(passive_.size());
+  const auto n = static_cast<Eigen::Index>(passive_.size());
   Eigen::Index rows = 0;
   for (const auto& legs : paths_) rows += 6 * static_cast<Eigen::Index>(legs.size() - 1);
   out.r.resize(rows);
