@@ -482,6 +482,8 @@ void Renderer::writeParallelDevice(const Device& device) {
     previous = id;
   }
   enterChains({}, open);
+  // RobWork's grammar: the body (properties included), then the Junctions, then the Qs.
+  writeProperties(device.properties(), &device.configurations(), false);
   for (const auto& junction : device.parallel()->junctions()) {
     const bool named = std::all_of(junction.legs.begin(), junction.legs.end(),
                                    [](const auto& leg) { return !leg.chains.empty(); });
@@ -494,7 +496,6 @@ void Renderer::writeParallelDevice(const Device& device) {
     }
     xml_.close();
   }
-  writeProperties(device.properties(), &device.configurations(), false);
   for (const auto& [name, q] : device.configurations()) {
     xml_.text("Q", {{"name", name}}, formatList(q));
   }
