@@ -180,6 +180,50 @@ TEST(ParallelDevice, FullQRoundTripsAndSetsNoActiveJointItDoesNotName) {
   EXPECT_THROW(device.setQ(Q{{0.1, 0.2}}, state), std::invalid_argument);
 }
 
+// A passive joint coupled to another passive joint with gain -2 on a leg. Leg "Slide": a
+// prismatic joint J along x, so its end is at (J, 0) with the base's orientation. Leg "Arm": a
+// passive revolute K at the base, a link of 1, the dependent joint M = -2 K, a link of 1, a
+// passive revolute N; its end is at (cos K + cos(K - 2K), sin K + sin(-K)) = (2 cos K, 0) with
+// orientation K - 2K + N. Closed: K = acos(J / 2), N = K, M = -2 K.
+const char* const kCoupled = R"(<WorkCell name="Coupled">
+ <ParallelDevice name="C">
+  <Frame name="Base"/>
+  <SerialChain name="Slide">
+   <Joint name="J" type="Prismatic"><RPY>0 90 0</RPY><Pos>0 0 0</Pos></Joint>
+   <Frame name="End"><RPY>0 -90 0</RPY><Pos>0 0 0</Pos></Frame>
+  </SerialChain>
+  <Frame name="ArmBase" refframe="Base"/>
+  <SerialChain name="Arm">
+   <Joint name="K" type="Revolute" state="Passive"/>
+   <Joint name="M" type="Revolute" state="Passive"><RPY>0 0 0</RPY><Pos>1 0 0</Pos>
+    <Depend on="K" gain="-2" offset="0"/></Joint>
+   <Joint name="N" type="Revolute" state="Passive"><RPY>0 0 0</RPY><Pos>1 0 0</Pos></Joint>
+  </SerialChain>
+  <Junction><Chains>Slide</Chains><Chains>Arm</Chains></Junction>
+ </ParallelDevice>
+</WorkCell>
+)";
+
+TEST(ParallelDevice, DependentJointOnALegMovesWithItsOwnerTimesItsGain) {
+  const auto wc = rw::loaders::loadWorkCellFromString(kCoupled, "coupled.wc.xml");
+  const Device& device = *wc->findDevice("C");
+  const auto& p = *device.parallel();
+  ASSERT_EQ(p.passiveJoints().size(), 2u);  // K and N; M follows K
+  ASSERT_EQ(p.dependentJoints().size(), 1u);
+  State state = wc->defaultState();
+  p.setFullQ(Q{{1.0, kPi / 3, kPi / 3}}, state);
+  const auto& M = wc->frames().frame(p.dependentJoints().front());
+  for (const double j : {1.2, 1.5, 1.9, 0.8, 0.3}) {
+    SCOPED_TRACE("J = " + std::to_string(j));
+    device.setQ(Q{{j}}, state);
+    const double k = std::acos(j / 2.0);
+    const Q full = p.getFullQ(state);
+    EXPECT_NEAR(full[1], k, 1e-9);
+    EXPECT_NEAR(full[2], k, 1e-9);
+    EXPECT_NEAR(M.jointValue(state), -2.0 * k, 1e-9);
+  }
+}
+
 // ---------------------------------------------------------------------- RobWork's Robotiq
 
 class Robotiq : public ::testing::Test {
@@ -259,6 +303,12 @@ TEST_F(Robotiq, NamesFramesAndSizesAreRobWorks) {
   EXPECT_EQ(dist->fullDof(), 12);
   EXPECT_EQ(dist->fullLowerLimits().size(), 12);
   EXPECT_EQ(dist->fullUpperLimits().size(), 12);
+  // Limits per joint in full-configuration order: MotorJoint [-10, 100] deg first,
+  // FingerDistance [0, 0.085] m eleventh.
+  EXPECT_NEAR(dist->fullLowerLimits()[0], -10.0 * kPi / 180.0, 1e-15);
+  EXPECT_NEAR(dist->fullUpperLimits()[0], 100.0 * kPi / 180.0, 1e-15);
+  EXPECT_EQ(dist->fullLowerLimits()[10], 0.0);
+  EXPECT_EQ(dist->fullUpperLimits()[10], 0.085);
   EXPECT_EQ(fing->allJoints().size(), 10u);
   EXPECT_EQ(fing->fullDof(), 9);
   EXPECT_EQ(fing->fullLowerLimits().size(), 9);
