@@ -4,6 +4,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "rw/models/joint_values.hpp"
+
 namespace rw::models {
 
 using rw::kinematics::Frame;
@@ -30,15 +32,6 @@ std::vector<FrameId> pathFromBase(const FrameTree& tree, FrameId base, FrameId e
   }
   std::reverse(path.begin(), path.end());
   return path;
-}
-
-template <typename Get>
-Q collect(const FrameTree& tree, const std::vector<FrameId>& joints, Get get) {
-  Q q(static_cast<Eigen::Index>(joints.size()));
-  for (std::size_t i = 0; i < joints.size(); ++i) {
-    q[static_cast<Eigen::Index>(i)] = get(tree.frame(joints[i]).limits());
-  }
-  return q;
 }
 
 }  // namespace
@@ -93,22 +86,14 @@ void Device::collectFrames() {
   std::sort(frames_.begin(), frames_.end());
 }
 
-Q Device::getQ(const State& state) const {
-  Q q(dof());
-  for (std::size_t i = 0; i < active_.size(); ++i) {
-    q[static_cast<Eigen::Index>(i)] = tree_->frame(active_[i]).jointValue(state);
-  }
-  return q;
-}
+Q Device::getQ(const State& state) const { return jointValues(*tree_, active_, state); }
 
 void Device::setActive(const Q& q, State& state) const {
   if (q.size() != dof()) {
     throw std::invalid_argument("device \"" + spec_.name + "\" has " + std::to_string(dof()) +
                                 " DOF, got a configuration of " + std::to_string(q.size()));
   }
-  for (std::size_t i = 0; i < active_.size(); ++i) {
-    tree_->frame(active_[i]).setJointValue(state, q[static_cast<Eigen::Index>(i)]);
-  }
+  setJointValues(*tree_, active_, q, state);
 }
 
 void Device::setQ(const Q& q, State& state) const {
@@ -123,16 +108,16 @@ void Device::setQ(const Q& q, State& state) const {
 }
 
 Q Device::lowerLimits() const {
-  return collect(*tree_, active_, [](const auto& l) { return l.lower; });
+  return jointLimits(*tree_, active_, [](const auto& l) { return l.lower; });
 }
 Q Device::upperLimits() const {
-  return collect(*tree_, active_, [](const auto& l) { return l.upper; });
+  return jointLimits(*tree_, active_, [](const auto& l) { return l.upper; });
 }
 Q Device::velocityLimits() const {
-  return collect(*tree_, active_, [](const auto& l) { return l.velocity; });
+  return jointLimits(*tree_, active_, [](const auto& l) { return l.velocity; });
 }
 Q Device::accelerationLimits() const {
-  return collect(*tree_, active_, [](const auto& l) { return l.acceleration; });
+  return jointLimits(*tree_, active_, [](const auto& l) { return l.acceleration; });
 }
 
 bool Device::contains(FrameId frame) const {

@@ -8,6 +8,8 @@
 #include <sstream>
 #include <utility>
 
+#include "rw/models/joint_values.hpp"
+
 namespace rw::models {
 
 using rw::kinematics::Frame;
@@ -153,11 +155,7 @@ ParallelKinematics::LegPath ParallelKinematics::makePath(const ParallelLeg& leg,
 }
 
 Q ParallelKinematics::getFullQ(const State& state) const {
-  Q q(fullDof());
-  for (std::size_t i = 0; i < full_.size(); ++i) {
-    q[static_cast<Eigen::Index>(i)] = tree_->frame(full_[i]).jointValue(state);
-  }
-  return q;
+  return jointValues(*tree_, full_, state);
 }
 
 void ParallelKinematics::setFullQ(const Q& q, State& state) const {
@@ -166,25 +164,15 @@ void ParallelKinematics::setFullQ(const Q& q, State& state) const {
                                 " joint values in its full configuration, got " +
                                 std::to_string(q.size()));
   }
-  for (std::size_t i = 0; i < full_.size(); ++i) {
-    tree_->frame(full_[i]).setJointValue(state, q[static_cast<Eigen::Index>(i)]);
-  }
+  setJointValues(*tree_, full_, q, state);
 }
 
 Q ParallelKinematics::fullLowerLimits() const {
-  Q q(fullDof());
-  for (std::size_t i = 0; i < full_.size(); ++i) {
-    q[static_cast<Eigen::Index>(i)] = tree_->frame(full_[i]).limits().lower;
-  }
-  return q;
+  return jointLimits(*tree_, full_, [](const auto& l) { return l.lower; });
 }
 
 Q ParallelKinematics::fullUpperLimits() const {
-  Q q(fullDof());
-  for (std::size_t i = 0; i < full_.size(); ++i) {
-    q[static_cast<Eigen::Index>(i)] = tree_->frame(full_[i]).limits().upper;
-  }
-  return q;
+  return jointLimits(*tree_, full_, [](const auto& l) { return l.upper; });
 }
 
 // Residual (and Jacobian) of every junction: for each leg i > 0, the position of its end minus
@@ -245,17 +233,12 @@ JunctionResidual ParallelKinematics::residual(std::size_t junction, const State&
 }
 
 void ParallelKinematics::setUnknowns(const Q& x, State& state) const {
-  for (std::size_t k = 0; k < passive_.size(); ++k) {
-    tree_->frame(passive_[k]).setJointValue(state, x[static_cast<Eigen::Index>(k)]);
-  }
+  setJointValues(*tree_, passive_, x, state);
 }
 
 int ParallelKinematics::close(State& state) const {
   State current = state;
-  Q x(static_cast<Eigen::Index>(passive_.size()));
-  for (std::size_t k = 0; k < passive_.size(); ++k) {
-    x[static_cast<Eigen::Index>(k)] = tree_->frame(passive_[k]).jointValue(state);
-  }
+  Q x = jointValues(*tree_, passive_, state);
   Evaluation e;
   Evaluation trialEval;
   evaluate(current, true, e);
