@@ -116,6 +116,24 @@ TEST(ParallelDevice, FourBarStructure) {
   EXPECT_EQ(wc->frames().frame(device->ends().front()).name(), "FourBar.Crank.CouplerEnd");
 }
 
+// RobWork's older form: without <Junction>, all serial chains are the legs of one junction.
+TEST(ParallelDevice, WithoutJunctionsAllChainsAreTheLegsOfOneJunction) {
+  std::string xml = kFourBar;
+  const auto from = xml.find("  <Junction>");
+  const auto to = xml.find("</Junction>\n") + std::string("</Junction>\n").size();
+  xml.erase(from, to - from);
+  const auto wc = rw::loaders::loadWorkCellFromString(xml, "fourbar.wc.xml");
+  const auto* parallel = wc->findDevice("FourBar")->parallel();
+  ASSERT_NE(parallel, nullptr);
+  ASSERT_EQ(parallel->junctions().size(), 1u);
+  const auto& legs = parallel->junctions()[0].legs;
+  ASSERT_EQ(legs.size(), 2u);
+  EXPECT_EQ(legs[0].chains, std::vector<std::string>{"Crank"});
+  EXPECT_EQ(wc->frames().frame(legs[0].end).name(), "FourBar.Crank.CouplerEnd");
+  EXPECT_EQ(legs[1].chains, std::vector<std::string>{"Rocker"});
+  EXPECT_EQ(wc->frames().frame(legs[1].end).name(), "FourBar.Rocker.Pin");
+}
+
 TEST(ParallelDevice, FourBarFollowsTheClosedFormWithin1e9Rad) {
   const auto wc = loadFourBar();
   const Device& device = *wc->findDevice("FourBar");
