@@ -40,6 +40,18 @@ std::string typeName(const Frame& f) {
   return "?";
 }
 
+std::string kindName(rw::models::Device::Kind kind) {
+  switch (kind) {
+    case rw::models::Device::Kind::kSerial:
+      return "serial";
+    case rw::models::Device::Kind::kTree:
+      return "tree";
+    case rw::models::Device::Kind::kParallel:
+      return "parallel";
+  }
+  return "?";
+}
+
 std::string poseText(const rw::math::Transform3D& X) {
   const auto& p = X.translation();
   const rw::math::Vector3D rpy = rw::math::rotationToRpy(X.linear()) * rw::math::kRad2Deg;
@@ -74,14 +86,43 @@ std::string limitText(const Frame& f) {
   return os.str();
 }
 
+std::string nameList(const WorkCell& wc, const std::vector<FrameId>& ids) {
+  std::string text;
+  for (const FrameId id : ids) text += (text.empty() ? "" : ", ") + wc.frames().frame(id).name();
+  return text.empty() ? "(none)" : text;
+}
+
+// Full DOF, actuated and passive joints, and every junction's legs (chains, start -> end).
+void printParallel(const WorkCell& wc, const rw::models::ParallelKinematics& p,
+                   const std::string& indent) {
+  const auto& tree = wc.frames();
+  std::cout << indent << "full DOF " << p.fullDof() << " ("
+            << p.fullDof() - static_cast<int>(p.passiveJoints().size()) << " active + "
+            << p.passiveJoints().size() << " passive), " << p.allJoints().size() << " joints\n"
+            << indent << "actuated joints (" << p.actuatedJoints().size()
+            << "): " << nameList(wc, p.actuatedJoints()) << "\n"
+            << indent << "passive joints (" << p.passiveJoints().size()
+            << "): " << nameList(wc, p.passiveJoints()) << "\n"
+            << indent << "junctions (" << p.junctions().size() << "):\n";
+  for (std::size_t j = 0; j < p.junctions().size(); ++j) {
+    const auto& legs = p.junctions()[j].legs;
+    std::cout << indent << "  " << j + 1 << ": " << legs.size() << " legs\n";
+    for (const auto& leg : legs) {
+      std::string chains;
+      for (const std::string& c : leg.chains) chains += (chains.empty() ? "" : " ") + c;
+      std::cout << indent << "     leg \"" << chains << "\": " << tree.frame(leg.start).name()
+                << " -> " << tree.frame(leg.end).name() << "\n";
+    }
+  }
+}
+
 void printDevices(const WorkCell& wc) {
   std::cout << "\nDevices (" << wc.devices().size() << "):\n";
   for (const auto& d : wc.devices()) {
     const auto& tree = wc.frames();
-    std::cout << "  " << d->name() << " ("
-              << (d->kind() == rw::models::Device::Kind::kTree ? "tree" : "serial")
-              << "): " << d->dof() << " DOF, " << d->joints().size() << " joints, base "
-              << tree.frame(d->base()).name() << "\n    ends:";
+    std::cout << "  " << d->name() << " (" << kindName(d->kind()) << "): " << d->dof() << " DOF, "
+              << d->joints().size() << " joints, base " << tree.frame(d->base()).name()
+              << "\n    ends:";
     for (const FrameId e : d->ends()) std::cout << " " << tree.frame(e).name();
     std::cout << "\n    joints (q index, name, type, limits):\n";
     int index = 0;
@@ -97,6 +138,7 @@ void printDevices(const WorkCell& wc) {
         std::cout << (f.isPassive() ? "passive, " : "") << limitText(f) << "\n";
       }
     }
+    if (d->parallel() != nullptr) printParallel(wc, *d->parallel(), "    ");
     for (const auto& [name, q] : d->configurations()) {
       std::cout << "    configuration " << name << ": (";
       for (Eigen::Index i = 0; i < q.size(); ++i) std::cout << (i ? " " : "") << fmt(q[i]);
@@ -155,12 +197,38 @@ void writeFramesJson(JsonWriter& j, const WorkCell& wc) {
   j.endArray();
 }
 
+void writeNamesJson(JsonWriter& j, const WorkCell& wc, const std::vector<FrameId>& ids) {
+  j.beginArray();
+  for (const FrameId id : ids) j.value(wc.frames().frame(id).name());
+  j.endArray();
+}
+
+void writeParallelJson(JsonWriter& j, const WorkCell& wc, const rw::models::ParallelKinematics& p) {
+  j.key("parallel").beginObject().key("full_dof").value(p.fullDof());
+  j.key("actuated_joints");
+  writeNamesJson(j, wc, p.actuatedJoints());
+  j.key("passive_joints");
+  writeNamesJson(j, wc, p.passiveJoints());
+  j.key("junctions").beginArray();
+  for (const auto& junction : p.junctions()) {
+    j.beginObject().key("legs").beginArray();
+    for (const auto& leg : junction.legs) {
+      j.beginObject().key("chains").beginArray();
+      for (const std::string& c : leg.chains) j.value(c);
+      j.endArray().key("start").value(wc.frames().frame(leg.start).name());
+      j.key("end").value(wc.frames().frame(leg.end).name()).endObject();
+    }
+    j.endArray().endObject();
+  }
+  j.endArray().endObject();
+}
+
 void writeDevicesJson(JsonWriter& j, const WorkCell& wc) {
   const auto& tree = wc.frames();
   j.key("devices").beginArray();
   for (const auto& d : wc.devices()) {
     j.beginObject().key("name").value(d->name());
-    j.key("kind").value(d->kind() == rw::models::Device::Kind::kTree ? "tree" : "serial");
+    j.key("kind").value(kindName(d->kind()));
     j.key("dof").value(d->dof()).key("base").value(tree.frame(d->base()).name());
     j.key("ends").beginArray();
     for (const FrameId e : d->ends()) j.value(tree.frame(e).name());
@@ -193,7 +261,9 @@ void writeDevicesJson(JsonWriter& j, const WorkCell& wc) {
       j.beginObject().key("name").value(name).key("q");
       j.numbers(std::vector<double>(q.data(), q.data() + q.size())).endObject();
     }
-    j.endArray().endObject();
+    j.endArray();
+    if (d->parallel() != nullptr) writeParallelJson(j, wc, *d->parallel());
+    j.endObject();
   }
   j.endArray();
 }
@@ -265,6 +335,22 @@ int runInfo(const Arguments& a) {
   return 0;
 }
 
+// After a clean check: the closed loops of each parallel device, so that a hand designer sees
+// how the junctions were read.
+void printParallelSummaries(const std::string& file) {
+  std::unique_ptr<WorkCell> wc;
+  try {
+    wc = rw::loaders::loadWorkCell(file);
+  } catch (const rw::common::LoadError&) {
+    return;
+  }
+  for (const auto& d : wc->devices()) {
+    if (d->parallel() == nullptr) continue;
+    std::cout << "parallel device " << d->name() << ": " << d->dof() << " DOF\n";
+    printParallel(*wc, *d->parallel(), "  ");
+  }
+}
+
 int runCheck(const Arguments& a) {
   const std::string file = a.positionals().at(0);
   const auto diagnostics = rw::loaders::checkWorkCell(file);
@@ -275,6 +361,7 @@ int runCheck(const Arguments& a) {
   }
   const std::size_t warnings = diagnostics.size() - errors;
   std::cout << file << ": " << errors << " error(s), " << warnings << " warning(s)\n";
+  if (errors == 0) printParallelSummaries(file);
   return errors == 0 ? 0 : 1;
 }
 

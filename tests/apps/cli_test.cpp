@@ -56,6 +56,31 @@ TEST(VisgrabCli, WcCheckReportsFileAndLineAndExitsOne) {
   EXPECT_NE(r.output.find("nowhere"), std::string::npos) << r.output;
 }
 
+// RobWork's Robotiq models: check and info show each parallel device's junctions, legs,
+// actuated joints and full DOF (RobWork's numbers: 3 junctions and full DOF 12 for distance
+// control, 2 junctions, 4 actuated joints and full DOF 9 for finger control).
+TEST(VisgrabCli, WcCheckAndInfoShowTheJunctionsOfParallelDevices) {
+  REQUIRE_COMPAT_DATA(data);
+  const auto robotiq = data / "devices/Robotiq-2-finger-85/robotiq.wc.xml";
+  for (const char* command : {"wc check ", "wc info "}) {
+    SCOPED_TRACE(command);
+    const RunResult r = runVisgrab(command + quoted(robotiq));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    for (const char* line : {"full DOF 12 (3 active + 9 passive), 13 joints", "junctions (3):",
+                             "full DOF 9 (3 active + 6 passive), 10 joints", "junctions (2):",
+                             "actuated joints (4): RobotiqFingerControl.LeftMotor.MotorJoint, "
+                             "RobotiqFingerControl.LeftPassive.PassiveJoint, "
+                             "RobotiqFingerControl.RightMotor.MotorJoint, "
+                             "RobotiqFingerControl.RightPassive.PassiveJoint",
+                             "leg \"LeftPassive Distance\": RobotiqDistanceControl.Base -> "
+                             "RobotiqDistanceControl.DistanceEnd",
+                             "leg \"RightPassive\": RobotiqDistanceControl.Base -> "
+                             "RobotiqDistanceControl.RightPassiveEnd"}) {
+      EXPECT_NE(r.output.find(line), std::string::npos) << line << "\n" << r.output;
+    }
+  }
+}
+
 TEST(VisgrabCli, WcInfoOnAMissingFileExitsOne) {
   const RunResult r = runVisgrab("wc info /nonexistent/x.wc.xml");
   EXPECT_EQ(r.exitCode, 1) << r.output;

@@ -88,6 +88,39 @@ def check_wc_info(binary, source, store, tmp):
               f"wc info: unlimited joint limits are null: {joint['limits']}")
         check(abs(doc["frames"][-1]["position"][2] - 0.1) < 1e-12, "wc info: joint position")
 
+    # A parallel device (a four-bar linkage): its junction, legs and joint classes.
+    wc = tmp / "fourbar.wc.xml"
+    wc.write_text('<WorkCell name="FourBar">\n <ParallelDevice name="F">\n'
+                  '  <Frame name="Base"/>\n'
+                  '  <SerialChain name="Crank">\n'
+                  '   <Joint name="A" type="Revolute"/>\n'
+                  '   <Joint name="B" type="Revolute" state="Passive"><RPY>0 0 0</RPY>'
+                  '<Pos>2 0 0</Pos></Joint>\n'
+                  '   <Frame name="End"><RPY>0 0 0</RPY><Pos>2.5 0 0</Pos></Frame>\n'
+                  '  </SerialChain>\n'
+                  '  <Frame name="Ground" refframe="Base"><RPY>0 0 0</RPY><Pos>3 0 0</Pos></Frame>\n'
+                  '  <SerialChain name="Rocker">\n'
+                  '   <Joint name="C" type="Revolute" state="Passive"/>\n'
+                  '   <Joint name="D" type="Revolute" state="Passive"><RPY>0 0 0</RPY>'
+                  '<Pos>2 0 0</Pos></Joint>\n'
+                  '  </SerialChain>\n'
+                  '  <Junction><Chains>Crank</Chains><Chains>Rocker</Chains></Junction>\n'
+                  ' </ParallelDevice>\n</WorkCell>\n')
+    doc = run_json(binary, ["wc", "info", str(wc), "--json"], "wc info parallel")
+    if doc is not None:
+        validate(store, "wc-info", doc, "wc info parallel")
+        device = doc["devices"][0]
+        check(device["kind"] == "parallel" and device["dof"] == 1,
+              f"wc info parallel: kind {device['kind']}, dof {device['dof']}")
+        p = device.get("parallel", {})
+        check(p.get("full_dof") == 4, f"wc info parallel: full DOF {p.get('full_dof')}")
+        check(p.get("passive_joints") == ["F.Crank.B", "F.Rocker.C", "F.Rocker.D"],
+              f"wc info parallel: passive joints {p.get('passive_joints')}")
+        legs = p.get("junctions", [{}])[0].get("legs", [])
+        check([(l["chains"], l["start"], l["end"]) for l in legs] ==
+              [(["Crank"], "F.Base", "F.Crank.End"), (["Rocker"], "F.Base", "F.Rocker.D")],
+              f"wc info parallel: legs {legs}")
+
 
 def check_database(binary, store, tmp):
     db = tmp / "db"

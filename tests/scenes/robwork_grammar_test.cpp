@@ -29,6 +29,9 @@ const std::map<std::string, std::vector<std::string>>& attributeOrder() {
       {"WorkCell", {"name"}},
       {"TreeDevice", {"name"}},
       {"SerialDevice", {"name"}},
+      {"ParallelDevice", {"name"}},
+      {"Junction", {}},
+      {"Chains", {}},
       {"SerialChain", {"name"}},
       {"Frame", {"name", "refframe", "type", "daf"}},
       {"Joint", {"name", "refframe", "type", "state"}},
@@ -61,7 +64,9 @@ bool takesTransform(const std::string& tag) {
   return tag == "Frame" || tag == "Joint" || tag == "Drawable" || tag == "CollisionModel";
 }
 
-bool isDevice(const std::string& tag) { return tag == "TreeDevice" || tag == "SerialDevice"; }
+bool isDevice(const std::string& tag) {
+  return tag == "TreeDevice" || tag == "SerialDevice" || tag == "ParallelDevice";
+}
 
 struct OpenElement {
   std::string tag;
@@ -88,10 +93,16 @@ void checkChildren(const OpenElement& e, std::vector<std::string>& problems) {
     }
   }
   if (isDevice(e.tag)) {
+    // The body, then (ParallelDevice) the Junctions, then the Qs.
     bool seenQ = false;
+    bool seenJunction = false;
     for (const std::string& child : e.children) {
       if (seenQ && child != "Q") problems.push_back("<" + child + "> after a <Q>" + where);
+      if (seenJunction && child != "Q" && child != "Junction") {
+        problems.push_back("<" + child + "> after a <Junction>" + where);
+      }
       seenQ = seenQ || child == "Q";
+      seenJunction = seenJunction || child == "Junction";
     }
   }
 }
@@ -199,6 +210,18 @@ TEST(RobWorkGrammar, TheCheckerSeesBreaches) {
   EXPECT_EQ(problems.size(), 7u) << joined(problems);
 }
 
+TEST(RobWorkGrammar, TheCheckerSeesABodyElementAfterAJunction) {
+  const auto problems = grammarProblems(
+      "<ParallelDevice name=\"P\">\n"
+      "  <Frame name=\"B\"/>\n"
+      "  <Junction><Chains>A</Chains><Chains>B</Chains></Junction>\n"
+      "  <Frame name=\"F\"/>\n"
+      "  <Q name=\"Home\">0</Q>\n"
+      "</ParallelDevice>\n");
+  EXPECT_EQ(problems, std::vector<std::string>{"<Frame> after a <Junction> in <ParallelDevice> "
+                                               "at line 1"});
+}
+
 TEST(RobWorkGrammar, ProjectHandsFollowRobWorksGrammar) {
   for (const fs::path& file :
        {visgrab::test::scenes::projectSdhFile(), visgrab::test::scenes::projectPg70File(),
@@ -218,7 +241,8 @@ TEST(RobWorkGrammar, WriterOutputFollowsRobWorksGrammar) {
 TEST(RobWorkGrammar, WriterOutputForRobWorksScenesFollowsRobWorksGrammar) {
   REQUIRE_COMPAT_DATA(data);
   visgrab::test::TempDir dir;
-  for (const char* path : {"devices/SDH2/SchunkHand.wc.xml", "scene/grasping/pg70_box.wc.xml"}) {
+  for (const char* path : {"devices/SDH2/SchunkHand.wc.xml", "scene/grasping/pg70_box.wc.xml",
+                           "devices/Robotiq-2-finger-85/robotiq.wc.xml"}) {
     const auto wc = visgrab::test::scenes::load(data / path);
     EXPECT_EQ(joined(grammarProblems(rw::loaders::writeWorkCell(*wc, dir.path()))), "") << path;
   }

@@ -103,6 +103,28 @@ void expectSameFrames(const WorkCell& a, const WorkCell& b) {
   }
 }
 
+// Junctions (legs by chain names and end frames) and the joint classes of a parallel device.
+void expectSameParallel(const WorkCell& a, const rw::models::ParallelKinematics& pa,
+                        const WorkCell& b, const rw::models::ParallelKinematics& pb) {
+  EXPECT_EQ(pa.fullDof(), pb.fullDof());
+  EXPECT_EQ(namesOf(a, pa.allJoints()), namesOf(b, pb.allJoints()));
+  EXPECT_EQ(namesOf(a, pa.actuatedJoints()), namesOf(b, pb.actuatedJoints()));
+  EXPECT_EQ(namesOf(a, pa.passiveJoints()), namesOf(b, pb.passiveJoints()));
+  EXPECT_EQ(namesOf(a, pa.dependentJoints()), namesOf(b, pb.dependentJoints()));
+  EXPECT_EQ(namesOf(a, pa.frames()), namesOf(b, pb.frames()));
+  ASSERT_EQ(pa.junctions().size(), pb.junctions().size());
+  for (std::size_t j = 0; j < pa.junctions().size(); ++j) {
+    const auto& la = pa.junctions()[j].legs;
+    const auto& lb = pb.junctions()[j].legs;
+    ASSERT_EQ(la.size(), lb.size()) << "junction " << j;
+    for (std::size_t i = 0; i < la.size(); ++i) {
+      EXPECT_EQ(la[i].chains, lb[i].chains) << "junction " << j << " leg " << i;
+      EXPECT_EQ(nameOf(a, la[i].start), nameOf(b, lb[i].start)) << "junction " << j;
+      EXPECT_EQ(nameOf(a, la[i].end), nameOf(b, lb[i].end)) << "junction " << j;
+    }
+  }
+}
+
 void expectSameDevices(const WorkCell& a, const WorkCell& b) {
   ASSERT_EQ(a.devices().size(), b.devices().size());
   for (const auto& da : a.devices()) {
@@ -116,6 +138,8 @@ void expectSameDevices(const WorkCell& a, const WorkCell& b) {
     EXPECT_EQ(namesOf(a, da->joints()), namesOf(b, db->joints()));
     EXPECT_EQ(namesOf(a, da->activeJoints()), namesOf(b, db->activeJoints()));
     EXPECT_EQ(namesOf(a, da->frames()).size(), namesOf(b, db->frames()).size());
+    ASSERT_EQ(da->parallel() == nullptr, db->parallel() == nullptr);
+    if (da->parallel() != nullptr) expectSameParallel(a, *da->parallel(), b, *db->parallel());
     ASSERT_EQ(da->configurations().size(), db->configurations().size());
     for (const auto& [name, q] : da->configurations()) {
       ASSERT_TRUE(db->configurations().contains(name)) << name;
@@ -134,7 +158,25 @@ double randomIn(std::mt19937& rng, double lower, double upper) {
   return std::uniform_real_distribution<double>(lower, upper)(rng);
 }
 
-// Every frame's world pose agrees at two random configurations (devices and Movable frames).
+// Sets q on both devices; a parallel device's loops must close in both or in neither.
+void setBoth(const Device& da, State& sa, const Device& db, State& sb, const Q& q) {
+  bool closedA = true;
+  bool closedB = true;
+  try {
+    da.setQ(q, sa);
+  } catch (const rw::models::ClosureError&) {
+    closedA = false;
+  }
+  try {
+    db.setQ(q, sb);
+  } catch (const rw::models::ClosureError&) {
+    closedB = false;
+  }
+  EXPECT_EQ(closedA, closedB) << "device " << da.name();
+}
+
+// Every frame's world pose agrees at two random configurations (devices and Movable frames);
+// a parallel device moves a little from its default configuration, where its loops close.
 void expectSameWorldPoses(const WorkCell& a, const WorkCell& b) {
   std::mt19937 rng(20240521);
   for (int trial = 0; trial < 2; ++trial) {
@@ -146,8 +188,8 @@ void expectSameWorldPoses(const WorkCell& a, const WorkCell& b) {
       const Q lower = da->lowerLimits();
       const Q upper = da->upperLimits();
       for (Eigen::Index i = 0; i < q.size(); ++i) q[i] = randomIn(rng, lower[i], upper[i]);
-      da->setQ(q, sa);
-      b.findDevice(da->name())->setQ(q, sb);
+      if (da->parallel() != nullptr) q = da->getQ(sa) + 0.01 * (q - da->getQ(sa));
+      setBoth(*da, sa, *b.findDevice(da->name()), sb, q);
     }
     for (const Frame& fa : a.frames().frames()) {
       if (fa.type() != rw::kinematics::FrameType::kMovable) continue;
@@ -291,6 +333,8 @@ INSTANTIATE_TEST_SUITE_P(
     Scenes, WriterRoundTrip,
     ::testing::Values(SceneFile{"RobWorkSdh2", "devices/SDH2/SchunkHand.wc.xml", true},
                       SceneFile{"RobWorkPg70Box", "scene/grasping/pg70_box.wc.xml", true},
+                      SceneFile{"RobWorkRobotiq", "devices/Robotiq-2-finger-85/robotiq.wc.xml",
+                                true},
                       SceneFile{"ProjectSdh", "scenes/hands/sdh/sdh.wc.xml", false},
                       SceneFile{"ProjectPg70", "scenes/hands/pg70/pg70.wc.xml", false}),
     [](const ::testing::TestParamInfo<SceneFile>& param) { return param.param.label; });
@@ -300,6 +344,43 @@ TEST(WriterRoundTripBuilt, SceneBuiltInCodeLoadsBackToTheSameModel) {
   const auto scene = visgrab::test::scenes::buildScene(dir.path() / "meshes");
   fs::create_directories(dir.path() / "out");
   roundTrip(*scene.wc, dir.path() / "out");
+}
+
+// A parallel device written inline: nested SerialChains, a chain continuing another in a leg,
+// a coupled (dependent) passive joint, device-level limits, a Home configuration.
+TEST(WriterRoundTripBuilt, ParallelDeviceLoadsBackToTheSameModel) {
+  const char* const xml = R"(<WorkCell name="Loops">
+ <Frame name="Mount"><RPY>0 0 90</RPY><Pos>0 0 1</Pos></Frame>
+ <ParallelDevice name="P">
+  <Frame name="Base"><RPY>0 0 0</RPY><Pos>0 0 0</Pos></Frame>
+  <SerialChain name="Crank">
+   <Joint name="A" type="Revolute"><RPY>0 0 0</RPY><Pos>0 0 0</Pos>
+    <PosLimit min="-90" max="90"/></Joint>
+   <Joint name="B" type="Revolute" state="Passive"><RPY>0 0 0</RPY><Pos>2 0 0</Pos></Joint>
+   <Frame name="End"><RPY>0 0 0</RPY><Pos>2.5 0 0</Pos></Frame>
+  </SerialChain>
+  <Frame name="Ground" refframe="Base"><RPY>0 0 0</RPY><Pos>3 0 0</Pos></Frame>
+  <SerialChain name="Rocker">
+   <Joint name="C" type="Revolute" state="Passive"><RPY>0 0 0</RPY><Pos>0 0 0</Pos></Joint>
+   <SerialChain name="Tip">
+    <Joint name="D" type="Revolute" state="Passive"><RPY>0 0 0</RPY><Pos>2 0 0</Pos></Joint>
+   </SerialChain>
+  </SerialChain>
+  <Frame name="Extra" refframe="Crank.End"><RPY>0 0 0</RPY><Pos>0 0 0</Pos></Frame>
+  <SerialChain name="Tool">
+   <Joint name="E" type="Revolute" state="Passive"><RPY>0 0 0</RPY><Pos>0 0 0</Pos>
+    <Depend on="Rocker.C" gain="0.5" offset="0.1"/></Joint>
+  </SerialChain>
+  <VelLimit refjoint="Crank.A" max="30"/>
+  <Junction><Chains>Crank</Chains><Chains>Tip</Chains></Junction>
+  <Q name="Home">0.5</Q>
+ </ParallelDevice>
+</WorkCell>
+)";
+  visgrab::test::TempDir dir;
+  const auto original = rw::loaders::loadWorkCellFromString(xml, dir.path() / "loops.wc.xml");
+  ASSERT_NE(original->findDevice("P")->parallel(), nullptr);
+  roundTrip(*original, dir.path());
 }
 
 // The string form has no setup files; everything else loads back the same.

@@ -194,6 +194,9 @@ class Renderer {
 
   void writeWorkCellFrame(FrameId id);
   void writeDevice(std::size_t index);
+  void writeParallelDevice(const Device& device);
+  void enterChains(const std::vector<std::string>& scope, std::vector<std::string>& open);
+  std::optional<std::string> parallelRef(FrameId id, FrameId previous, const Device& device) const;
   void writeFrameElement(FrameId id, const Device* device, const std::optional<std::string>& ref);
   void writeTransform(const Transform3D& X);
   void writeLimits(const Frame& frame, const std::string* refjoint);
@@ -216,6 +219,7 @@ class Renderer {
   std::vector<int> owner_;  // device index per frame, -1 for frames outside every device
   std::vector<bool> written_;
   std::vector<bool> endMark_;  // frames written with type="EndEffector"
+  std::string chainPrefix_;    // open SerialChain scopes ("A.B."), relative to the device
   XmlWriter xml_;
 };
 
@@ -280,7 +284,7 @@ void Renderer::checkDevice(std::size_t index) const {
     if (device.ends().size() != 1 || device.ends().front() != frames.back()) {
       fail("the end of SerialDevice \"" + device.name() + "\" is not its last frame");
     }
-  } else {
+  } else if (device.kind() == Device::Kind::kTree) {
     checkTreeEnds(device);
   }
 }
@@ -361,8 +365,12 @@ std::vector<Renderer::Item> Renderer::planOrder() const {
   return items;
 }
 
+// The name as written at the current place: relative to the device and to the open
+// SerialChain scopes (RobWork prefixes both).
 std::string Renderer::nameInDevice(FrameId id, const Device& device) const {
-  return tree_.frame(id).name().substr(device.name().size() + 1);
+  std::string name = tree_.frame(id).name().substr(device.name().size() + 1);
+  if (!chainPrefix_.empty() && name.starts_with(chainPrefix_)) name.erase(0, chainPrefix_.size());
+  return name;
 }
 
 WorkCellFiles Renderer::render(std::string_view stem, bool withSetups) {
@@ -412,6 +420,10 @@ void Renderer::writeWorkCellFrame(FrameId id) {
 
 void Renderer::writeDevice(std::size_t index) {
   const Device& device = *wc_.devices()[index];
+  if (device.parallel() != nullptr) {
+    writeParallelDevice(device);
+    return;
+  }
   const bool serial = device.kind() == Device::Kind::kSerial;
   xml_.open(serial ? "SerialDevice" : "TreeDevice", {{"name", device.name()}});
   for (const FrameId id : device.frames()) {
@@ -421,6 +433,69 @@ void Renderer::writeDevice(std::size_t index) {
     writeFrameElement(id, &device, ref);
   }
   writeProperties(device.properties(), &device.configurations(), false);
+  for (const auto& [name, q] : device.configurations()) {
+    xml_.text("Q", {{"name", name}}, formatList(q));
+  }
+  xml_.close();
+}
+
+// Opens and closes SerialChain elements so that exactly `scope` is open.
+void Renderer::enterChains(const std::vector<std::string>& scope, std::vector<std::string>& open) {
+  std::size_t common = 0;
+  while (common < open.size() && common < scope.size() && open[common] == scope[common]) ++common;
+  for (; open.size() > common; open.pop_back()) xml_.close();
+  for (; open.size() < scope.size(); open.push_back(scope[open.size()])) {
+    xml_.open("SerialChain", {{"name", scope[open.size()]}});
+  }
+  chainPrefix_.clear();
+  for (const std::string& s : open) chainPrefix_ += s + ".";
+}
+
+// A frame that hangs on the frame written before it needs no refframe (RobWork attaches it
+// there); any other parent must be nameable from the open SerialChain scope.
+std::optional<std::string> Renderer::parallelRef(FrameId id, FrameId previous,
+                                                 const Device& device) const {
+  const FrameId parent = tree_.frame(id).parent();
+  if (!previous.valid() || parent == previous) return std::nullopt;
+  const std::string relative = tree_.frame(parent).name().substr(device.name().size() + 1);
+  if (!relative.starts_with(chainPrefix_)) {
+    fail("frame " + quoted(id) + " of ParallelDevice \"" + device.name() + "\" hangs on " +
+         quoted(parent) + ", which is neither the frame before it nor in its SerialChain");
+  }
+  return relative.substr(chainPrefix_.size());
+}
+
+// Frames in document order, inside the SerialChain scopes their names give (the chains RobWork
+// splits the device into, and the names the Junctions use, come from these scopes), then the
+// Junctions (left out for RobWork's form without them: one junction of unnamed legs).
+void Renderer::writeParallelDevice(const Device& device) {
+  xml_.open("ParallelDevice", {{"name", device.name()}});
+  std::vector<std::string> open;
+  FrameId previous;
+  for (const FrameId id : device.parallel()->frames()) {
+    const std::string relative = tree_.frame(id).name().substr(device.name().size() + 1);
+    std::vector<std::string> scope;
+    for (const std::string_view part : rw::common::split(relative, '.')) scope.emplace_back(part);
+    scope.pop_back();
+    enterChains(scope, open);
+    writeFrameElement(id, &device, parallelRef(id, previous, device));
+    previous = id;
+  }
+  enterChains({}, open);
+  // RobWork's grammar: the body (properties included), then the Junctions, then the Qs.
+  writeProperties(device.properties(), &device.configurations(), false);
+  for (const auto& junction : device.parallel()->junctions()) {
+    const bool named = std::all_of(junction.legs.begin(), junction.legs.end(),
+                                   [](const auto& leg) { return !leg.chains.empty(); });
+    if (!named) continue;
+    xml_.open("Junction", {});
+    for (const auto& leg : junction.legs) {
+      std::string chains;
+      for (const std::string& c : leg.chains) chains += (chains.empty() ? "" : " ") + c;
+      xml_.text("Chains", {}, chains);
+    }
+    xml_.close();
+  }
   for (const auto& [name, q] : device.configurations()) {
     xml_.text("Q", {{"name", name}}, formatList(q));
   }

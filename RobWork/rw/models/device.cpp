@@ -4,6 +4,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "rw/models/joint_values.hpp"
+
 namespace rw::models {
 
 using rw::kinematics::Frame;
@@ -32,19 +34,14 @@ std::vector<FrameId> pathFromBase(const FrameTree& tree, FrameId base, FrameId e
   return path;
 }
 
-template <typename Get>
-Q collect(const FrameTree& tree, const std::vector<FrameId>& joints, Get get) {
-  Q q(static_cast<Eigen::Index>(joints.size()));
-  for (std::size_t i = 0; i < joints.size(); ++i) {
-    q[static_cast<Eigen::Index>(i)] = get(tree.frame(joints[i]).limits());
-  }
-  return q;
-}
-
 }  // namespace
 
 Device::Device(Spec spec, const FrameTree& tree) : spec_(std::move(spec)), tree_(&tree) {
   if (!spec_.base.valid()) throw std::invalid_argument("device \"" + spec_.name + "\" has no base");
+  if (spec_.kind == Kind::kParallel) {
+    throw std::invalid_argument("device \"" + spec_.name +
+                                "\": a parallel device needs its ParallelStructure");
+  }
   for (const FrameId end : spec_.ends) {
     for (const FrameId f : pathFromBase(tree, spec_.base, end, spec_.name)) {
       const Frame& frame = tree.frame(f);
@@ -55,7 +52,27 @@ Device::Device(Spec spec, const FrameTree& tree) : spec_(std::move(spec)), tree_
       if (frame.isActiveJoint()) active_.push_back(f);
     }
   }
-  // The device's frames: the base and everything below it that lives in the device's scope.
+  collectFrames();
+}
+
+Device::Device(Spec spec, const FrameTree& tree, ParallelStructure structure)
+    : spec_(std::move(spec)), tree_(&tree) {
+  if (spec_.kind != Kind::kParallel) {
+    throw std::invalid_argument("device \"" + spec_.name +
+                                "\": a parallel structure needs Kind::kParallel");
+  }
+  if (!spec_.base.valid()) throw std::invalid_argument("device \"" + spec_.name + "\" has no base");
+  parallel_.emplace(tree, std::move(structure), spec_.name);
+  joints_ = parallel_->allJoints();
+  for (const FrameId f : joints_) {
+    if (tree.frame(f).isActiveJoint()) active_.push_back(f);
+  }
+  collectFrames();
+}
+
+// The device's frames: the base and everything below it that lives in the device's scope.
+void Device::collectFrames() {
+  const FrameTree& tree = *tree_;
   const std::string prefix = spec_.name + ".";
   std::vector<FrameId> stack{spec_.base};
   while (!stack.empty()) {
@@ -69,35 +86,38 @@ Device::Device(Spec spec, const FrameTree& tree) : spec_(std::move(spec)), tree_
   std::sort(frames_.begin(), frames_.end());
 }
 
-Q Device::getQ(const State& state) const {
-  Q q(dof());
-  for (std::size_t i = 0; i < active_.size(); ++i) {
-    q[static_cast<Eigen::Index>(i)] = tree_->frame(active_[i]).jointValue(state);
-  }
-  return q;
-}
+Q Device::getQ(const State& state) const { return jointValues(*tree_, active_, state); }
 
-void Device::setQ(const Q& q, State& state) const {
+void Device::setActive(const Q& q, State& state) const {
   if (q.size() != dof()) {
     throw std::invalid_argument("device \"" + spec_.name + "\" has " + std::to_string(dof()) +
                                 " DOF, got a configuration of " + std::to_string(q.size()));
   }
-  for (std::size_t i = 0; i < active_.size(); ++i) {
-    tree_->frame(active_[i]).setJointValue(state, q[static_cast<Eigen::Index>(i)]);
+  setJointValues(*tree_, active_, q, state);
+}
+
+void Device::setQ(const Q& q, State& state) const {
+  if (!parallel_) {
+    setActive(q, state);
+    return;
   }
+  State closed = state;
+  setActive(q, closed);
+  parallel_->close(closed);
+  state = std::move(closed);
 }
 
 Q Device::lowerLimits() const {
-  return collect(*tree_, active_, [](const auto& l) { return l.lower; });
+  return jointLimits(*tree_, active_, [](const auto& l) { return l.lower; });
 }
 Q Device::upperLimits() const {
-  return collect(*tree_, active_, [](const auto& l) { return l.upper; });
+  return jointLimits(*tree_, active_, [](const auto& l) { return l.upper; });
 }
 Q Device::velocityLimits() const {
-  return collect(*tree_, active_, [](const auto& l) { return l.velocity; });
+  return jointLimits(*tree_, active_, [](const auto& l) { return l.velocity; });
 }
 Q Device::accelerationLimits() const {
-  return collect(*tree_, active_, [](const auto& l) { return l.acceleration; });
+  return jointLimits(*tree_, active_, [](const auto& l) { return l.acceleration; });
 }
 
 bool Device::contains(FrameId frame) const {

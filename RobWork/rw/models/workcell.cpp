@@ -27,11 +27,21 @@ void WorkCell::setDefaultState(rw::kinematics::State state) {
   defaultState_ = std::move(state);
 }
 
-const Device& WorkCell::addDevice(Device::Spec spec) {
-  if (findDevice(spec.name) != nullptr) {
-    throw std::invalid_argument("device \"" + spec.name + "\" already exists");
+void WorkCell::checkNewDeviceName(const std::string& name) const {
+  if (findDevice(name) != nullptr) {
+    throw std::invalid_argument("device \"" + name + "\" already exists");
   }
+}
+
+const Device& WorkCell::addDevice(Device::Spec spec) {
+  checkNewDeviceName(spec.name);
   devices_.push_back(std::make_unique<Device>(std::move(spec), frames_));
+  return *devices_.back();
+}
+
+const Device& WorkCell::addDevice(Device::Spec spec, ParallelStructure structure) {
+  checkNewDeviceName(spec.name);
+  devices_.push_back(std::make_unique<Device>(std::move(spec), frames_, std::move(structure)));
   return *devices_.back();
 }
 

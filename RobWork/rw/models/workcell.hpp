@@ -55,6 +55,9 @@ class WorkCell {
   /// Adds a device over frames already in the tree. @throws std::invalid_argument on a
   /// duplicate name.
   const Device& addDevice(Device::Spec spec);
+  /// Adds a parallel device (spec.kind == kParallel). @throws std::invalid_argument on a
+  /// duplicate name or a bad structure (see Device).
+  const Device& addDevice(Device::Spec spec, ParallelStructure structure);
   /// All devices in document order.
   const std::vector<std::unique_ptr<Device>>& devices() const { return devices_; }
   /// The device with this name, or nullptr.
@@ -91,6 +94,8 @@ class WorkCell {
   void setFileName(std::string fileName) { fileName_ = std::move(fileName); }
 
  private:
+  void checkNewDeviceName(const std::string& name) const;
+
   std::string name_;
   rw::kinematics::FrameTree frames_;
   std::vector<std::unique_ptr<Device>> devices_;

@@ -43,6 +43,19 @@ std::string device(const char* body) {
          body + "\n" + lines({" </TreeDevice>", "</WorkCell>"});
 }
 
+// A small ParallelDevice: chain L (active joint J) and chain R (passive joint K) from Base;
+// R's end is `reach` metres out (1 closes the loop, anything else cannot). `body` is line 7.
+std::string parallel(const char* body, const char* reach = "1") {
+  return lines({"<WorkCell name=\"w\">", " <ParallelDevice name=\"P\">", "  <Frame name=\"Base\"/>",
+                "  <SerialChain name=\"L\"><Joint name=\"J\" type=\"Revolute\"/><Frame "
+                "name=\"E\"><RPY>0 0 0</RPY><Pos>1 0 0</Pos></Frame></SerialChain>",
+                "  <Frame name=\"RBase\" refframe=\"Base\"/>"}) +
+         "  <SerialChain name=\"R\"><Joint name=\"K\" type=\"Revolute\" state=\"Passive\"/>"
+         "<Frame name=\"E\"><RPY>0 0 0</RPY><Pos>" +
+         reach + " 0 0</Pos></Frame></SerialChain>\n" + body + "\n" +
+         lines({" </ParallelDevice>", "</WorkCell>"});
+}
+
 std::string workcell(const char* body) {
   return lines({"<WorkCell name=\"w\">", " <Frame name=\"Table\"/>"}) + body + "\n" +
          lines({"</WorkCell>"});
@@ -269,12 +282,83 @@ std::vector<Case> cases() {
        "main.wc.xml",
        5,
        "needs exactly one of the attributes d"},
-      {"ParallelDevice",
-       {{"main.wc.xml",
-         workcell(" <ParallelDevice name=\"P\"><Frame name=\"B\"/></ParallelDevice>")}},
+      {"MobileDevice",
+       {{"main.wc.xml", workcell(" <MobileDevice name=\"M\"><Frame name=\"B\"/></MobileDevice>")}},
        "main.wc.xml",
        3,
-       "<ParallelDevice> is not supported by this project"},
+       "<MobileDevice> is not supported by this project (SerialDevice, TreeDevice and "
+       "ParallelDevice are)"},
+      {"JunctionWithUnknownChain",
+       {{"main.wc.xml", parallel("  <Junction><Chains>L</Chains>\n  <Chains>Nope</Chains>"
+                                 "</Junction>")}},
+       "main.wc.xml",
+       8,
+       "<Chains>: unknown SerialChain \"Nope\"; the chains of device \"P\" are: L, R"},
+      {"JunctionWithOneLeg",
+       {{"main.wc.xml", parallel("  <Junction><Chains>L</Chains></Junction>")}},
+       "main.wc.xml",
+       7,
+       "<Junction>: a junction joins at least two legs (<Chains> elements), got 1"},
+      {"JunctionWithEmptyChains",
+       {{"main.wc.xml", parallel("  <Junction><Chains>L</Chains>\n  <Chains> </Chains>"
+                                 "</Junction>")}},
+       "main.wc.xml",
+       8,
+       "<Chains>: names no SerialChain"},
+      {"JunctionLegsFromDifferentStarts",
+       {{"main.wc.xml",
+         parallel("  <Frame name=\"X\" refframe=\"L.E\"/><SerialChain name=\"X\"><Frame "
+                  "name=\"F\"><RPY>0 0 0</RPY><Pos>0 0 1</Pos></Frame></SerialChain>\n"
+                  "  <Junction><Chains>R</Chains>\n  <Chains>X</Chains></Junction>")}},
+       "main.wc.xml",
+       9,
+       "<Chains>: the leg starts at frame \"P.L.E\", the junction's first leg at \"P.Base\"; the "
+       "legs of a junction start at one frame"},
+      {"JunctionChainsThatDoNotFollow",
+       {{"main.wc.xml", parallel("  <Junction><Chains>R L</Chains>\n  <Chains>L</Chains>"
+                                 "</Junction>")}},
+       "main.wc.xml",
+       7,
+       "<Chains>: chain \"L\" starts at frame \"P.Base\", not at \"P.R.E\" where the leg so far "
+       "ends"},
+      {"JunctionLegsEndingAtOneFrame",
+       {{"main.wc.xml", parallel("  <Junction><Chains>L</Chains>\n  <Chains>L</Chains>"
+                                 "</Junction>")}},
+       "main.wc.xml",
+       8,
+       "<Chains>: the leg ends at frame \"P.L.E\" like an earlier leg of the junction"},
+      {"PassiveJointOnNoLeg",
+       {{"main.wc.xml",
+         parallel("  <Frame name=\"Y\" refframe=\"Base\"/><SerialChain name=\"Y\">\n"
+                  "   <Joint name=\"F\" type=\"Revolute\" state=\"Passive\"/></SerialChain>\n"
+                  "  <Junction><Chains>L</Chains><Chains>R</Chains></Junction>")}},
+       "main.wc.xml",
+       8,
+       "<Joint name=\"F\">: a passive joint on no leg of a <Junction>; nothing determines its "
+       "value"},
+      {"ParallelFrameOnLaterFrame",
+       {{"main.wc.xml", parallel("  <Frame name=\"Z\" refframe=\"Later\"/><Frame name=\"Later\" "
+                                 "refframe=\"Base\"/>\n"
+                                 "  <Junction><Chains>L</Chains><Chains>R</Chains></Junction>")}},
+       "main.wc.xml",
+       7,
+       "<Frame name=\"Z\">: in a ParallelDevice a frame hangs on an earlier frame of the same "
+       "device; \"P.Later\" is not one"},
+      {"ParallelHomeThatCannotClose",
+       {{"main.wc.xml", parallel("  <Junction><Chains>L</Chains><Chains>R</Chains></Junction>\n"
+                                 "  <Q name=\"Home\">0.5</Q>",
+                                 "2")}},
+       "main.wc.xml",
+       8,
+       "<Q name=\"Home\">: device \"P\": junction 1 (leg \"L\", leg \"R\") cannot be closed: "
+       "residual 1 m"},
+      {"JunctionInTreeDevice",
+       {{"main.wc.xml",
+         workcell(" <TreeDevice name=\"D\"><Frame name=\"Base\"/>\n  <Junction><Chains>L</Chains>"
+                  "<Chains>R</Chains></Junction></TreeDevice>")}},
+       "main.wc.xml",
+       4,
+       "<Junction> is not allowed in <TreeDevice name=\"D\">"},
       {"CustomGeometry",
        {{"main.wc.xml", workcell(" <Drawable name=\"d\" refframe=\"Table\">"
                                  "<Custom type=\"gear\" param=\"1 2\"/></Drawable>")}},

@@ -10,6 +10,7 @@
 #include "rw/common/strings.hpp"
 #include "rw/loaders/detail/setup_files.hpp"
 #include "rw/loaders/detail/wc_geometry.hpp"
+#include "rw/loaders/detail/wc_parallel.hpp"
 
 namespace rw::loaders::detail {
 
@@ -66,6 +67,7 @@ class Builder {
   rw::kinematics::JointLimits limitsOf(int i) const;
   bool createFrames(WorkCell& wc, const std::vector<int>& order);
   void createDevices(WorkCell& wc);
+  void checkConfigurations(const DeviceDesc& dd, const Device& device, Device::Spec& spec);
   void setDefaultState(WorkCell& wc);
 
   const WorkCellDesc& d_;
@@ -323,12 +325,44 @@ bool Builder::createFrames(WorkCell& wc, const std::vector<int>& order) {
   return true;
 }
 
+// The named configurations that fit the device go into its spec; the others are errors.
+void Builder::checkConfigurations(const DeviceDesc& dd, const Device& device, Device::Spec& spec) {
+  const int dof = device.dof();
+  for (const QDesc& q : dd.configurations) {
+    if (static_cast<int>(q.values.size()) != dof) {
+      sink_.error(q.origin.location, q.origin.element + ": " + std::to_string(q.values.size()) +
+                                         " values, but device \"" + dd.name + "\" has " +
+                                         std::to_string(dof) + (dof == 1 ? " degree" : " degrees") +
+                                         " of freedom");
+      continue;
+    }
+    spec.configurations[q.name] = Eigen::Map<const Eigen::VectorXd>(
+        q.values.data(), static_cast<Eigen::Index>(q.values.size()));
+  }
+}
+
 void Builder::createDevices(WorkCell& wc) {
   for (const DeviceDesc& dd : d_.devices) {
     Device::Spec spec;
     spec.name = dd.name;
     spec.kind = dd.tree ? Device::Kind::kTree : Device::Kind::kSerial;
     spec.base = ids_[static_cast<std::size_t>(dd.frames.front())];
+    for (const PropertyDesc& p : dd.properties) spec.properties[p.name] = p.property;
+    if (dd.parallel) {
+      auto structure = buildParallelStructure(d_, dd, ids_, wc.frames(), sink_);
+      if (!structure) continue;
+      // RobWork: base and end of the first leg of the first junction.
+      spec.kind = Device::Kind::kParallel;
+      spec.base = structure->junctions.front().legs.front().start;
+      spec.ends = {structure->junctions.front().legs.front().end};
+      try {
+        checkConfigurations(dd, Device(spec, wc.frames(), *structure), spec);
+        wc.addDevice(std::move(spec), std::move(*structure));
+      } catch (const std::invalid_argument& e) {
+        sink_.error(dd.origin.location, dd.origin.element + ": " + e.what());
+      }
+      continue;
+    }
     if (dd.tree) {
       for (const int i : dd.frames) {
         if (d_.frames[static_cast<std::size_t>(i)].endEffector) {
@@ -337,20 +371,8 @@ void Builder::createDevices(WorkCell& wc) {
       }
     }
     if (spec.ends.empty()) spec.ends.push_back(ids_[static_cast<std::size_t>(dd.frames.back())]);
-    for (const PropertyDesc& p : dd.properties) spec.properties[p.name] = p.property;
     try {
-      const int dof = Device(spec, wc.frames()).dof();
-      for (const QDesc& q : dd.configurations) {
-        if (static_cast<int>(q.values.size()) != dof) {
-          sink_.error(q.origin.location, q.origin.element + ": " + std::to_string(q.values.size()) +
-                                             " values, but device \"" + dd.name + "\" has " +
-                                             std::to_string(dof) +
-                                             (dof == 1 ? " degree" : " degrees") + " of freedom");
-          continue;
-        }
-        spec.configurations[q.name] = Eigen::Map<const Eigen::VectorXd>(
-            q.values.data(), static_cast<Eigen::Index>(q.values.size()));
-      }
+      checkConfigurations(dd, Device(spec, wc.frames()), spec);
       wc.addDevice(std::move(spec));
     } catch (const std::invalid_argument& e) {
       sink_.error(dd.origin.location, dd.origin.element + ": " + e.what());
@@ -359,12 +381,22 @@ void Builder::createDevices(WorkCell& wc) {
 }
 
 // Movable frames start at their given transform (FrameTree::makeState); a device's "Home"
-// configuration sets its joints.
+// configuration sets its joints (a parallel device's junctions are closed from all joints at
+// zero; a Home that cannot close them is an error at its <Q>).
 void Builder::setDefaultState(WorkCell& wc) {
   rw::kinematics::State state = wc.frames().makeState();
-  for (const auto& device : wc.devices()) {
+  for (const DeviceDesc& dd : d_.devices) {
+    const Device* device = wc.findDevice(dd.name);
+    if (device == nullptr) continue;
     const auto home = device->configurations().find("Home");
-    if (home != device->configurations().end()) device->setQ(home->second, state);
+    if (home == device->configurations().end()) continue;
+    try {
+      device->setQ(home->second, state);
+    } catch (const rw::models::ClosureError& e) {
+      for (const QDesc& q : dd.configurations) {
+        if (q.name == "Home") sink_.error(q.origin.location, q.origin.element + ": " + e.what());
+      }
+    }
   }
   wc.setDefaultState(std::move(state));
 }
@@ -384,6 +416,7 @@ std::unique_ptr<WorkCell> Builder::run(common::XmlReader& setupReader,
   createDevices(*wc);
   if (sink_.hasErrors()) return nullptr;
   setDefaultState(*wc);
+  if (sink_.hasErrors()) return nullptr;
   addGeometry(*wc, d_.models, sink_);
   buildSetups(*wc, d_, setupReader, sink_);
   for (const PropertyDesc& p : d_.properties) wc->properties()[p.name] = p.property;

@@ -126,6 +126,8 @@ struct FrameDesc {
   std::vector<PropertyDesc> properties;
   /// Index of the device it belongs to, -1 at workcell level.
   int device = -1;
+  /// Name of the innermost SerialChain around it; empty outside every chain.
+  std::string chain;
 };
 
 /// A named configuration.
@@ -150,7 +152,23 @@ struct SetupRef {
   std::string prefix;
 };
 
-/// A SerialDevice or TreeDevice.
+/// A `<Chains>` element of a Junction: SerialChain names joined into one leg.
+struct ChainsDesc {
+  /// The element.
+  Origin origin;
+  /// The names, in order (unscoped, as written).
+  std::vector<std::string> names;
+};
+
+/// A `<Junction>` of a ParallelDevice.
+struct JunctionDesc {
+  /// The element.
+  Origin origin;
+  /// One entry per leg.
+  std::vector<ChainsDesc> legs;
+};
+
+/// A SerialDevice, TreeDevice or ParallelDevice.
 struct DeviceDesc {
   /// The element.
   Origin origin;
@@ -158,6 +176,10 @@ struct DeviceDesc {
   std::string name;
   /// True for a TreeDevice.
   bool tree = false;
+  /// True for a ParallelDevice (frames attach as in a TreeDevice).
+  bool parallel = false;
+  /// Junctions of a ParallelDevice.
+  std::vector<JunctionDesc> junctions;
   /// Indices into WorkCellDesc::frames, document order (first = base).
   std::vector<int> frames;
   /// Device-level limits.

@@ -21,11 +21,15 @@ const std::string kWorld(rw::kinematics::FrameTree::kWorldName);
 
 // Children each context accepts, for "expected one of" in messages.
 constexpr const char* kWorkCellChildren =
-    "SerialDevice, TreeDevice, Frame, Drawable, CollisionModel, CollisionSetup, ProximitySetup, "
+    "SerialDevice, TreeDevice, ParallelDevice, Frame, Drawable, CollisionModel, CollisionSetup, "
+    "ProximitySetup, "
     "Property, Calibration, Camera";
 constexpr const char* kDeviceChildren =
     "Frame, Joint, DHJoint, SerialChain, Drawable, CollisionModel, PosLimit, VelLimit, AccLimit, "
     "Property, CollisionSetup, ProximitySetup, Q";
+constexpr const char* kParallelChildren =
+    "Frame, Joint, DHJoint, SerialChain, Drawable, CollisionModel, PosLimit, VelLimit, AccLimit, "
+    "Property, CollisionSetup, ProximitySetup, Junction, Q";
 constexpr const char* kChainChildren =
     "Frame, Joint, DHJoint, SerialChain, Drawable, CollisionModel, PosLimit, VelLimit, AccLimit, "
     "Property, CollisionSetup, ProximitySetup";
@@ -43,6 +47,10 @@ bool isLimit(const std::string& name) {
 }
 
 bool isModel(const std::string& name) { return name == "Drawable" || name == "CollisionModel"; }
+
+bool isDevice(const std::string& name) {
+  return name == "SerialDevice" || name == "TreeDevice" || name == "ParallelDevice";
+}
 
 // Walks the expanded element tree and fills a WorkCellDesc.
 class DescriptionParser {
@@ -74,6 +82,7 @@ class DescriptionParser {
   bool readColor(const common::XmlElement& model, const common::XmlElement& rgb, ModelDesc& desc);
   void parseModel(const common::XmlElement& element, const std::string& ownerFrame);
   void parseDeviceLimit(const common::XmlElement& element);
+  void parseJunction(const common::XmlElement& element);
   void addSetup(const common::XmlElement& element);
   std::string scoped(const std::string& name) const;
   std::string scopePrefix() const;
@@ -112,8 +121,8 @@ void DescriptionParser::notAllowed(const common::XmlElement& child,
 
 void DescriptionParser::unsupportedDevice(const common::XmlElement& element) {
   sink_.error(element.location, element.describe() + ": <" + element.name +
-                                    "> is not supported by this project (SerialDevice and "
-                                    "TreeDevice are)");
+                                    "> is not supported by this project (SerialDevice, "
+                                    "TreeDevice and ParallelDevice are)");
 }
 
 std::optional<WorkCellDesc> DescriptionParser::run(const std::vector<common::XmlElement>& topLevel,
@@ -133,14 +142,14 @@ std::optional<WorkCellDesc> DescriptionParser::run(const std::vector<common::Xml
   if (root.name == "WorkCell") {
     desc_.name = root.attributeOr("name", "");
     parseWorkCell(root);
-  } else if (root.name == "SerialDevice" || root.name == "TreeDevice") {
+  } else if (isDevice(root.name)) {
     parseDevice(root);
-  } else if (root.name == "ParallelDevice" || root.name == "MobileDevice") {
+  } else if (root.name == "MobileDevice") {
     unsupportedDevice(root);
   } else {
     sink_.error(root.location, "<" + root.name +
                                    "> cannot be the root element; expected <WorkCell>, "
-                                   "<SerialDevice> or <TreeDevice>");
+                                   "<SerialDevice>, <TreeDevice> or <ParallelDevice>");
   }
   if (sink_.hasErrors()) return std::nullopt;
   return std::move(desc_);
@@ -149,9 +158,9 @@ std::optional<WorkCellDesc> DescriptionParser::run(const std::vector<common::Xml
 void DescriptionParser::parseWorkCell(const common::XmlElement& element) {
   for (const common::XmlElement& child : element.children) {
     const std::string& n = child.name;
-    if (n == "SerialDevice" || n == "TreeDevice") {
+    if (isDevice(n)) {
       parseDevice(child);
-    } else if (n == "ParallelDevice" || n == "MobileDevice") {
+    } else if (n == "MobileDevice") {
       unsupportedDevice(child);
     } else if (n == "Frame") {
       parseFrame(child);
@@ -179,6 +188,7 @@ void DescriptionParser::parseDevice(const common::XmlElement& element) {
   device.origin = originOf(element);
   device.name = element.attributeOr("name", "");
   device.tree = element.name == "TreeDevice";
+  device.parallel = element.name == "ParallelDevice";
   const auto [it, fresh] = deviceNames_.emplace(device.name, element.location);
   if (!fresh) {
     sink_.error(element.location,
@@ -191,8 +201,9 @@ void DescriptionParser::parseDevice(const common::XmlElement& element) {
     return;
   }
   desc_.devices.push_back(std::move(device));
-  device_ =
-      DeviceState{static_cast<int>(desc_.devices.size()) - 1, element.name == "TreeDevice", "", 0};
+  // A ParallelDevice attaches its frames as a TreeDevice does (RobWork's AddFrameToDevice).
+  device_ = DeviceState{static_cast<int>(desc_.devices.size()) - 1,
+                        element.name == "TreeDevice" || element.name == "ParallelDevice", "", 0};
   scope_.push_back(desc_.devices.back().name);
   parseDeviceBody(element, false);
   scope_.pop_back();
@@ -227,8 +238,12 @@ void DescriptionParser::parseDeviceBody(const common::XmlElement& element, bool 
       addSetup(child);
     } else if (n == "Q" && !isChain) {
       if (auto q = readQ(child, sink_)) device.configurations.push_back(std::move(*q));
+    } else if (n == "Junction" && !isChain && device.parallel) {
+      parseJunction(child);
     } else {
-      notAllowed(child, element, isChain ? kChainChildren : kDeviceChildren);
+      notAllowed(
+          child, element,
+          isChain ? kChainChildren : (device.parallel ? kParallelChildren : kDeviceChildren));
     }
   }
 }
@@ -245,6 +260,48 @@ void DescriptionParser::parseDeviceLimit(const common::XmlElement& element) {
   }
   limit->joint = scoped(*refjoint);
   desc_.devices[static_cast<std::size_t>(device_->index)].limits.push_back(std::move(*limit));
+}
+
+// <Junction><Chains>A B</Chains><Chains>C</Chains></Junction>: each Chains is one leg made of
+// the named SerialChains; the names are resolved by the builder.
+void DescriptionParser::parseJunction(const common::XmlElement& element) {
+  JunctionDesc junction;
+  junction.origin = originOf(element);
+  bool ok = true;
+  for (const common::XmlElement& child : element.children) {
+    if (child.name != "Chains") {
+      notAllowed(child, element, "Chains");
+      ok = false;
+      continue;
+    }
+    ChainsDesc leg;
+    leg.origin = originOf(child);
+    std::string word;
+    for (const char c : child.text + " ") {
+      if (c != ' ' && c != '\t' && c != '\n' && c != '\r') {
+        word += c;
+      } else if (!word.empty()) {
+        leg.names.push_back(std::move(word));
+        word.clear();
+      }
+    }
+    if (leg.names.empty()) {
+      sink_.error(child.location, child.describe() +
+                                      ": names no SerialChain; expected the names of the "
+                                      "chains that make one leg, separated by spaces");
+      ok = false;
+      continue;
+    }
+    junction.legs.push_back(std::move(leg));
+  }
+  if (ok && junction.legs.size() < 2) {
+    sink_.error(element.location, element.describe() +
+                                      ": a junction joins at least two legs (<Chains> "
+                                      "elements), got " +
+                                      std::to_string(junction.legs.size()));
+    return;
+  }
+  if (ok) desc_.devices[static_cast<std::size_t>(device_->index)].junctions.push_back(junction);
 }
 
 void DescriptionParser::addSetup(const common::XmlElement& element) {
@@ -391,6 +448,7 @@ void DescriptionParser::parseFrame(const common::XmlElement& element) {
   frame.origin = originOf(element);
   frame.name = scoped(element.attributeOr("name", ""));
   frame.device = device_ ? device_->index : -1;
+  if (device_ && scope_.size() > 1) frame.chain = scope_.back();
   bool ok = readFrameAttributes(element, frame);
   TransformReader transform;
   for (const common::XmlElement& child : element.children) {
