@@ -1,5 +1,7 @@
 #include "rwsim/dynamics/dynamic_workcell.hpp"
 
+#include "rwsim/dynamics/loop_closure.hpp"
+
 #include <Eigen/Cholesky>
 
 #include <algorithm>
@@ -198,6 +200,7 @@ DeviceId DynamicWorkCell::addDevice(RigidDevice device) {
            "\" (it must be an unused rigid body on that joint's frame)");
     }
   }
+  loopClosures(*this, device);  // throws if the junctions cannot be closed
   const DeviceId id(devices_.size());
   Body& base = bodies_[device.baseBody.index()];
   if (!base.device.valid()) base.device = id;
@@ -241,6 +244,9 @@ std::vector<std::pair<BodyId, BodyId>> jointConnectedBodyPairs(const DynamicWork
       const BodyId above = link.valid() ? dwc.bodyAbove(joints[j]) : BodyId::none();
       if (above.valid() && above != link)
         pairs.emplace_back(std::min(link, above), std::max(link, above));
+    }
+    for (const LoopClosure& c : loopClosures(dwc, rd)) {
+      pairs.emplace_back(std::min(c.parent, c.child), std::max(c.parent, c.child));
     }
   }
   std::sort(pairs.begin(), pairs.end());

@@ -263,6 +263,7 @@ void Simulator::Impl::createContactJoints() {
 
 void Simulator::Impl::driveMotors() {
   for (auto& dev : ode->devices()) {
+    rows += 6 * dev.welds.size();
     for (const SimJoint& j : dev.joints) {
       if (j.id == nullptr) continue;
       if (j.owner) {

@@ -548,6 +548,11 @@ void checkInput(const HandGraspSetup& setup, const std::vector<DesiredContact>& 
     throw std::invalid_argument("hand \"" + setup.deviceName() +
                                 "\" has no contact IK in its grasp description");
   }
+  if (setup.device().parallel() != nullptr) {
+    throw std::invalid_argument("hand \"" + setup.deviceName() +
+                                "\" is a parallel device: contact IK does not support closed "
+                                "loops yet (give its grasps as a pose and q)");
+  }
   const auto n = static_cast<int>(contacts.size());
   if (std::none_of(ik->grasps.begin(), ik->grasps.end(),
                    [&](const IkGrasp& g) { return g.contacts == n; })) {

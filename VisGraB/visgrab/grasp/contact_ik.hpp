@@ -70,8 +70,9 @@ struct ContactIkResult {
 ///    qOpen + the closing offsets; tauMax by the torque rule at qOpen.
 /// Contacts are not checked for collisions with the hand (the simulator reports them).
 /// Deterministic: no randomness, fixed order of attempts; const on `setup`, thread-safe.
-/// @throws std::invalid_argument if the hand has no contact IK, no <Grasp> takes
-/// contacts.size() contacts, a direction or the approach is (near) zero.
+/// @throws std::invalid_argument if the hand has no contact IK or is a parallel device (closed
+/// loops are not supported yet), no <Grasp> takes contacts.size() contacts, a direction or the
+/// approach is (near) zero.
 ContactIkResult solveContactIk(const HandGraspSetup& setup,
                                const std::vector<DesiredContact>& contacts,
                                const rw::math::Vector3D& approach);

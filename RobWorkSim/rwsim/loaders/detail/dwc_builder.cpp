@@ -196,8 +196,13 @@ bool Builder::planForceLimits(PlannedDevice& planned) {
     planned.forceLimits[static_cast<std::size_t>(it - joints.begin())] = f.value;
   }
   std::string missing;
+  const bool parallel = planned.device->parallel() != nullptr;
   for (std::size_t j = 0; j < joints.size(); ++j) {
     if (planned.forceLimits[j] >= 0.0) continue;
+    if (parallel && tree().frame(joints[j]).isPassive()) {
+      planned.forceLimits[j] = 0.0;  // a free joint of a loop: no motor (RobWork: active only)
+      continue;
+    }
     const std::string& full = tree().frame(joints[j]).name();
     missing += (missing.empty() ? "" : ", ") + std::string("<ForceLimit joint=\"") +
                full.substr(d.name.size() + 1) + "\">";

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "rw/kinematics/frame_tree.hpp"
+#include "rwsim/dynamics/loop_closure.hpp"
 
 namespace rwsim::simulator::detail {
 
@@ -230,6 +231,31 @@ void OdeWorld::createDevices(const dynamics::DynamicWorkCell& dwc,
       attachJoint(sim.joints.back(), link, parent, fk.worldTransform(joints[j]),
                   tree.frame(joints[j]).isPassive());
     }
+    closeLoops(dwc, rd, fk, sim);
+  }
+}
+
+void OdeWorld::closeLoops(const dynamics::DynamicWorkCell& dwc, const dynamics::RigidDevice& rd,
+                          const rw::kinematics::FKTable& fk, SimDevice& sim) {
+  const auto& tree = dwc.workcell().frames();
+  const auto& joints = rd.device->joints();
+  for (const dynamics::LoopClosure& c : dynamics::loopClosures(dwc, rd)) {
+    if (bodies_[c.child.index()].kind != dynamics::BodyKind::kRigid) {
+      throw std::invalid_argument("rigid device " + rd.device->name() + ": junction " +
+                                  std::to_string(c.junction) + " closes on body " +
+                                  dwc.body(c.child).name + ", which is not rigid");
+    }
+    if (c.joint.valid()) {
+      const auto j = static_cast<std::size_t>(std::find(joints.begin(), joints.end(), c.joint) -
+                                              joints.begin());
+      attachJoint(sim.joints[j], c.child, c.parent, fk.worldTransform(c.joint),
+                  tree.frame(c.joint).isPassive());
+      continue;
+    }
+    const dJointID weld = dJointCreateFixed(world_, nullptr);
+    dJointAttach(weld, bodies_[c.child.index()].id, bodies_[c.parent.index()].id);
+    dJointSetFixed(weld);
+    sim.welds.push_back(weld);
   }
 }
 

@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "rw/kinematics/frame_tree.hpp"
 #include "rw/kinematics/state.hpp"
 #include "rw/math/types.hpp"
 #include "rwsim/dynamics/dynamic_workcell.hpp"
@@ -82,6 +83,9 @@ struct SimDevice {
   std::vector<SimJoint> joints;
   /// DOF index -> index into joints.
   std::vector<std::size_t> active;
+  /// Fixed joints that weld the leg ends of a parallel device's junctions (rwsim::dynamics::
+  /// loopClosures without a closing joint); 6 constraint rows each.
+  std::vector<dJointID> welds;
 };
 
 /// An ODE world holding every body, joint and motor of a dynamic workcell in one State.
@@ -134,6 +138,8 @@ class OdeWorld {
   void createBodies(const dynamics::DynamicWorkCell& dwc, const rw::kinematics::State& state);
   void createDevices(const dynamics::DynamicWorkCell& dwc, const rw::kinematics::State& state);
   void destroy();
+  void closeLoops(const dynamics::DynamicWorkCell& dwc, const dynamics::RigidDevice& rd,
+                  const rw::kinematics::FKTable& fk, SimDevice& sim);
   void attachJoint(SimJoint& joint, dynamics::BodyId link, dynamics::BodyId parent,
                    const rw::math::Transform3D& X_W_joint, bool passive);
 
