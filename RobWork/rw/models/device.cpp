@@ -1,6 +1,7 @@
 #include "rw/models/device.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <utility>
 
@@ -102,7 +103,30 @@ void Device::setQ(const Q& q, State& state) const {
     return;
   }
   State closed = state;
-  setActive(q, closed);
+  setActive(q, closed);  // checks q's size
+  // Continuation: the active joints move from their values in `state` to q in steps of at most
+  // ClosureSolver::kMaxActiveStep, the loops closed after each (from the previous closure), so
+  // the passive joints follow q's path on one assembly mode. Where a step cannot be closed the
+  // path is left, and q itself is closed from the last closure reached; if that fails too, q is
+  // closed from `state` directly (which throws the error if it cannot be closed at all).
+  const Q from = getQ(state);
+  const Q delta = q - from;
+  const double longest = delta.size() > 0 ? delta.cwiseAbs().maxCoeff() : 0.0;
+  if (std::isfinite(longest) && longest > ClosureSolver::kMaxActiveStep) {
+    State path = state;
+    const int steps = static_cast<int>(std::ceil(longest / ClosureSolver::kMaxActiveStep));
+    for (int k = 1; k < steps; ++k) {
+      State next = path;
+      setActive(from + delta * (static_cast<double>(k) / steps), next);
+      if (!parallel_->tryClose(next)) break;
+      path = std::move(next);
+    }
+    setActive(q, path);
+    if (parallel_->tryClose(path)) {
+      state = std::move(path);
+      return;
+    }
+  }
   parallel_->close(closed);
   state = std::move(closed);
 }

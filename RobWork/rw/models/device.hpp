@@ -60,8 +60,10 @@ class Device {
   /// Current configuration.
   rw::math::Q getQ(const rw::kinematics::State& state) const;
   /// Sets the configuration; a parallel device then moves its passive joints until every
-  /// junction closes. @throws std::invalid_argument if q.size() != dof(); ClosureError if a
-  /// junction cannot be closed (the state is then unchanged).
+  /// junction closes, following the active joints from their values in `state` to q in steps
+  /// of at most ClosureSolver::kMaxActiveStep (so the closure stays on one assembly mode). @throws
+  /// std::invalid_argument if q.size() != dof(); ClosureError if a junction cannot be closed (the
+  /// state is then unchanged).
   void setQ(const rw::math::Q& q, rw::kinematics::State& state) const;
   /// The closed-loop part of a parallel device; nullptr for serial and tree devices.
   const ParallelKinematics* parallel() const { return parallel_ ? &*parallel_ : nullptr; }

@@ -238,11 +238,28 @@ void ParallelKinematics::setUnknowns(const Q& x, State& state) const {
 
 int ParallelKinematics::close(State& state) const {
   State current = state;
-  Q x = jointValues(*tree_, passive_, state);
+  double norm = 0.0;
+  const int iterations = iterate(current, norm);
+  if (norm > ClosureSolver::kStallTolerance) fail(current, iterations);
+  state = std::move(current);
+  return iterations;
+}
+
+bool ParallelKinematics::tryClose(State& state) const {
+  State current = state;
+  double norm = 0.0;
+  iterate(current, norm);
+  if (!(norm <= ClosureSolver::kStallTolerance)) return false;
+  state = std::move(current);
+  return true;
+}
+
+int ParallelKinematics::iterate(State& current, double& norm) const {
+  Q x = jointValues(*tree_, passive_, current);
   Evaluation e;
   Evaluation trialEval;
   evaluate(current, true, e);
-  double norm = e.r.norm();
+  norm = e.r.norm();
   int iteration = 0;
   for (; norm > ClosureSolver::kTolerance && iteration < ClosureSolver::kMaxIterations;
        ++iteration) {
@@ -264,8 +281,6 @@ int ParallelKinematics::close(State& state) const {
     evaluate(current, true, e);
     norm = e.r.norm();
   }
-  if (norm > ClosureSolver::kStallTolerance) fail(current, iteration);
-  state = std::move(current);
   return iteration;
 }
 

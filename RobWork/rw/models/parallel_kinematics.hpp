@@ -73,6 +73,10 @@ struct ClosureSolver {
   static constexpr int kMaxIterations = 100;
   /// Largest number of step halvings in one iteration.
   static constexpr int kMaxHalvings = 40;
+  /// Device::setQ moves the active joints towards their targets in steps of at most this
+  /// (rad or m), closing the loops after each, so that a large move follows its closure
+  /// instead of jumping into another assembly mode (a parallelogram's crossed one).
+  static constexpr double kMaxActiveStep = 0.1;
 };
 
 /// Joint bookkeeping and closed-loop kinematics of a parallel device (RobWork's ParallelDevice
@@ -122,6 +126,8 @@ class ParallelKinematics {
   /// naming the worst junction and its residual if they cannot be closed; `state` is then
   /// unchanged.
   int close(rw::kinematics::State& state) const;
+  /// As close(), but returns false instead of throwing (and leaves `state` unchanged then).
+  bool tryClose(rw::kinematics::State& state) const;
 
  private:
   struct Column {
@@ -136,6 +142,9 @@ class ParallelKinematics {
   };
   struct Evaluation;
 
+  // The iteration of close(): `state` ends at the best configuration found; returns the
+  // number of iterations and sets `norm` to its residual norm.
+  int iterate(rw::kinematics::State& state, double& norm) const;
   void classifyJoints();
   void buildPaths();
   LegPath makePath(const ParallelLeg& leg, const std::string& what,
