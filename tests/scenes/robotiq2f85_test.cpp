@@ -1,7 +1,8 @@
-// The project's Robotiq-2F-85-like gripper (scenes/hands/robotiq2f85/robotiq2f85.wc.xml): one
-// active joint and a parallel four-bar linkage of dependent joints per finger. Pad positions
-// against the linkage worked out by hand (the file's header): the opening is 85 mm at q = 0,
-// 50 mm at q = 0.3594, 0.55 mm at q = 0.8; the pads stay parallel; each linkage stays closed.
+// The project's Robotiq-2F-85-like gripper (scenes/hands/robotiq2f85/robotiq2f85.wc.xml): a
+// parallel device with one active joint and a closed parallel four-bar linkage per finger. Pad
+// positions against the linkage worked out by hand (the file's header), now through the closure
+// solver: the opening is 85 mm at q = 0, 50 mm at q = 0.3594, 0.55 mm at q = 0.8; the pads stay
+// parallel; each linkage stays closed.
 
 #include <gtest/gtest.h>
 
@@ -37,13 +38,36 @@ class Robotiq2F85 : public ::testing::Test {
   std::vector<rw::common::Diagnostic> warnings_;
 };
 
-TEST_F(Robotiq2F85, OneDofFiveDependentJoints) {
+// One DOF (the right outer knuckle), the left outer knuckle dependent on it (one motor for both
+// sides), and each finger's inner finger, inner knuckle and pin passive, closed by that finger's
+// junction: the linkage, not dependent joints, keeps the pads parallel.
+TEST_F(Robotiq2F85, OneDofTwoClosedLinkages) {
   for (const auto& w : warnings_) ADD_FAILURE() << w.format();
   const auto& device = deviceOf(*wc_, "Robotiq2F85");
   EXPECT_EQ(device.dof(), 1);
-  int dependent = 0;
-  for (const auto j : device.joints()) dependent += wc_->frames().frame(j).isDependent() ? 1 : 0;
-  EXPECT_EQ(dependent, 5);
+  ASSERT_NE(device.parallel(), nullptr);
+  const auto name = [&](rw::kinematics::FrameId f) { return wc_->frames().frame(f).name(); };
+  ASSERT_EQ(device.activeJoints().size(), 1u);
+  EXPECT_EQ(name(device.activeJoints()[0]), "Robotiq2F85.RightOuterKnuckle");
+  std::vector<std::string> dependent;
+  std::vector<std::string> passive;
+  for (const auto j : device.joints()) {
+    if (wc_->frames().frame(j).isDependent()) dependent.push_back(name(j));
+    if (wc_->frames().frame(j).isPassive()) passive.push_back(name(j));
+  }
+  EXPECT_EQ(dependent, std::vector<std::string>{"Robotiq2F85.LeftOuterKnuckle"});
+  EXPECT_EQ(passive, (std::vector<std::string>{
+                         "Robotiq2F85.RightInnerFinger", "Robotiq2F85.RightInnerKnuckle",
+                         "Robotiq2F85.RightInnerLeg.Pin", "Robotiq2F85.LeftInnerFinger",
+                         "Robotiq2F85.LeftInnerKnuckle", "Robotiq2F85.LeftInnerLeg.Pin"}));
+  const auto& junctions = device.parallel()->junctions();
+  ASSERT_EQ(junctions.size(), 2u);
+  for (const auto& [junction, side] : {std::pair{0, "Right"}, std::pair{1, "Left"}}) {
+    const auto& legs = junctions[static_cast<std::size_t>(junction)].legs;
+    ASSERT_EQ(legs.size(), 2u);
+    EXPECT_EQ(name(legs[0].end), std::string("Robotiq2F85.") + side + "OuterLeg.End");
+    EXPECT_EQ(name(legs[1].end), std::string("Robotiq2F85.") + side + "InnerKnuckleTip");
+  }
 }
 
 // By hand (header of the file): with the knuckle turned by q about -x, the inner finger's pivot
