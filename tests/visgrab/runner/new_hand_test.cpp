@@ -11,6 +11,7 @@
 #include <map>
 #include <numbers>
 #include <string>
+#include <vector>
 
 #include "rw/math/rpy.hpp"
 #include "rwsim/dynamics/dynamic_workcell.hpp"
@@ -212,6 +213,50 @@ TEST(NewHand, TheProjectsHandsRunOnePreshapePlan) {
     EXPECT_TRUE(visgrab::results::isSuccess(outcome.at("around")))
         << rwsim::simulator::outcomeName(outcome.at("around"));
     EXPECT_EQ(outcome.at("beside"), rwsim::simulator::GraspOutcome::kMissed);
+  }
+}
+
+// The 2F-85's pads are kept parallel by its closed four-bar linkages (issue 21): off-centre and
+// high grasps of the can, pointing down, against the PG70's outcomes (docs/adding-a-hand.md,
+// "Off-centre and high grasps"). World x is the closing axis, y runs along the pads' width;
+// heights are above the can's base. Every grasp the PG70 holds, the 2F-85 holds, and stable
+// wherever the PG70 is stable, except 15 mm across the pads: the can's contact line then lies
+// outside the 2F-85's 22 mm wide pads (the PG70's jaws are 30 mm wide), and it slips.
+TEST(NewHand, The2F85HoldsOffCentreAndHighGraspsAsThePg70) {
+  struct Case {
+    const char* id;
+    Vector3D offset;
+  };
+  const std::vector<Case> cases = {{"centre", Vector3D(0, 0, 0.09)},
+                                   {"closing7.5_high20", Vector3D(0.0075, 0, 0.11)},
+                                   {"across12_high10", Vector3D(0, 0.012, 0.10)},
+                                   {"across15", Vector3D(0, 0.015, 0.09)}};
+  std::vector<visgrab::grasp::GraspRequest> grasps;
+  for (const Case& c : cases) grasps.push_back(downAt(c.id, canBase() + c.offset));
+  visgrab::test::TempDir tmp;
+  visgrab::taskio::writeGraspList(grasps, tmp.path() / "plan.csv");
+  std::map<std::string, std::map<std::string, rwsim::simulator::GraspOutcome>> outcome;
+  for (const char* hand : {"pg70", "robotiq2f85"}) {
+    visgrab::runner::RunOptions options;
+    options.database = visgrab::test::testDatabase().root();
+    options.grasps = {tmp.path() / "plan.csv"};
+    options.out = tmp.path() / hand;
+    options.hand = visgrab::test::sourceDir() / "scenes/hands" / hand;
+    EXPECT_TRUE(visgrab::runner::runBenchmark(options).rejected.empty()) << hand;
+    for (const auto& t : visgrab::results::readResults(options.out).trials) {
+      outcome[hand][t.graspId] = t.outcome;
+    }
+  }
+  using rwsim::simulator::GraspOutcome;
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.id);
+    const GraspOutcome pg70 = outcome["pg70"].at(c.id);
+    const GraspOutcome r2f85 = outcome["robotiq2f85"].at(c.id);
+    EXPECT_EQ(pg70, GraspOutcome::kStable) << rwsim::simulator::outcomeName(pg70);
+    EXPECT_TRUE(visgrab::results::isSuccess(r2f85)) << rwsim::simulator::outcomeName(r2f85);
+    if (std::string(c.id) != "across15") {
+      EXPECT_EQ(r2f85, GraspOutcome::kStable) << rwsim::simulator::outcomeName(r2f85);
+    }
   }
 }
 
