@@ -314,7 +314,9 @@ bool TrialRun::close() {
 
 void TrialRun::noteClosingCap(const Q& v, const Q& restSpeed) {
   Eigen::Index fastest = 0;
-  (v.cwiseAbs().array() / restSpeed.array()).maxCoeff(&fastest);
+  // The joint furthest above its rest speed (a rest speed of 0, possible in a set-up, counts as
+  // a tiny one: no 0/0).
+  (v.cwiseAbs().array() / restSpeed.array().max(1e-12)).maxCoeff(&fastest);
   const auto& tree = dwc_.workcell().frames();
   const auto joint =
       dwc_.device(data_.hand).device->activeJoints()[static_cast<std::size_t>(fastest)];
