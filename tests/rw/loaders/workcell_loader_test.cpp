@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <numbers>
 #include <set>
 #include <string>
@@ -376,6 +377,24 @@ TEST(WorkCellLoader, IncludeDefineAndUseExpandPerFile) {
   EXPECT_EQ(a->collision[0].geometry, b->collision[0].geometry);  // one mesh per file and load
   EXPECT_EQ(std::filesystem::path(a->collision[0].geometry->sourceFile()).filename(), "tet.stl");
   EXPECT_EQ(a->collision[0].geometry->triangles().triangles.size(), 4u);
+}
+
+// ${NAME} in an Include's file is the environment variable NAME (this project's extension, for
+// files that lie outside the project, such as RobWork's own devices): anywhere in the name, more
+// than once.
+TEST(WorkCellLoader, AnIncludeNamesAnEnvironmentVariable) {
+  TempDir dir;
+  writeFile(dir.path() / "data/parts/frames.xml", "<Frame name=\"A\"/>\n<Frame name=\"B\"/>\n");
+  ASSERT_EQ(setenv("VISGRAB_TEST_DATA", (dir.path() / "data").c_str(), 1), 0);
+  ASSERT_EQ(setenv("VISGRAB_TEST_PART", "frames", 1), 0);
+  const auto wc = loadText(dir, R"(<WorkCell name="w">
+    <Include file="${VISGRAB_TEST_DATA}/parts/${VISGRAB_TEST_PART}.xml"/>
+  </WorkCell>)");
+  unsetenv("VISGRAB_TEST_DATA");
+  unsetenv("VISGRAB_TEST_PART");
+  ASSERT_NE(wc, nullptr);
+  EXPECT_TRUE(wc->findFrame("A").valid());
+  EXPECT_TRUE(wc->findFrame("B").valid());
 }
 
 TEST(WorkCellLoader, AnIncludeRedirectPutsAnotherHandInTheScene) {

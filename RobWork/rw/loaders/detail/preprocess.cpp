@@ -1,6 +1,7 @@
 #include "rw/loaders/detail/preprocess.hpp"
 
 #include <algorithm>
+#include <cstdlib>
 #include <fstream>
 #include <map>
 #include <memory>
@@ -28,6 +29,37 @@ std::size_t totalSize(const std::vector<common::XmlElement>& elements) {
   std::size_t n = 0;
   for (const common::XmlElement& e : elements) n += e.subtreeSize();
   return n;
+}
+
+// An Include's file with every `${NAME}` replaced by the environment variable NAME (this
+// project's extension: a hand folder can name RobWork's files where they lie, without copying
+// them). nullopt after an error: NAME unset or empty, or a `${` without its `}`.
+std::optional<std::string> withEnvironment(const common::XmlElement& include,
+                                           const std::string& file, common::DiagnosticSink& sink) {
+  std::string out;
+  std::size_t at = 0;
+  while (true) {
+    const std::size_t open = file.find("${", at);
+    out += file.substr(at, open == std::string::npos ? std::string::npos : open - at);
+    if (open == std::string::npos) return out;
+    const std::size_t close = file.find('}', open + 2);
+    if (close == std::string::npos) {
+      sink.error(include.location, include.describe() + ": \"${\" without its \"}\" in the file " +
+                                       "name (an environment variable is written ${NAME})");
+      return std::nullopt;
+    }
+    const std::string name = file.substr(open + 2, close - open - 2);
+    const char* value = name.empty() ? nullptr : std::getenv(name.c_str());
+    if (value == nullptr || *value == '\0') {
+      sink.error(include.location,
+                 include.describe() + ": the environment variable " +
+                     (name.empty() ? std::string("name is empty") : name + " is not set") +
+                     " (the file name \"" + file + "\" needs it)");
+      return std::nullopt;
+    }
+    out += value;
+    at = close + 1;
+  }
 }
 
 }  // namespace
@@ -132,7 +164,9 @@ void Preprocessor::expandUse(const common::XmlElement& use, FileScope& scope,
 
 void Preprocessor::expandInclude(const common::XmlElement& include, FileScope& scope,
                                  std::vector<common::XmlElement>& out) {
-  const fs::path name(include.attributeOr("file", ""));
+  const auto expandedName = withEnvironment(include, include.attributeOr("file", ""), sink_);
+  if (!expandedName) return;
+  const fs::path name(*expandedName);
   fs::path path = (name.is_absolute() ? name : scope.dir / name).lexically_normal();
   // A redirected Include names the file it replaces in its messages.
   std::string redirectNote;
