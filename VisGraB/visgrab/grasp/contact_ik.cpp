@@ -208,7 +208,7 @@ class HandModel {
         directionWeight_(ik_.directionWeight),
         fk_(setup.workcell().frames(), state_, fingertipFrames(ik_)) {
     const auto& tree = setup.workcell().frames();
-    const FrameId base = setup.device().base();
+    const FrameId base = setup.placementFrame();
     X_W_parent_ = rw::kinematics::worldTransform(tree, state_, tree.frame(base).parent());
     const auto& active = setup.device().activeJoints();
     for (const Fingertip& tip : ik_.fingertips) {
@@ -232,7 +232,7 @@ class HandModel {
                    const std::vector<int>& free, const Q& qRef, bool moveBase,
                    const Vector3D& approach, Eigen::VectorXd& r) {
     const auto& tree = setup_.workcell().frames();
-    tree.frame(setup_.device().base())
+    tree.frame(setup_.placementFrame())
         .setMovableTransform(state_, X_W_parent_.inverse() * X_W_base);
     setup_.device().setQ(q, state_);
     const int nFree = static_cast<int>(free.size());
@@ -312,7 +312,7 @@ class HandModel {
   void fingertipAt(const Transform3D& X_W_base, const Q& q, int fingertip, Vector3D& p,
                    Vector3D& n) {
     const auto& tree = setup_.workcell().frames();
-    tree.frame(setup_.device().base())
+    tree.frame(setup_.placementFrame())
         .setMovableTransform(state_, X_W_parent_.inverse() * X_W_base);
     setup_.device().setQ(q, state_);
     const Fingertip& tip = ik_.fingertips[static_cast<std::size_t>(fingertip)];

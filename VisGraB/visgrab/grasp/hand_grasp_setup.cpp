@@ -5,6 +5,7 @@
 #include <map>
 #include <utility>
 
+#include "rw/common/strings.hpp"
 #include "rw/common/text_file.hpp"
 #include "rw/kinematics/frame_tree.hpp"
 #include "rw/loaders/workcell_loader.hpp"
@@ -63,16 +64,10 @@ class SetupBuilder {
       return false;
     }
     s_.defaultState_ = s_.workcell_->defaultState();
-    const auto& base = s_.workcell_->frames().frame(s_.device_->base());
-    if (base.type() != rw::kinematics::FrameType::kMovable) {
-      error(d.where, "the base frame " + inQuotes(base.name()) + " of device " +
-                         inQuotes(d.device) +
-                         " must be Movable (the grasp utilities place the hand by its base)");
-      return false;
-    }
+    if (!resolvePlacement(d.where)) return false;
     if (!resolveTcp(d.tcp, d.where, s_.tcp_)) return false;
     s_.tcpName_ = s_.workcell_->frames().frame(s_.tcp_).name();
-    s_.X_base_tcp_ = relative(s_.device_->base(), s_.tcp_);
+    s_.X_base_tcp_ = relative(s_.placement_, s_.tcp_);
     buildTauRule(d.tauRule);
     s_.hasClosingRule_ = d.closing.has_value();
     s_.closeOffset_ = closing(d.closing.value_or(std::vector<CloseOffsetSpec>{}));
@@ -95,21 +90,45 @@ class SetupBuilder {
     return scoped.valid() ? scoped : s_.workcell_->findFrame(name);
   }
 
-  // A frame of the device rigidly attached to its base (no joint or movable frame between).
-  bool resolveTcp(const std::string& name, const SourceLocation& where, FrameId& out) {
-    out = findFrame(name);
-    if (!out.valid() || !s_.device_->contains(out)) {
-      error(where, "unknown TCP frame " + inQuotes(name) + " (no such frame in device " +
-                       inQuotes(s_.device_->name()) + ")");
+  // The device's base if it is Movable, else the Movable frame holding the base rigidly.
+  bool resolvePlacement(const SourceLocation& where) {
+    const auto& tree = s_.workcell_->frames();
+    const auto& base = tree.frame(s_.device_->base());
+    FrameId f = s_.device_->base();
+    while (f.valid() && tree.frame(f).type() == rw::kinematics::FrameType::kFixed) {
+      f = tree.frame(f).parent();
+    }
+    if (!f.valid() || tree.frame(f).type() != rw::kinematics::FrameType::kMovable) {
+      error(where, "the base frame " + inQuotes(base.name()) + " of device " +
+                       inQuotes(s_.device_->name()) +
+                       " must be Movable, or be held rigidly by a Movable frame (the grasp "
+                       "utilities place the hand by it; a device file that cannot be edited "
+                       "goes after a frame such as <Frame name=\"Mount\" type=\"Movable\"/>)");
       return false;
     }
+    s_.placement_ = f;
+    return true;
+  }
+
+  // A frame of the device, or after it, rigidly attached to the placement frame (no joint or
+  // movable frame between).
+  bool resolveTcp(const std::string& name, const SourceLocation& where, FrameId& out) {
+    out = findFrame(name);
     const auto& tree = s_.workcell_->frames();
-    for (FrameId f = out; f != s_.device_->base(); f = tree.frame(f).parent()) {
-      if (tree.frame(f).type() != rw::kinematics::FrameType::kFixed) {
-        error(where, "TCP frame " + inQuotes(name) + " must be rigidly attached to the base, but " +
-                         inQuotes(tree.frame(f).name()) + " moves");
-        return false;
-      }
+    FrameId f = out;
+    while (f.valid() && f != s_.placement_ &&
+           tree.frame(f).type() == rw::kinematics::FrameType::kFixed) {
+      f = tree.frame(f).parent();
+    }
+    if (!out.valid() || (!s_.device_->contains(out) && f != s_.placement_)) {
+      error(where, "unknown TCP frame " + inQuotes(name) + " (no such frame in device " +
+                       inQuotes(s_.device_->name()) + " or rigidly attached to it)");
+      return false;
+    }
+    if (f != s_.placement_) {
+      error(where, "TCP frame " + inQuotes(name) + " must be rigidly attached to the base, but " +
+                       inQuotes(tree.frame(f).name()) + " moves");
+      return false;
     }
     return true;
   }
@@ -312,6 +331,23 @@ const PreShape* HandGraspSetup::findPreshape(std::string_view name) const {
   return nullptr;
 }
 
+namespace {
+
+// The hand's workcell file loaded the way a scene includes it: as the only content of an empty
+// workcell. So the file may be a device (the project's hands) or a fragment of several
+// top-level elements (a Movable mount frame, a device file included from elsewhere, a TCP
+// frame after it). Its messages say "included from" the description's workcell= line.
+std::unique_ptr<rw::models::WorkCell> loadAsIncluded(const std::filesystem::path& wcFile,
+                                                     const GraspDescription& description) {
+  std::string xml(static_cast<std::size_t>(std::max(description.where.line - 1, 0)), '\n');
+  xml += "<WorkCell name=\"\"><Include file=\"" +
+         rw::common::escapeXml(std::filesystem::absolute(wcFile).lexically_normal().string()) +
+         "\"/></WorkCell>\n";
+  return rw::loaders::loadWorkCellFromString(xml, description.file);
+}
+
+}  // namespace
+
 std::unique_ptr<HandGraspSetup> loadHandGraspSetupFromString(
     std::string_view xml, const std::filesystem::path& virtualFile) {
   DiagnosticSink sink;
@@ -320,7 +356,7 @@ std::unique_ptr<HandGraspSetup> loadHandGraspSetupFromString(
   const std::filesystem::path wcFile = virtualFile.parent_path() / description->workcell;
   std::shared_ptr<const rw::models::WorkCell> workcell;
   try {
-    workcell = rw::loaders::loadWorkCell(wcFile);
+    workcell = loadAsIncluded(wcFile, *description);
   } catch (const rw::common::LoadError& e) {
     std::vector<rw::common::Diagnostic> all = e.diagnostics();
     rw::common::Diagnostic note;

@@ -136,7 +136,12 @@ class HandGraspSetup {
   const std::string& tcpFrameName() const { return tcpName_; }
   /// The TCP frame.
   rw::kinematics::FrameId tcpFrame() const { return tcp_; }
-  /// X_base_tcp (rigid).
+  /// The frame the grasp utilities move to place the hand: the device's base when it is
+  /// Movable (the project's hands), otherwise the Movable frame that holds the base rigidly
+  /// (a device file that cannot be edited, such as RobWork's Robotiq, put after a Movable mount
+  /// frame). "base" in X_base_tcp and in the contact IK means this frame.
+  rw::kinematics::FrameId placementFrame() const { return placement_; }
+  /// X_base_tcp (rigid; base = placementFrame()).
   const rw::math::Transform3D& X_base_tcp() const { return X_base_tcp_; }
   /// Device name.
   const std::string& deviceName() const { return description_.device; }
@@ -168,6 +173,7 @@ class HandGraspSetup {
   const rw::models::Device* device_ = nullptr;
   std::string tcpName_;
   rw::kinematics::FrameId tcp_;
+  rw::kinematics::FrameId placement_;
   rw::math::Transform3D X_base_tcp_ = rw::math::Transform3D::Identity();
   std::vector<PreShape> preshapes_;
   rw::math::Q closeOffset_;

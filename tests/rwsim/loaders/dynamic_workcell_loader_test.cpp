@@ -267,6 +267,60 @@ TEST_F(DynamicWorkCellLoader, IncludeRedirectsSwapTheHandInBothFiles) {
   EXPECT_TRUE(pg70->workcell().findFrame("Mount").valid());
 }
 
+// A device whose base is a plain frame (RobWork's Robotiq) is simulated with a kinematic base
+// on the Movable frame that holds its base rigidly, named without the device's prefix (this
+// project's extension); that body carries the base's geometry. A frame that does not hold the
+// base is an error.
+TEST_F(DynamicWorkCellLoader, AKinematicBaseMayBeTheMovableFrameHoldingTheDevicesBase) {
+  writeFile(scene_.path() / "mounted.wc.xml", R"(<WorkCell name="Mounted">
+  <Frame name="Other" refframe="WORLD" type="Movable"><RPY>0 0 0</RPY><Pos>1 0 0</Pos></Frame>
+  <Frame name="Mount" refframe="WORLD" type="Movable"><RPY>0 0 0</RPY><Pos>0 0 0.3</Pos></Frame>
+  <TreeDevice name="Jaw">
+    <Frame name="Base"><RPY>0 0 0</RPY><Pos>0 0 0.02</Pos>
+      <Drawable name="Housing"><RPY>0 0 0</RPY><Pos>0 0 0</Pos><Box x="0.1" y="0.1" z="0.04"/></Drawable>
+    </Frame>
+    <Joint name="J" type="Prismatic"><RPY>0 0 0</RPY><Pos>0 0 0.05</Pos>
+      <Drawable name="Finger"><RPY>0 0 0</RPY><Pos>0 0 0</Pos><Box x="0.01" y="0.02" z="0.06"/></Drawable>
+    </Joint>
+    <PosLimit refjoint="J" min="0" max="0.04"/>
+  </TreeDevice>
+</WorkCell>
+)");
+  const auto dwcText = [](const std::string& base) {
+    return "<DynamicWorkcell workcell=\"mounted.wc.xml\">\n"
+           "  <Include file=\"materials.xml\"/>\n"
+           "  <RigidDevice device=\"Jaw\">\n"
+           "    <ForceLimit joint=\"J\">10</ForceLimit>\n"
+           "    <KinematicBase frame=\"" +
+           base +
+           "\"><MaterialID>Plastic</MaterialID></KinematicBase>\n"
+           "    <RigidJoint joint=\"J\"><Mass>0.1</Mass><EstimateInertia/></RigidJoint>\n"
+           "  </RigidDevice>\n"
+           "</DynamicWorkcell>\n";
+  };
+  const auto dwc = load(dwcText("Mount"));
+  ASSERT_TRUE(dwc);
+  const auto& device = dwc->device(dwc->findDevice("Jaw"));
+  const Body& base = dwc->body(device.baseBody);
+  EXPECT_EQ(base.kind, BodyKind::kKinematic);
+  const auto& tree = dwc->workcell().frames();
+  EXPECT_EQ(tree.frame(base.frame).name(), "Mount");
+  EXPECT_NE(std::find(base.geometryFrames.begin(), base.geometryFrames.end(),
+                      dwc->workcell().findFrame("Jaw.Base")),
+            base.geometryFrames.end());
+
+  try {
+    rwsim::loaders::loadDynamicWorkCell(scene_.writeTop(dwcText("Other")));
+    ADD_FAILURE() << "loaded";
+  } catch (const rw::common::LoadError& e) {
+    EXPECT_EQ(e.diagnostics().front().line, 5) << e.what();
+    EXPECT_NE(std::string(e.what()).find("frame \"Other\" is neither a frame of device \"Jaw\" "
+                                         "nor a frame that holds its base \"Jaw.Base\" rigidly"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST_F(DynamicWorkCellLoader, AnIncludeRedirectToAMissingFileIsAnErrorAtTheInclude) {
   const auto top = scene_.writeTop(SceneDir::dwc("<FixedBody frame=\"Table\"/>\n"));
   rwsim::loaders::DynamicWorkCellLoadOptions options;

@@ -354,4 +354,51 @@ TEST(GraspDescription, MissingWorkcellNamesTheDescription) {
   }
 }
 
+// A hand whose device file cannot be edited (RobWork's Robotiq: a plain, fixed Base) is mounted
+// on a Movable frame put before it in a fragment of several top-level elements, with its TCP
+// after it: the mount is the frame the grasp utilities move, the TCP is rigid on it. Without a
+// Movable frame above the base the description is an error that says what to add.
+TEST(GraspDescription, AFixedBaseIsPlacedByTheMovableFrameHoldingIt) {
+  visgrab::test::TempDir dir;
+  const std::string device =
+      "<TreeDevice name=\"Jaw\">\n"
+      "  <Frame name=\"Base\"><RPY>0 0 0</RPY><Pos>0 0 0.02</Pos></Frame>\n"
+      "  <Joint name=\"J\" type=\"Prismatic\"><RPY>0 0 0</RPY><Pos>0 0 0.05</Pos></Joint>\n"
+      "  <PosLimit refjoint=\"J\" min=\"0\" max=\"0.04\"/>\n"
+      "</TreeDevice>\n";
+  const std::string tcp =
+      "<Frame name=\"Tcp\" refframe=\"Jaw.Base\"><RPY>90 0 0</RPY><Pos>0 0 0.1</Pos></Frame>\n";
+  visgrab::test::writeFile(dir.path() / "mounted.wc.xml",
+                           "<Frame name=\"Mount\" type=\"Movable\"><RPY>0 0 0</RPY>"
+                           "<Pos>0 0 0.3</Pos></Frame>\n" +
+                               device + tcp);
+  visgrab::test::writeFile(dir.path() / "bare.wc.xml", device + tcp);
+  const auto description = [](const std::string& workcell) {
+    return "<GraspDescription workcell=\"" + workcell +
+           "\" device=\"Jaw\" controller=\"C\" tcp=\"Tcp\">\n"
+           "  <PreShape name=\"P\" qOpen=\"0.04\" qClosed=\"0\"/>\n"
+           "  <TauMax base=\"10\"/>\n"
+           "</GraspDescription>\n";
+  };
+  const auto setup =
+      loadHandGraspSetupFromString(description("mounted.wc.xml"), dir.path() / "h.grasp.xml");
+  EXPECT_EQ(setup->workcell().frames().frame(setup->placementFrame()).name(), "Mount");
+  EXPECT_EQ(setup->tcpFrameName(), "Tcp");
+  // Mount -> Base 2 cm up, Base -> Tcp 10 cm up and turned 90 deg about z.
+  EXPECT_VECTOR_NEAR(setup->X_base_tcp().translation(), rw::math::Vector3D(0, 0, 0.12), 1e-15);
+  EXPECT_NEAR(setup->X_base_tcp().linear()(1, 0), 1.0, 1e-15);
+  try {
+    loadHandGraspSetupFromString(description("bare.wc.xml"), dir.path() / "h.grasp.xml");
+    ADD_FAILURE() << "loaded";
+  } catch (const rw::common::LoadError& e) {
+    ASSERT_EQ(e.diagnostics().size(), 1u) << e.what();
+    EXPECT_EQ(e.diagnostics()[0].line, 1) << e.what();
+    EXPECT_NE(e.diagnostics()[0].message.find(
+                  "the base frame \"Jaw.Base\" of device \"Jaw\" must be Movable, or be held "
+                  "rigidly by a Movable frame"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 }  // namespace

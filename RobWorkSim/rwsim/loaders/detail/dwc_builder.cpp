@@ -90,6 +90,7 @@ class Builder {
   }
 
   std::optional<FrameId> claimFrame(const BodyDesc& b, const std::string& name);
+  std::string baseFrameName(const Device& device, const BodyDesc& base, const std::string& prefix);
   void planFreeBody(const BodyDesc& b);
   void planDevice(const DeviceDesc& d);
   bool planForceLimits(PlannedDevice& planned);
@@ -143,6 +144,25 @@ void Builder::planFreeBody(const BodyDesc& b) {
   if (auto id = claimFrame(b, b.frame)) freeBodies_.push_back(PlannedBody{&b, *id, ""});
 }
 
+/// The frame of a device's base element: the device's own frame of that name (RobWork), else
+/// (this project's extension) a frame outside the device that holds the device's base rigidly,
+/// such as a Movable mount frame put before a device file that cannot be edited.
+std::string Builder::baseFrameName(const Device& device, const BodyDesc& base,
+                                   const std::string& prefix) {
+  const std::string scoped = prefix + base.frame;
+  const auto& wc = dwc_->workcell();
+  const FrameId outside = wc.findFrame(base.frame);
+  if (wc.findFrame(scoped).valid() || !outside.valid()) return scoped;
+  for (FrameId f = device.base(); f.valid(); f = tree().frame(f).parent()) {
+    if (f == outside) return base.frame;
+    if (f != device.base() && tree().frame(f).type() != FrameType::kFixed) break;
+  }
+  error(base, "frame \"" + base.frame + "\" is neither a frame of device \"" + device.name() +
+                  "\" nor a frame that holds its base \"" + tree().frame(device.base()).name() +
+                  "\" rigidly");
+  return scoped;
+}
+
 void Builder::planDevice(const DeviceDesc& d) {
   PlannedDevice planned;
   planned.desc = &d;
@@ -160,7 +180,7 @@ void Builder::planDevice(const DeviceDesc& d) {
   const std::string prefix = d.name + ".";
   bool ok = planForceLimits(planned);
   if (d.base && d.base->tag != "RefBase") {
-    auto id = claimFrame(*d.base, prefix + d.base->frame);
+    auto id = claimFrame(*d.base, baseFrameName(*planned.device, *d.base, prefix));
     if (id) planned.base = PlannedBody{&*d.base, *id, prefix};
     ok = ok && id.has_value();
   } else if (d.base) {
