@@ -6,12 +6,14 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <limits>
 #include <numeric>
 #include <stdexcept>
 
 #include <Eigen/Cholesky>
 
 #include "rw/kinematics/frame_tree.hpp"
+#include "rw/models/parallel_kinematics.hpp"
 #include "visgrab/grasp/detail/normal_equations.hpp"
 
 namespace visgrab::grasp {
@@ -35,6 +37,9 @@ constexpr double kBasinDirectionGain = 10.0;  // direction weight of the first p
 constexpr double kMaxRotationStep = 0.5;      // rad
 constexpr double kMaxTranslationStep = 0.1;   // m
 constexpr double kMaxJointStep = 0.5;         // rad or m
+// Step of the central differences that give a parallel device's joint columns (rad or m): the
+// closure solver's 1e-12 tolerance over it is a relative error of about 1e-6 in a column.
+constexpr double kParallelJointStep = 1e-6;
 
 Rotation3D skew(const Vector3D& v) {
   Rotation3D S;
@@ -198,7 +203,10 @@ std::vector<FrameId> fingertipFrames(const ContactIkSettings& ik) {
   return out;
 }
 
-// The hand's kinematics for the solver: sets the base pose and q, evaluates the residuals.
+// The hand's kinematics for the solver: sets the base pose and q, evaluates the residuals. For
+// a serial or tree hand the joint columns of the Jacobian are the joint axes on the paths to
+// the fingertips; for a parallel hand (closed loops) a joint moves passive joints on other
+// paths as well, so its columns are central differences through the closure solver.
 class HandModel {
  public:
   explicit HandModel(const HandGraspSetup& setup)
@@ -206,7 +214,8 @@ class HandModel {
         ik_(*setup.contactIk()),
         state_(setup.defaultState()),
         directionWeight_(ik_.directionWeight),
-        fk_(setup.workcell().frames(), state_, fingertipFrames(ik_)) {
+        fk_(setup.workcell().frames(), state_, fingertipFrames(ik_)),
+        parallel_(setup.device().parallel() != nullptr) {
     const auto& tree = setup.workcell().frames();
     const FrameId base = setup.placementFrame();
     X_W_parent_ = rw::kinematics::worldTransform(tree, state_, tree.frame(base).parent());
@@ -228,13 +237,19 @@ class HandModel {
   }
 
   // Residuals at the base pose and q (see solveContactIk); keeps the poses for jacobian().
+  // Infinite when a parallel hand's loops cannot close at q (a step the solver then rejects).
   double residuals(const Transform3D& X_W_base, const Q& q, const std::vector<Target>& targets,
                    const std::vector<int>& free, const Q& qRef, bool moveBase,
                    const Vector3D& approach, Eigen::VectorXd& r) {
     const auto& tree = setup_.workcell().frames();
     tree.frame(setup_.placementFrame())
         .setMovableTransform(state_, X_W_parent_.inverse() * X_W_base);
-    setup_.device().setQ(q, state_);
+    if (!setQ(q)) {
+      r.setZero(6 * static_cast<int>(targets.size()) + (moveBase ? 3 : 0) +
+                static_cast<int>(free.size()));
+      return std::numeric_limits<double>::infinity();
+    }
+    lastQ_ = q;
     const int nFree = static_cast<int>(free.size());
     const int rows = 6 * static_cast<int>(targets.size()) + (moveBase ? 3 : 0) + nFree;
     r.setZero(rows);
@@ -265,7 +280,7 @@ class HandModel {
   // Jacobian of the residuals at the pose of the last residuals() call (columns: base v, base
   // w if moveBase, then the free joints).
   void jacobian(const Transform3D& X_W_base, const std::vector<Target>& targets,
-                const std::vector<int>& free, bool moveBase, Eigen::MatrixXd& J) const {
+                const std::vector<int>& free, bool moveBase, Eigen::MatrixXd& J) {
     const int nBase = moveBase ? 6 : 0;
     const int nFree = static_cast<int>(free.size());
     const int rows = 6 * static_cast<int>(targets.size()) + (moveBase ? 3 : 0) + nFree;
@@ -281,6 +296,10 @@ class HandModel {
         J.block<3, 3>(row, 0).setIdentity();
         J.block<3, 3>(row, 3) = -skew(p - X_W_base.translation());
         J.block<3, 3>(row + 3, 3) = -wd * skew(n);
+      }
+      if (parallel_) {
+        row += 6;
+        continue;
       }
       for (const ChainJoint& c : chains_[static_cast<std::size_t>(t.fingertip)]) {
         const auto col = std::find(free.begin(), free.end(), c.dof);
@@ -303,6 +322,7 @@ class HandModel {
       row += 3;
     }
     for (int k = 0; k < nFree; ++k) J(row + k, nBase + k) = kRegularisation;
+    if (parallel_) parallelJointColumns(targets, free, nBase, J);
   }
 
   // Sets the weight of the direction residuals.
@@ -314,7 +334,7 @@ class HandModel {
     const auto& tree = setup_.workcell().frames();
     tree.frame(setup_.placementFrame())
         .setMovableTransform(state_, X_W_parent_.inverse() * X_W_base);
-    setup_.device().setQ(q, state_);
+    setup_.device().setQ(q, state_);  // a solution's q: its loops closed when it was found
     const Fingertip& tip = ik_.fingertips[static_cast<std::size_t>(fingertip)];
     const Transform3D X = rw::kinematics::worldTransform(tree, state_, tip.frame);
     p = X * tip.point;
@@ -322,12 +342,79 @@ class HandModel {
   }
 
  private:
+  // Sets q; false when a parallel hand's loops cannot close there (the state is then as before).
+  bool setQ(const Q& q) {
+    try {
+      setup_.device().setQ(q, state_);
+    } catch (const rw::models::ClosureError&) {
+      return false;
+    }
+    return true;
+  }
+
+  // Pad point and push direction of every target's fingertip at q (base as set).
+  bool tipsAt(const Q& q, const std::vector<Target>& targets, std::vector<Vector3D>& p,
+              std::vector<Vector3D>& n) {
+    if (!setQ(q)) return false;
+    p.clear();
+    n.clear();
+    for (const Target& t : targets) {
+      const Fingertip& tip = ik_.fingertips[static_cast<std::size_t>(t.fingertip)];
+      fk_.update(state_, t.fingertip);
+      const Transform3D& X = fk_.tipWorld(t.fingertip);
+      p.push_back(X * tip.point);
+      n.push_back(X.linear() * tip.normal);
+    }
+    return true;
+  }
+
+  // The joint columns of a parallel hand: central differences of the pad points and directions
+  // (one-sided where a side cannot close or leaves the limits), then the state back at lastQ_.
+  void parallelJointColumns(const std::vector<Target>& targets, const std::vector<int>& free,
+                            int nBase, Eigen::MatrixXd& J) {
+    const double wd = directionWeight_;
+    const Q& lower = setup_.device().lowerLimits();
+    const Q& upper = setup_.device().upperLimits();
+    std::vector<Vector3D> p0, n0, pPlus, nPlus, pMinus, nMinus;
+    tipsAt(lastQ_, targets, p0, n0);
+    for (std::size_t k = 0; k < free.size(); ++k) {
+      const auto j = static_cast<Eigen::Index>(free[k]);
+      Q plus = lastQ_;
+      Q minus = lastQ_;
+      plus[j] = std::min(plus[j] + kParallelJointStep, upper[j]);
+      minus[j] = std::max(minus[j] - kParallelJointStep, lower[j]);
+      const bool up = plus[j] > lastQ_[j] && tipsAt(plus, targets, pPlus, nPlus);
+      const bool down = minus[j] < lastQ_[j] && tipsAt(minus, targets, pMinus, nMinus);
+      if (!up) {
+        plus = lastQ_;
+        pPlus = p0;
+        nPlus = n0;
+      }
+      if (!down) {
+        minus = lastQ_;
+        pMinus = p0;
+        nMinus = n0;
+      }
+      const double span = plus[j] - minus[j];
+      if (span <= 0.0) continue;  // pinned: the column stays zero
+      const auto col = static_cast<Eigen::Index>(nBase) + static_cast<Eigen::Index>(k);
+      for (std::size_t t = 0; t < targets.size(); ++t) {
+        const auto row = static_cast<Eigen::Index>(6 * t);
+        J.block<3, 1>(row, col) = (pPlus[t] - pMinus[t]) / span;
+        J.block<3, 1>(row + 3, col) = wd * (nPlus[t] - nMinus[t]) / span;
+      }
+    }
+    tipsAt(lastQ_, targets, p0, n0);
+  }
+
   const HandGraspSetup& setup_;
   const ContactIkSettings& ik_;
   rw::kinematics::State state_;
   Transform3D X_W_parent_ = Transform3D::Identity();
   double directionWeight_;
   ChainKinematics fk_;
+  bool parallel_ = false;
+  Q lastQ_;
   std::vector<std::vector<ChainJoint>> chains_;
 };
 
@@ -547,11 +634,6 @@ void checkInput(const HandGraspSetup& setup, const std::vector<DesiredContact>& 
   if (ik == nullptr) {
     throw std::invalid_argument("hand \"" + setup.deviceName() +
                                 "\" has no contact IK in its grasp description");
-  }
-  if (setup.device().parallel() != nullptr) {
-    throw std::invalid_argument("hand \"" + setup.deviceName() +
-                                "\" is a parallel device: contact IK does not support closed "
-                                "loops yet (give its grasps as a pose and q)");
   }
   const auto n = static_cast<int>(contacts.size());
   if (std::none_of(ik->grasps.begin(), ik->grasps.end(),

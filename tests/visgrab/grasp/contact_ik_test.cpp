@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <future>
 #include <numbers>
@@ -13,6 +14,7 @@
 #include "grasp_test_support.hpp"
 #include "rw/kinematics/frame_tree.hpp"
 #include "rw/math/rpy.hpp"
+#include "rw/models/parallel_kinematics.hpp"
 #include "visgrab/grasp/grasp_resolver.hpp"
 
 namespace {
@@ -46,7 +48,7 @@ std::vector<DesiredContact> contactsByFk(const HandGraspSetup& s, const Transfor
                                          const Q& q, const std::vector<Pad>& pads) {
   const auto& wc = s.workcell();
   auto state = wc.defaultState();
-  wc.frames().frame(s.device().base()).setMovableTransform(state, X_W_base);  // parent: WORLD
+  wc.frames().frame(s.placementFrame()).setMovableTransform(state, X_W_base);  // parent: WORLD
   s.device().setQ(q, state);
   std::vector<DesiredContact> out;
   for (const Pad& pad : pads) {
@@ -139,6 +141,89 @@ TEST(ContactIk, Pg70TwoJaws) {
   EXPECT_TRUE(r.valid) << r.reason;
   EXPECT_LT(deviation(pg70(), r, contacts, pads), 0.002);
   EXPECT_NEAR(r.qOpen[0], r.qContact[0] + 0.01, 1e-4);  // each jaw backed off by 1 cm
+}
+
+// The project's 2F-85 is a parallel device: each finger a closed four-bar linkage, so its joint
+// moves the pads through the closure solver. Two contacts 50 mm apart along the TCP's x axis,
+// pushing towards each other: the solution puts the pads on them at the knuckle angle where the
+// hand-worked opening gap(q) = 2 (0.004925 + 0.0376 cos q - 0.0430 sin q) m
+// (robotiq2f85.wc.xml's header) is 50 mm. Backed off by 1 cm each with the base kept, the pads
+// cannot reach both targets (they move on arcs: their height along the approach is
+// 0.0376 sin q + 0.0430 cos q + const): qOpen is the least-squares compromise between the
+// opening's error and the height's, worked here from the same hand-worked expressions.
+TEST(ContactIk, Robotiq2F85ClosedLinkages) {
+  const auto hand =
+      visgrab::grasp::loadHandGraspSetup(visgrab::test::sourceDir() / "scenes/hands/robotiq2f85");
+  ASSERT_NE(hand->device().parallel(), nullptr);
+  // gap(q) = 2 (0.004925 + R cos(q + phi)), R cos phi = 0.0376, R sin phi = 0.0430.
+  const double R = std::hypot(0.0376, 0.0430);
+  const double phi = std::atan2(0.0430, 0.0376);
+  const auto qForGap = [&](double gap) { return std::acos((gap / 2 - 0.004925) / R) - phi; };
+  const Transform3D X_W_tcp = pose(0.3, kPi - 0.2, -0.4, 0.1, -0.05, 0.25);
+  const Vector3D x = X_W_tcp.linear().col(0);
+  const std::vector<DesiredContact> contacts{{X_W_tcp * Vector3D(0.025, 0, 0), -x},
+                                             {X_W_tcp * Vector3D(-0.025, 0, 0), x}};
+  const auto r = solveContactIk(*hand, contacts, X_W_tcp.linear().col(2));
+  ASSERT_TRUE(r.valid) << r.reason;
+  EXPECT_NEAR(r.qContact[0], qForGap(0.050), 2e-3);
+  const auto halfGap = [](double q) {
+    return 0.004925 + 0.0376 * std::cos(q) - 0.0430 * std::sin(q);
+  };
+  const auto height = [](double q) { return 0.0376 * std::sin(q) + 0.0430 * std::cos(q); };
+  const double q50 = qForGap(0.050);
+  double bestOpen = 0.0;
+  double bestCost = 1e9;
+  for (double q = 0.0; q <= 0.8; q += 1e-5) {
+    const double cost = std::pow(halfGap(q) - 0.035, 2) + std::pow(height(q) - height(q50), 2);
+    if (cost < bestCost) {
+      bestCost = cost;
+      bestOpen = q;
+    }
+  }
+  EXPECT_NEAR(r.qOpen[0], bestOpen, 1e-3);
+  EXPECT_GT(r.qOpen[0], qForGap(0.070));  // opening less than 70 mm: the arc's price
+  EXPECT_LT(r.positionError, 0.001);
+  // The pads where the contacts are, whichever finger took which.
+  const std::vector<Pad> pads{{"Robotiq2F85.RightPad", {0, 0, 0}, {0, 0, 1}},
+                              {"Robotiq2F85.LeftPad", {0, 0, 0}, {0, 0, 1}}};
+  EXPECT_LT(deviation(*hand, r, contacts, pads), 0.001);
+  // The linkage closed at the solution: every junction's residual at rounding level.
+  auto state = hand->workcell().defaultState();
+  hand->device().setQ(r.qContact, state);
+  for (std::size_t j = 0; j < hand->device().parallel()->junctions().size(); ++j) {
+    EXPECT_LT(hand->device().parallel()->residual(j, state).position, 1e-9);
+  }
+}
+
+// RobWork's own Robotiq model (RW_COMPAT_DATA, scenes/hands/robwork-robotiq): three DOF, the
+// motor and each finger's inner link, two closed loops. Contacts 40 mm apart, their directions
+// tilted 5 deg the same way about the TCP's y axis (a slightly slanted object): the pads reach
+// them within 1 mm and the fingers turn with the directions (within 2 deg, where parallel pads
+// would miss by 5: the solver weighs a direction 0.01 m per unit against the positions), and
+// the loops stay closed.
+TEST(ContactIk, RobWorksRobotiqThreeDofClosedLoops) {
+  REQUIRE_COMPAT_DATA(data);  // the hand's workcell reads ${RW_COMPAT_DATA} itself
+  static_cast<void>(data);
+  const auto hand = visgrab::grasp::loadHandGraspSetup(visgrab::test::sourceDir() /
+                                                       "scenes/hands/robwork-robotiq");
+  ASSERT_EQ(hand->dof(), 3);
+  const Transform3D X_W_tcp = pose(-0.2, kPi - 0.1, 0.7, -0.1, 0.05, 0.2);
+  const rw::math::Rotation3D tilt(Eigen::AngleAxisd(5.0 * kPi / 180.0, Vector3D::UnitY()));
+  const Vector3D x = X_W_tcp.linear() * (tilt * Vector3D::UnitX());
+  const std::vector<DesiredContact> contacts{{X_W_tcp * Vector3D(0.020, 0, 0), -x},
+                                             {X_W_tcp * Vector3D(-0.020, 0, 0), x}};
+  const auto r = solveContactIk(*hand, contacts, X_W_tcp.linear().col(2));
+  ASSERT_TRUE(r.valid) << r.reason;
+  EXPECT_LT(r.positionError, 0.001);
+  EXPECT_LT(r.directionError, 2.0 * kPi / 180.0);
+  const std::vector<Pad> pads{{"RobotiqFingerControl.RightMotorEnd", {0, 0, 0}, {0, 0, 1}},
+                              {"RobotiqFingerControl.LeftMotorEnd", {0, 0, 0}, {0, 0, 1}}};
+  EXPECT_LT(deviation(*hand, r, contacts, pads), 0.001);
+  auto state = hand->workcell().defaultState();
+  hand->device().setQ(r.qContact, state);
+  for (std::size_t j = 0; j < hand->device().parallel()->junctions().size(); ++j) {
+    EXPECT_LT(hand->device().parallel()->residual(j, state).position, 1e-9);
+  }
 }
 
 TEST(ContactIk, ContactsTooFarApartAreInvalid) {
