@@ -9,8 +9,9 @@
 # (OUT/<hand>), then `visgrab analyze` writes OUT/report/report.html with the hands side by side.
 #
 # Environment: VISGRAB (the binary, default build/apps/visgrab/visgrab), VISGRAB_DATABASE
-# (default database/, generated there when absent), HANDS (default "sdh pg70 robotiq2f85": folders
-# of scenes/hands/ or paths), SCENES (a scene filter, default the ten scenes below), JOBS.
+# (default database/, generated there when absent), HANDS (default "sdh pg70 robotiq2f85", and
+# robwork-robotiq when RW_COMPAT_DATA is set: folders of scenes/hands/ or paths), SCENES (a scene
+# filter, default the ten scenes below), JOBS.
 set -euo pipefail
 
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -18,7 +19,10 @@ out=${1:-hand-comparison}
 visgrab=${VISGRAB:-$here/build/apps/visgrab/visgrab}
 db=${VISGRAB_DATABASE:-database}
 jobs=${JOBS:-$(nproc)}
-hands=${HANDS:-"sdh pg70 robotiq2f85"}
+# RobWork's own Robotiq model joins when its files are at hand (scenes/hands/robwork-robotiq).
+default_hands="sdh pg70 robotiq2f85"
+[[ -n "${RW_COMPAT_DATA:-}" ]] && default_hands+=" robwork-robotiq"
+hands=${HANDS:-$default_hands}
 scenes=${SCENES:-"plain/single/cocacola/01;plain/single/saltbox/01;plain/single/marmelade/03;\
 plain/single/peachcan/02;plain/single/greencup/04;textured/single/cocacola/02;\
 textured/single/tomato/04;textured/single/corny/01;plain/double/cocacola_saltcylinder/01;\

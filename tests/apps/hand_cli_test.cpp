@@ -121,7 +121,8 @@ TEST(HandCli, RunTakesAHandByName) {
   r = visgrab(common + shellQuoted(tmp.path() / "b") + " --hand pg7");
   EXPECT_EQ(r.exitCode, 1) << r.output;
   EXPECT_NE(r.output.find("unknown hand \"pg7\""), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("(known: pg70, robotiq2f85, sdh)"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("(known: pg70, robotiq2f85, robwork-robotiq, sdh)"), std::string::npos)
+      << r.output;
   EXPECT_FALSE(std::filesystem::exists(tmp.path() / "b"));
 }
 

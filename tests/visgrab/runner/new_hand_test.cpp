@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "rw/kinematics/frame_tree.hpp"
 #include "rw/math/rpy.hpp"
 #include "rwsim/dynamics/dynamic_workcell.hpp"
 #include "support/test_database.hpp"
@@ -257,6 +258,68 @@ TEST(NewHand, The2F85HoldsOffCentreAndHighGraspsAsThePg70) {
     if (std::string(c.id) != "across15") {
       EXPECT_EQ(r2f85, GraspOutcome::kStable) << rwsim::simulator::outcomeName(r2f85);
     }
+  }
+}
+
+// RobWork's own Robotiq 2-finger 85 model (RW_COMPAT_DATA) as a hand: the folder
+// scenes/hands/robwork-robotiq mounts RobWork's unchanged device file on a Movable frame and adds
+// a TCP, a dynamics file and a grasp description. The gripper's datasheet stroke is 85 mm: the
+// pads' centres (RobWork's junction frames LeftMotorEnd / RightMotorEnd) are 85 mm apart open and
+// meet closed, on the TCP's x axis; the pads lie 10.5 mm short of the TCP open (the TCP is where
+// they meet a 50 mm object). It holds the can from above and closes on nothing beside it.
+TEST(NewHand, RobWorksRobotiqRunsAsAHand) {
+  REQUIRE_COMPAT_DATA(data);  // the hand's workcell reads ${RW_COMPAT_DATA} itself
+  static_cast<void>(data);
+  const fs::path folder = visgrab::test::sourceDir() / "scenes/hands/robwork-robotiq";
+  const auto hand = visgrab::grasp::loadHandGraspSetup(folder);
+  EXPECT_EQ(hand->deviceName(), "RobotiqFingerControl");
+  EXPECT_EQ(hand->dof(), 3);
+  const auto& tree = hand->workcell().frames();
+  EXPECT_EQ(tree.frame(hand->placementFrame()).name(), "RobotiqMount");
+  EXPECT_EQ(hand->tcpFrameName(), "RobotiqTCP");
+  const auto* wide = hand->findPreshape("wide");
+  ASSERT_NE(wide, nullptr);
+  for (const bool open : {true, false}) {
+    SCOPED_TRACE(open ? "open" : "closed");
+    rw::kinematics::State state = hand->defaultState();
+    hand->device().setQ(open ? wide->qOpen : wide->qClosed, state);
+    const auto pad = [&](const char* name) -> Vector3D {
+      return rw::kinematics::relativeTransform(tree, state, hand->tcpFrame(),
+                                               hand->workcell().findFrame(name))
+          .translation();
+    };
+    const Vector3D right = pad("RobotiqFingerControl.RightMotorEnd");
+    const Vector3D left = pad("RobotiqFingerControl.LeftMotorEnd");
+    EXPECT_NEAR(right.x() - left.x(), open ? 0.085 : 0.0, 0.001);
+    EXPECT_NEAR(right.y(), 0.0, 1e-9);
+    EXPECT_NEAR(left.y(), 0.0, 1e-9);
+    if (open) {
+      EXPECT_NEAR(right.z(), -0.0105, 0.0002);
+    }
+    EXPECT_NEAR(right.z(), left.z(), 1e-6);
+  }
+
+  const Vector3D high = canBase() + Vector3D(0, 0, 0.09);
+  const std::vector<visgrab::grasp::GraspRequest> grasps = {
+      downAt("around", high), downAt("beside", high + Vector3D(0.25, 0, 0))};
+  visgrab::test::TempDir tmp;
+  visgrab::taskio::writeGraspList(grasps, tmp.path() / "plan.csv");
+  visgrab::runner::RunOptions options;
+  options.database = visgrab::test::testDatabase().root();
+  options.grasps = {tmp.path() / "plan.csv"};
+  options.out = tmp.path() / "results";
+  options.hand = folder;
+  options.threads = 2;
+  EXPECT_TRUE(visgrab::runner::runBenchmark(options).rejected.empty());
+  std::map<std::string, visgrab::results::TrialRecord> trial;
+  for (const auto& t : visgrab::results::readResults(options.out).trials) trial[t.graspId] = t;
+  ASSERT_EQ(trial.size(), 2u);
+  EXPECT_EQ(rwsim::simulator::outcomeName(trial.at("around").outcome), "stable")
+      << trial.at("around").detail;
+  EXPECT_EQ(rwsim::simulator::outcomeName(trial.at("beside").outcome), "missed")
+      << trial.at("beside").detail;
+  for (const auto& [id, t] : trial) {
+    EXPECT_FALSE(rwsim::simulator::closingHitCap(t.detail)) << id << ": " << t.detail;
   }
 }
 
