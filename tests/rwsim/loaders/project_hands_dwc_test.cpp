@@ -5,9 +5,11 @@
 
 #include <Eigen/Eigenvalues>
 
+#include <cstdlib>
 #include <string>
 #include <vector>
 
+#include "rwsim/dynamics/loop_closure.hpp"
 #include "rwsim/loaders/dynamic_workcell_loader.hpp"
 #include "support/test_support.hpp"
 
@@ -125,6 +127,61 @@ TEST(ProjectHands, ASceneInAnotherFolderIncludesTheHandDynamicsAndTheMaterials) 
   EXPECT_EQ(cup.material, "Object");
   EXPECT_DOUBLE_EQ(dwc->materials().mu(cup.material, "Finger"), 0.6);
   expectHand(*dwc, "PG70", {40.0, 50.0}, 1);
+}
+
+}  // namespace
+
+namespace {
+
+// RobWork's Robotiq model as a hand (scenes/hands/robwork-robotiq, RW_COMPAT_DATA): the
+// kinematic base is the Movable mount holding RobWork's plain Base (and carries its housing), a
+// body for each of the eight links, none for the two LinkConnection joints, so the two
+// junctions are closed by hinges there; 0.22 kg of links; one PD pair per DOF. Without the
+// variable the hand does not load, and the message names it.
+TEST(ProjectHands, RobWorksRobotiqDynamicsLoad) {
+  REQUIRE_COMPAT_DATA(data);
+  const auto file = sourceDir() / "scenes/hands/robwork-robotiq/robwork-robotiq.dwc.xml";
+  std::vector<Diagnostic> warnings;
+  const auto dwc = rwsim::loaders::loadDynamicWorkCell(file, &warnings);
+  for (const Diagnostic& w : warnings) {
+    // RobWork's own collision setup file: its two attributes are RobWork's, not used here.
+    EXPECT_NE(w.message.find("UseIncludeAll and UseExcludeStaticPairs"), std::string::npos)
+        << w.format();
+  }
+  expectProjectMaterials(*dwc);
+  const auto index = dwc->findDevice("RobotiqFingerControl");
+  ASSERT_TRUE(index.valid());
+  const auto& device = dwc->device(index);
+  const auto& base = dwc->body(device.baseBody);
+  EXPECT_EQ(base.kind, BodyKind::kKinematic);
+  EXPECT_EQ(dwc->workcell().frames().frame(base.frame).name(), "RobotiqMount");
+  EXPECT_EQ(dwc->bodyOfFrame(dwc->workcell().findFrame("RobotiqFingerControl.Base")),
+            device.baseBody);
+  int links = 0;
+  double mass = 0.0;
+  for (const auto link : device.linkBodies) {
+    if (!link.valid()) continue;  // LinkConnection
+    ++links;
+    mass += dwc->body(link).mass.mass;
+  }
+  EXPECT_EQ(links, 8);
+  EXPECT_NEAR(mass, 0.22, 1e-12);
+  EXPECT_EQ(rwsim::dynamics::loopClosures(*dwc, device).size(), 2u);
+  const auto* pd = dwc->findController("GraspController");
+  ASSERT_NE(pd, nullptr);
+  EXPECT_VECTOR_NEAR(pd->p, Eigen::VectorXd::Constant(3, 5.0), 0.0);
+
+  const std::string saved = data.string();
+  ASSERT_EQ(unsetenv("RW_COMPAT_DATA"), 0);
+  try {
+    rwsim::loaders::loadDynamicWorkCell(file);
+    ADD_FAILURE() << "loaded without RW_COMPAT_DATA";
+  } catch (const rw::common::LoadError& e) {
+    EXPECT_NE(std::string(e.what()).find("the environment variable RW_COMPAT_DATA is not set"),
+              std::string::npos)
+        << e.what();
+  }
+  ASSERT_EQ(setenv("RW_COMPAT_DATA", saved.c_str(), 1), 0);
 }
 
 }  // namespace
