@@ -88,13 +88,30 @@ struct SimDevice {
   std::vector<dJointID> welds;
 };
 
+/// A constraint of the dynamic workcell (dynamics::Constraint) as one ODE joint. As in
+/// RobWorkSim's ODE engine the parent is ODE's first body and the child its second; ODE measures
+/// the first relative to the second, so each DOF's ODE value is minus the child's motion relative
+/// to the parent (see OdeWorld::constraintPosition).
+struct SimConstraint {
+  /// Index in DynamicWorkCell::constraints().
+  std::size_t index = 0;
+  /// What it leaves free.
+  dynamics::ConstraintType type = dynamics::ConstraintType::kFixed;
+  /// The ODE joint; null for a Free constraint (no joint).
+  dJointID id = nullptr;
+  /// Stops in ODE's coordinates, one (low, high) pair per free DOF when the constraint has
+  /// limits; empty otherwise.
+  std::vector<std::pair<double, double>> odeStops;
+};
+
 /// An ODE world holding every body, joint and motor of a dynamic workcell in one State.
 /// Owns the ODE objects; not copyable.
 class OdeWorld {
  public:
   /// Builds the world with bodies where `state` puts them, at rest.
   /// @throws std::invalid_argument for bodies or devices ODE cannot simulate (mass <= 0,
-  /// inertia not positive definite, a joint link that is not a rigid body, ...).
+  /// inertia not positive definite, a joint link that is not a rigid body, a constraint with a
+  /// spring, ...).
   OdeWorld(const dynamics::DynamicWorkCell& dwc, const rw::kinematics::State& state,
            const SimulatorOptions& options);
   ~OdeWorld();
@@ -113,6 +130,17 @@ class OdeWorld {
   std::vector<SimDevice>& devices() { return devices_; }
   /// Devices.
   const std::vector<SimDevice>& devices() const { return devices_; }
+  /// Constraints, indexed like DynamicWorkCell::constraints().
+  const std::vector<SimConstraint>& constraints() const { return constraints_; }
+  /// A free DOF of a constraint (in dynamics::Constraint::limits order): the child's
+  /// translation (m) or rotation (rad) relative to the parent along or about the DOF's axis,
+  /// measured from the pose the world was built in. 0 for Free constraints.
+  /// Precondition: dof < the type's free DOF.
+  double constraintPosition(const SimConstraint& constraint, std::size_t dof) const;
+  /// Constraint rows the constraint's joint gives ODE's next step: 6 for Fixed, 5 for Prismatic
+  /// and Revolute, 4 for Universal, Piston and PrismaticRotoid, 3 for Spherical and
+  /// PrismaticUniversal, 0 for Free, plus 1 per DOF at or past one of its stops.
+  std::size_t constraintRows(const SimConstraint& constraint) const;
   /// Marks the world as left inconsistent by an ODE error thrown out of a step: its ODE objects
   /// are then leaked instead of destroyed (destroying them would trip ODE's own assertions).
   void poison() { poisoned_ = true; }
@@ -137,6 +165,7 @@ class OdeWorld {
  private:
   void createBodies(const dynamics::DynamicWorkCell& dwc, const rw::kinematics::State& state);
   void createDevices(const dynamics::DynamicWorkCell& dwc, const rw::kinematics::State& state);
+  void createConstraints(const dynamics::DynamicWorkCell& dwc, const rw::kinematics::State& state);
   void destroy();
   void closeLoops(const dynamics::DynamicWorkCell& dwc, const dynamics::RigidDevice& rd,
                   const rw::kinematics::FKTable& fk, SimDevice& sim);
@@ -149,6 +178,7 @@ class OdeWorld {
   bool poisoned_ = false;
   std::vector<SimBody> bodies_;
   std::vector<SimDevice> devices_;
+  std::vector<SimConstraint> constraints_;
 };
 
 /// Pose of an ODE body's own frame (its centre of mass).
