@@ -184,10 +184,11 @@ std::size_t baseRows(dynamics::ConstraintType type) {
   return 0;
 }
 
-/// Creates the ODE joint of a constraint, attached parent first as RobWorkSim does, with the
-/// axes of the constraint frame X_W_c (RobWorkSim's ODEConstraint::createJoint).
-dJointID createConstraintJoint(dWorldID world, dynamics::ConstraintType type, dBodyID parent,
-                               dBodyID child, const Transform3D& X_W_c) {
+/// Creates the ODE joint of a constraint between ODE bodies `first` and `second` (either may be
+/// null, not both), with the axes of the constraint frame X_W_c (RobWorkSim's
+/// ODEConstraint::createJoint).
+dJointID createConstraintJoint(dWorldID world, dynamics::ConstraintType type, dBodyID first,
+                               dBodyID second, const Transform3D& X_W_c) {
   using T = dynamics::ConstraintType;
   const Vector3D p = X_W_c.translation();
   const Vector3D x = X_W_c.linear().col(0);
@@ -197,48 +198,48 @@ dJointID createConstraintJoint(dWorldID world, dynamics::ConstraintType type, dB
   switch (type) {
     case T::kFixed:
       j = dJointCreateFixed(world, nullptr);
-      dJointAttach(j, parent, child);
+      dJointAttach(j, first, second);
       dJointSetFixed(j);
       break;
     case T::kPrismatic:
       j = dJointCreateSlider(world, nullptr);
-      dJointAttach(j, parent, child);
+      dJointAttach(j, first, second);
       dJointSetSliderAxis(j, z.x(), z.y(), z.z());
       break;
     case T::kRevolute:
       j = dJointCreateHinge(world, nullptr);
-      dJointAttach(j, parent, child);
+      dJointAttach(j, first, second);
       dJointSetHingeAnchor(j, p.x(), p.y(), p.z());
       dJointSetHingeAxis(j, z.x(), z.y(), z.z());
       break;
     case T::kUniversal:
       j = dJointCreateUniversal(world, nullptr);
-      dJointAttach(j, parent, child);
+      dJointAttach(j, first, second);
       dJointSetUniversalAnchor(j, p.x(), p.y(), p.z());
       dJointSetUniversalAxis1(j, x.x(), x.y(), x.z());
       dJointSetUniversalAxis2(j, y.x(), y.y(), y.z());
       break;
     case T::kSpherical:
       j = dJointCreateBall(world, nullptr);
-      dJointAttach(j, parent, child);
+      dJointAttach(j, first, second);
       dJointSetBallAnchor(j, p.x(), p.y(), p.z());
       break;
     case T::kPiston:
       j = dJointCreatePiston(world, nullptr);
-      dJointAttach(j, parent, child);
+      dJointAttach(j, first, second);
       dJointSetPistonAnchor(j, p.x(), p.y(), p.z());
       dJointSetPistonAxis(j, z.x(), z.y(), z.z());
       break;
     case T::kPrismaticRotoid:
       j = dJointCreatePR(world, nullptr);
-      dJointAttach(j, parent, child);
+      dJointAttach(j, first, second);
       dJointSetPRAnchor(j, p.x(), p.y(), p.z());
       dJointSetPRAxis1(j, z.x(), z.y(), z.z());
       dJointSetPRAxis2(j, x.x(), x.y(), x.z());
       break;
     case T::kPrismaticUniversal:
       j = dJointCreatePU(world, nullptr);
-      dJointAttach(j, parent, child);
+      dJointAttach(j, first, second);
       dJointSetPUAnchor(j, p.x(), p.y(), p.z());
       dJointSetPUAxis1(j, x.x(), x.y(), x.z());
       dJointSetPUAxis2(j, y.x(), y.y(), y.z());
@@ -379,7 +380,15 @@ void OdeWorld::createConstraints(const dynamics::DynamicWorkCell& dwc,
     const dBodyID parent = bodies_[c.parent.index()].id;
     const dBodyID child = bodies_[c.child.index()].id;
     const Transform3D X_W_c = fk.worldTransform(dwc.body(c.parent).frame) * c.X_parent_constraint;
-    sim.id = createConstraintJoint(world_, c.type, parent, child, X_W_c);
+    dBodyID first = parent;
+    if (first == nullptr && c.type != dynamics::ConstraintType::kFree) {
+      if (staticAnchor_ == nullptr) {
+        staticAnchor_ = dBodyCreate(world_);
+        dBodySetKinematic(staticAnchor_);
+      }
+      first = staticAnchor_;
+    }
+    sim.id = createConstraintJoint(world_, c.type, first, child, X_W_c);
     const std::vector<OdeAxis> axes = odeAxes(c.type);
     if (!c.limits.empty() && c.limits.size() != axes.size()) {
       throw std::invalid_argument("constraint " + c.name + ": limits do not match its free DOF");

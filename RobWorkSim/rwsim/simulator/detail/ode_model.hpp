@@ -89,9 +89,11 @@ struct SimDevice {
 };
 
 /// A constraint of the dynamic workcell (dynamics::Constraint) as one ODE joint. As in
-/// RobWorkSim's ODE engine the parent is ODE's first body and the child its second; ODE measures
-/// the first relative to the second, so each DOF's ODE value is minus the child's motion relative
-/// to the parent (see OdeWorld::constraintPosition).
+/// RobWorkSim's ODE engine the parent is ODE's first body and the child its second, so ODE's
+/// coordinates are minus the child's motion relative to the parent. A fixed child is ODE's
+/// static world (body 0). A fixed parent is OdeWorld's static anchor, a kinematic ODE body that
+/// never moves: attached to body 0 first, ODE swaps the two bodies and then measures a hinge's
+/// stops in the opposite sense to its angle.
 struct SimConstraint {
   /// Index in DynamicWorkCell::constraints().
   std::size_t index = 0;
@@ -179,6 +181,7 @@ class OdeWorld {
   std::vector<SimBody> bodies_;
   std::vector<SimDevice> devices_;
   std::vector<SimConstraint> constraints_;
+  dBodyID staticAnchor_ = nullptr;
 };
 
 /// Pose of an ODE body's own frame (its centre of mass).
