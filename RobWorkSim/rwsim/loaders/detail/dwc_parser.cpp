@@ -640,7 +640,8 @@ void Parser::constraintSpring(const XmlElement& e, ConstraintDesc& c) {
       target(static_cast<Eigen::Index>(k % n), static_cast<Eigen::Index>(k / n)) = (*values)[k];
     }
   }
-  if (ok) c.spring = std::move(spring);
+  if (!ok) return;  // the matrix's own error says enough
+  c.spring = std::move(spring);
   error(e,
         "springs on constraints are not supported yet (this project does not simulate "
         "RobWorkSim's compliance/damping forces); remove the <Spring>");
