@@ -375,6 +375,7 @@ TEST_F(DynamicWorkCellLoader, ReadsConstraints) {
   const auto* loose = dwc->findConstraint("Loose");
   EXPECT_FALSE(has(loose->parent, loose->child));  // a Free constraint joins nothing
   EXPECT_EQ(warningsWith("not simulated by this project").size(), 0u);
+  EXPECT_EQ(warningsWith("without a <Spring> it has no effect").size(), 1u);
 }
 
 }  // namespace

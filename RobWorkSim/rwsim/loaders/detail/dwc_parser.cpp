@@ -515,6 +515,9 @@ void Parser::constraint(const XmlElement& e) {
       constraintSpring(child, c);
     }
   }
+  if (c.type == rwsim::dynamics::ConstraintType::kFree && seen.count("Spring") == 0) {
+    warning(e, "a Free constraint leaves all six DOF free: without a <Spring> it has no effect");
+  }
   desc_.constraints.push_back(std::move(c));
 }
 

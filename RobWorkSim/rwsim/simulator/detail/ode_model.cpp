@@ -132,9 +132,9 @@ struct OdeAxis {
 };
 
 /// The ODE axes of a constraint type's free DOF, in dynamics::Constraint::limits order (linear
-/// first). RobWorkSim's ODE engine (ODEConstraint::setLoStop) uses the same parameters for DOF
-/// 0 and 1; it has no stop for the third DOF of a PrismaticUniversal, which here is ODE's
-/// rotation about y (group 2: ODE numbers the PU's prismatic axis third).
+/// first). RobWorkSim's ODE engine (ODEConstraint::setLoStop) sets stops for DOF 0 and 1 only,
+/// in ODE's groups 0 and 1; for a PrismaticUniversal those are the universal axes, while here
+/// its first DOF is the translation (ODE's group 2) and all three get stops.
 std::vector<OdeAxis> odeAxes(dynamics::ConstraintType type) {
   using T = dynamics::ConstraintType;
   switch (type) {
@@ -404,11 +404,6 @@ void OdeWorld::createConstraints(const dynamics::DynamicWorkCell& dwc,
     }
     constraints_.push_back(std::move(sim));
   }
-}
-
-double OdeWorld::constraintPosition(const SimConstraint& c, std::size_t dof) const {
-  if (c.id == nullptr) return 0.0;
-  return -odeAxes(c.type).at(dof).position(c.id);
 }
 
 std::size_t OdeWorld::constraintRows(const SimConstraint& c) const {

@@ -134,11 +134,6 @@ class OdeWorld {
   const std::vector<SimDevice>& devices() const { return devices_; }
   /// Constraints, indexed like DynamicWorkCell::constraints().
   const std::vector<SimConstraint>& constraints() const { return constraints_; }
-  /// A free DOF of a constraint (in dynamics::Constraint::limits order): the child's
-  /// translation (m) or rotation (rad) relative to the parent along or about the DOF's axis,
-  /// measured from the pose the world was built in. 0 for Free constraints.
-  /// Precondition: dof < the type's free DOF.
-  double constraintPosition(const SimConstraint& constraint, std::size_t dof) const;
   /// Constraint rows the constraint's joint gives ODE's next step: 6 for Fixed, 5 for Prismatic
   /// and Revolute, 4 for Universal, Piston and PrismaticRotoid, 3 for Spherical and
   /// PrismaticUniversal, 0 for Free, plus 1 per DOF at or past one of its stops.
