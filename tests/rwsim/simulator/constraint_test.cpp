@@ -40,10 +40,11 @@ const Vector3D kPivot(0, 0, 1);
 
 // The support overlaps the bob in the "Overlap" variant (to show that a constrained pair makes
 // no contacts).
-std::string workCell(double bobZ, double supportSize) {
+std::string workCell(double bobZ, double supportSize, bool kinematicSupport) {
   const std::string s = std::to_string(supportSize);
-  return R"(<WorkCell name="Constraints">
-  <Frame name="Support" refframe="WORLD">
+  return std::string(R"(<WorkCell name="Constraints">
+  <Frame name="Support" refframe="WORLD")") +
+         (kinematicSupport ? " type=\"Movable\"" : "") + R"(>
     <RPY>0 0 0</RPY><Pos>0 0 1</Pos>
     <Drawable name="S"><RPY>0 0 0</RPY><Pos>0 0 0</Pos><Box x=")" +
          s + "\" y=\"" + s + "\" z=\"" + s + R"("/></Drawable>
@@ -58,14 +59,19 @@ std::string workCell(double bobZ, double supportSize) {
 }
 
 // A dynamic workcell with the bob and one constraint (`constraint` is the whole element).
-std::string dynamics(const std::string& constraint) {
+std::string dynamics(const std::string& constraint, bool kinematicSupport) {
   const std::string materials =
       (visgrab::test::sourceDir() / "scenes/materials.xml").generic_string();
   return R"(<DynamicWorkcell workcell="scene.wc.xml">
   <Gravity>0 0 -9.81</Gravity>
   <Include file=")" +
          materials + R"("/>
-  <FixedBody frame="Support"/>
+  )" +
+         std::string(kinematicSupport
+                         ? "<KinematicBody "
+                           "frame=\"Support\"><MaterialID>Object</MaterialID></KinematicBody>"
+                         : "<FixedBody frame=\"Support\"/>") +
+         R"(
   <RigidBody frame="Bob">
     <Integrator>Euler</Integrator>
     <Mass>1</Mass><COG>0 0 0</COG>
@@ -79,9 +85,11 @@ std::string dynamics(const std::string& constraint) {
 
 class Constraints : public ::testing::Test {
  protected:
-  void load(const std::string& constraint, double bobZ = 1.0 - kD, double supportSize = 0.02) {
-    visgrab::test::writeFile(tmp_.path() / "scene.wc.xml", workCell(bobZ, supportSize));
-    visgrab::test::writeFile(tmp_.path() / "scene.dwc.xml", dynamics(constraint));
+  void load(const std::string& constraint, double bobZ = 1.0 - kD, double supportSize = 0.02,
+            bool kinematicSupport = false) {
+    visgrab::test::writeFile(tmp_.path() / "scene.wc.xml",
+                             workCell(bobZ, supportSize, kinematicSupport));
+    visgrab::test::writeFile(tmp_.path() / "scene.dwc.xml", dynamics(constraint, kinematicSupport));
     dwc_ = rwsim::loaders::loadDynamicWorkCell(tmp_.path() / "scene.dwc.xml");
     bob_ = dwc_->findBody("Bob");
   }
@@ -271,6 +279,33 @@ TEST_F(Constraints, AWeldedBodyStaysPutUnderGravity) {
   EXPECT_LT(turn, 1e-6);
   EXPECT_TRUE(sim->contacts().empty());
   EXPECT_EQ(sim->lastStepRows(), 6u);
+}
+
+TEST_F(Constraints, ABodyWeldedToAKinematicBodyFollowsIt) {
+  // The support is kinematic, moved at 0.2 m/s along x; the weld carries the bob along (ODE
+  // treats the kinematic body as infinitely heavy). After 1 s both moved 0.2 m; the bob keeps
+  // its offset to within the weld's sag (2.5e-8 m, see the test above) and the step's
+  // position error.
+  load(R"(<Constraint name="Weld" type="Fixed" parent="Support" child="Bob"/>
+)",
+       1.0 - kD, 0.02, true);
+  const BodyId support = dwc_->findBody("Support");
+  const Transform3D X0 = pendulumPose(0.0);
+  auto sim = start(X0, 0.005);
+  sim->setKinematicVelocity(support, Vector3D(0.2, 0, 0), Vector3D::Zero());
+  double offsetError = 0.0;
+  while (sim->time() < 1.0 - 1e-9) {
+    ASSERT_EQ(sim->step(), StepStatus::kOk) << sim->failureDetail();
+    const Vector3D offset =
+        sim->bodyPose(bob_).translation() - sim->bodyPose(support).translation();
+    offsetError = std::max(offsetError, (offset - Vector3D(0, 0, -kD)).norm());
+  }
+  const double moved = sim->bodyPose(bob_).translation().x() - X0.translation().x();
+  std::printf("weld to a kinematic body: bob moved %.6f m, offset error at most %.2e m\n", moved,
+              offsetError);
+  EXPECT_NEAR(sim->bodyPose(support).translation().x(), 0.2, 1e-9);
+  EXPECT_NEAR(moved, 0.2, 1e-5);
+  EXPECT_LT(offsetError, 1e-5);
 }
 
 // Let go from X0: the anchor (the pivot, d above the bob's centre) must stay at the pivot. For a
