@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 #include <utility>
 
@@ -113,6 +114,13 @@ DeviceId DynamicWorkCell::findDevice(std::string_view name) const {
 
 const PDController* DynamicWorkCell::findController(std::string_view name) const {
   for (const PDController& c : controllers_) {
+    if (c.name == name) return &c;
+  }
+  return nullptr;
+}
+
+const Constraint* DynamicWorkCell::findConstraint(std::string_view name) const {
+  for (const Constraint& c : constraints_) {
     if (c.name == name) return &c;
   }
   return nullptr;
@@ -235,6 +243,59 @@ void DynamicWorkCell::addController(PDController controller) {
   controllers_.push_back(std::move(controller));
 }
 
+void DynamicWorkCell::addConstraint(Constraint constraint) {
+  const Constraint& c = constraint;
+  const std::string what = "constraint \"" + c.name + "\": ";
+  if (c.name.empty()) fail("a constraint needs a name");
+  if (findConstraint(c.name) != nullptr) fail(what + "a constraint of this name exists");
+  for (const BodyId id : {c.parent, c.child}) {
+    if (!id.valid() || id.index() >= bodies_.size()) fail(what + "invalid body index");
+  }
+  if (c.parent == c.child) fail(what + "parent and child are the same body");
+  if (body(c.parent).kind != BodyKind::kRigid && body(c.child).kind != BodyKind::kRigid) {
+    fail(what + "neither body is rigid (" + body(c.parent).name + " and " + body(c.child).name +
+         " are fixed or kinematic), so nothing can move");
+  }
+  const Eigen::Matrix3d& R = c.X_parent_constraint.linear();
+  if (!c.X_parent_constraint.matrix().allFinite() ||
+      !(R.transpose() * R).isApprox(Eigen::Matrix3d::Identity(), 1e-6) || !(R.determinant() > 0)) {
+    fail(what + "the transform is not finite or its rotation is not a rotation matrix");
+  }
+  const ConstraintDof dof = constraintDof(c.type);
+  const std::string typeName(constraintTypeName(c.type));
+  if (!c.limits.empty()) {
+    if (c.type == ConstraintType::kSpherical || c.type == ConstraintType::kFree) {
+      fail(what + "a " + typeName + " constraint takes no limits");
+    }
+    if (c.limits.size() != dof.total()) {
+      fail(what + "expected " + std::to_string(dof.total()) + " limits (one per free DOF of a " +
+           typeName + " constraint), got " + std::to_string(c.limits.size()));
+    }
+    for (std::size_t i = 0; i < c.limits.size(); ++i) {
+      const ConstraintLimit& l = c.limits[i];
+      if (std::isnan(l.low) || std::isnan(l.high) || l.low > l.high) {
+        fail(what + "limit " + std::to_string(i) + ": low must be <= high");
+      }
+      const bool angular = i >= dof.linear;
+      const bool beyondPi = (std::isfinite(l.low) && l.low < -std::numbers::pi) ||
+                            (std::isfinite(l.high) && l.high > std::numbers::pi);
+      if (angular && beyondPi) {
+        fail(what + "limit " + std::to_string(i) + ": an angular limit must lie in [-pi, pi]");
+      }
+    }
+  }
+  if (c.spring) {
+    const auto n = static_cast<Eigen::Index>(dof.total());
+    for (const Eigen::MatrixXd* m : {&c.spring->compliance, &c.spring->damping}) {
+      if (m->rows() != n || m->cols() != n || !m->allFinite()) {
+        fail(what + "spring matrices must be finite and " + std::to_string(n) + " x " +
+             std::to_string(n));
+      }
+    }
+  }
+  constraints_.push_back(std::move(constraint));
+}
+
 std::vector<std::pair<BodyId, BodyId>> jointConnectedBodyPairs(const DynamicWorkCell& dwc) {
   std::vector<std::pair<BodyId, BodyId>> pairs;
   for (const RigidDevice& rd : dwc.devices()) {
@@ -248,6 +309,10 @@ std::vector<std::pair<BodyId, BodyId>> jointConnectedBodyPairs(const DynamicWork
     for (const LoopClosure& c : loopClosures(dwc, rd)) {
       pairs.emplace_back(std::min(c.parent, c.child), std::max(c.parent, c.child));
     }
+  }
+  for (const Constraint& c : dwc.constraints()) {
+    if (c.type == ConstraintType::kFree) continue;
+    pairs.emplace_back(std::min(c.parent, c.child), std::max(c.parent, c.child));
   }
   std::sort(pairs.begin(), pairs.end());
   pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());

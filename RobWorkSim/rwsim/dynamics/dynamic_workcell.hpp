@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "rw/models/workcell.hpp"
+#include "rwsim/dynamics/constraint.hpp"
 #include "rwsim/dynamics/ids.hpp"
 #include "rwsim/dynamics/material_map.hpp"
 
@@ -112,6 +113,10 @@ class DynamicWorkCell {
   const std::vector<PDController>& controllers() const { return controllers_; }
   /// The controller with this name, or nullptr.
   const PDController* findController(std::string_view name) const;
+  /// Body-to-body constraints (RobWorkSim's `<Constraint>`).
+  const std::vector<Constraint>& constraints() const { return constraints_; }
+  /// The constraint with this name, or nullptr.
+  const Constraint* findConstraint(std::string_view name) const;
   /// Materials, friction and restitution.
   const MaterialMap& materials() const { return materials_; }
   /// Gravity in world coordinates, m/s^2.
@@ -142,6 +147,13 @@ class DynamicWorkCell {
   /// whose sizes differ from the device's DOF or that are not finite, an unknown type, or a time
   /// step that is not > 0.
   void addController(PDController controller);
+  /// Adds a constraint.
+  /// @throws std::invalid_argument on an empty or duplicate name, an invalid body, parent ==
+  /// child, two bodies neither of which is rigid, a transform that is not finite or not a
+  /// rotation, limits that are not one per free DOF, a limit with low > high (or NaN), limits
+  /// on a Spherical or Free constraint (RobWorkSim has none there), angular limits outside
+  /// [-pi, pi], or spring matrices that are not DOF x DOF and finite.
+  void addConstraint(Constraint constraint);
   /// Materials, for building.
   MaterialMap& materials() { return materials_; }
   /// Sets gravity.
@@ -159,6 +171,7 @@ class DynamicWorkCell {
   std::vector<BodyId> bodyOfFrame_;
   std::vector<RigidDevice> devices_;
   std::vector<PDController> controllers_;
+  std::vector<Constraint> constraints_;
   MaterialMap materials_;
   rw::math::Vector3D gravity_ = rw::math::Vector3D::Zero();
   std::map<std::string, std::string> engineProperties_;
@@ -173,7 +186,8 @@ std::vector<rw::kinematics::FrameId> rigidlyAttachedFrames(
     const std::vector<rw::kinematics::FrameId>& stopAt);
 
 /// The body pairs a device joint connects: each joint's link body with the body nearest above
-/// the joint. Each pair once as (smaller, larger) id, sorted. Their model geometry usually
+/// the joint; also the bodies of each loop closure and of each constraint but Free ones. Each
+/// pair once as (smaller, larger) id, sorted. Their model geometry usually
 /// overlaps at the joint, so contact detection skips them (as MuJoCo skips parent-child pairs).
 std::vector<std::pair<BodyId, BodyId>> jointConnectedBodyPairs(const DynamicWorkCell& dwc);
 

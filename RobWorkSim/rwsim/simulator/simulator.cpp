@@ -262,6 +262,7 @@ void Simulator::Impl::createContactJoints() {
 }
 
 void Simulator::Impl::driveMotors() {
+  for (const detail::SimConstraint& c : ode->constraints()) rows += ode->constraintRows(c);
   for (auto& dev : ode->devices()) {
     rows += 6 * dev.welds.size();
     for (const SimJoint& j : dev.joints) {

@@ -135,7 +135,9 @@ class Simulator {
   /// Contacts of the last step with their forces.
   const std::vector<SolvedBodyContact>& contacts() const;
   /// Constraint rows the last step gave ODE's solver, summed over its islands: 5 per hinge or
-  /// slider, 1 more while its motor or a stop acts, 3 per contact with friction (1 without).
+  /// slider, 1 more while its motor or a stop acts, 3 per contact with friction (1 without),
+  /// and per constraint 6 (Fixed), 5 (Prismatic, Revolute), 4 (Universal, Piston,
+  /// PrismaticRotoid) or 3 (Spherical, PrismaticUniversal), 1 more per DOF on a stop.
   /// The dense LCP's cost grows with the cube of an island's rows.
   std::size_t lastStepRows() const;
   /// The options in use.

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -376,6 +377,59 @@ TEST_F(DynamicWorkCellLoader, CheckReportsWithoutThrowing) {
     return d.severity == Diagnostic::Severity::kError;
   }));
   EXPECT_FALSE(rwsim::loaders::checkDynamicWorkCell(scene_.path() / "none.dwc.xml").empty());
+}
+
+// RobWorkSim's <Constraint>: type in any case, the transform (RPY in radians) in the parent's
+// frame, one limit per free DOF; a device link may be a constraint's body; constrained bodies
+// count as joint-connected (no contacts between them).
+TEST_F(DynamicWorkCellLoader, ReadsConstraints) {
+  const auto dwc = load(SceneDir::dwc(
+      "<FixedBody frame=\"Table\"/>\n<RigidBody frame=\"Object\"><Integrator>Euler</Integrator>"
+      "<Mass>0.5</Mass><EstimateInertia/></RigidBody>\n" +
+      sdhDevice() + sdhController() +
+      R"(<Constraint name="Hinge" type="revolute" parent="Table" child="Object">
+  <Transform3D><Pos>0.1 0.2 0.3</Pos><RPY>1.5707963267948966 0 0</RPY></Transform3D>
+  <Limits><Limit low="-0.5" high="1"/></Limits>
+</Constraint>
+<Constraint name="Grip" type="PrismaticUniversal" parent="SchunkHand.f1.Joint3" child="Object">
+  <Limits><Limit high="0.01"/><Limit/><Limit low="-1" high="1"/></Limits>
+</Constraint>
+<Constraint name="Loose" type="FREE" parent="Object" child="SchunkHand.f2.Joint3"/>
+)"));
+  ASSERT_TRUE(dwc);
+  ASSERT_EQ(dwc->constraints().size(), 3u);
+  const auto* hinge = dwc->findConstraint("Hinge");
+  ASSERT_NE(hinge, nullptr);
+  EXPECT_EQ(hinge->type, rwsim::dynamics::ConstraintType::kRevolute);
+  EXPECT_EQ(hinge->parent, dwc->findBody("Table"));
+  EXPECT_EQ(hinge->child, dwc->findBody("Object"));
+  EXPECT_TRUE(hinge->X_parent_constraint.translation().isApprox(Vector3D(0.1, 0.2, 0.3)));
+  // RPY roll pi/2 (radians) about z: x -> y.
+  EXPECT_TRUE(
+      (hinge->X_parent_constraint.linear() * Vector3D::UnitX()).isApprox(Vector3D::UnitY(), 1e-12));
+  ASSERT_EQ(hinge->limits.size(), 1u);
+  EXPECT_EQ(hinge->limits[0].low, -0.5);
+  EXPECT_EQ(hinge->limits[0].high, 1.0);
+  const auto* grip = dwc->findConstraint("Grip");
+  ASSERT_NE(grip, nullptr);
+  EXPECT_EQ(grip->parent, dwc->findBody("SchunkHand.f1.Joint3"));
+  ASSERT_EQ(grip->limits.size(), 3u);
+  EXPECT_EQ(grip->limits[0].high, 0.01);
+  EXPECT_TRUE(std::isinf(grip->limits[0].low));
+  EXPECT_TRUE(std::isinf(grip->limits[1].high));
+  EXPECT_TRUE(dwc->findConstraint("Loose")->X_parent_constraint.isApprox(
+      rw::math::Transform3D::Identity()));
+  const auto pairs = rwsim::dynamics::jointConnectedBodyPairs(*dwc);
+  const auto has = [&](rwsim::dynamics::BodyId a, rwsim::dynamics::BodyId b) {
+    return std::find(pairs.begin(), pairs.end(), std::make_pair(std::min(a, b), std::max(a, b))) !=
+           pairs.end();
+  };
+  EXPECT_TRUE(has(hinge->parent, hinge->child));
+  EXPECT_TRUE(has(grip->parent, grip->child));
+  const auto* loose = dwc->findConstraint("Loose");
+  EXPECT_FALSE(has(loose->parent, loose->child));  // a Free constraint joins nothing
+  EXPECT_EQ(warningsWith("not simulated by this project").size(), 0u);
+  EXPECT_EQ(warningsWith("without a <Spring> it has no effect").size(), 1u);
 }
 
 }  // namespace

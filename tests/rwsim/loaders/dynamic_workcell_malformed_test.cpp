@@ -57,6 +57,21 @@ constexpr char kGarbage[] =
 
 const std::string kEstimate = "<Mass>0.5</Mass><EstimateInertia/>\n";
 
+/// The table (fixed), the object (rigid) and the ghost (kinematic), then `constraints`.
+std::string withConstraints(const std::string& constraints) {
+  return SceneDir::dwc("<FixedBody frame=\"Table\"/>\n" + rigidObject(kEstimate) +
+                       "<KinematicBody frame=\"Ghost\"><MaterialID>Plastic</MaterialID>"
+                       "</KinematicBody>\n" +
+                       constraints);
+}
+
+/// A <Constraint name="C" type=TYPE parent="Table" child="Object"> holding `inside`.
+std::string constraint(const std::string& type, const std::string& inside,
+                       const std::string& name = "C") {
+  return "<Constraint name=\"" + name + "\" type=\"" + type +
+         "\" parent=\"Table\" child=\"Object\">\n" + inside + "</Constraint>\n";
+}
+
 std::vector<Case> cases() {
   const std::string sdhWithBadJoint =
       sdhDevice("",
@@ -306,6 +321,97 @@ std::vector<Case> cases() {
        "top.dwc.xml",
        "<FixedBody",
        "has no collision geometry"},
+      {"UnknownConstraintType",
+       withConstraints(constraint("Hinge", "")),
+       {},
+       "top.dwc.xml",
+       "<Constraint name=\"C\"",
+       "unknown type \"Hinge\" (expected Fixed, Prismatic, Revolute, Universal, Spherical, Piston, "
+       "PrismaticRotoid, PrismaticUniversal, Free; any case)"},
+      {"ConstraintOnAnUnknownBody",
+       withConstraints("<Constraint name=\"C\" type=\"Fixed\" parent=\"Table\" "
+                       "child=\"Nothing\"/>\n"),
+       {},
+       "top.dwc.xml",
+       "<Constraint name=\"C\"",
+       "unknown child body \"Nothing\" (expected the frame name of a RigidBody"},
+      {"ConstraintWithParentAsChild",
+       withConstraints("<Constraint name=\"C\" type=\"Fixed\" parent=\"Object\" "
+                       "child=\"Object\"/>\n"),
+       {},
+       "top.dwc.xml",
+       "<Constraint name=\"C\"",
+       "parent and child are the same body \"Object\"; expected two different bodies"},
+      {"ConstraintBetweenTwoBodiesThatCannotMove",
+       withConstraints("<Constraint name=\"C\" type=\"Revolute\" parent=\"Table\" "
+                       "child=\"Ghost\"/>\n"),
+       {},
+       "top.dwc.xml",
+       "<Constraint name=\"C\"",
+       "parent \"Table\" is fixed and child \"Ghost\" is kinematic; expected at least one rigid "
+       "body"},
+      {"TwoConstraintsOfOneName",
+       withConstraints(constraint("Fixed", "") +
+                       "<Constraint name=\"C\" type=\"Spherical\" parent=\"Object\" "
+                       "child=\"Ghost\"/>\n"),
+       {},
+       "top.dwc.xml",
+       "<Constraint name=\"C\" type=\"Spherical\"",
+       "a second constraint named \"C\" (the first is at line 9)"},
+      {"ConstraintLimitsNotOnePerDof",
+       withConstraints(constraint("Revolute",
+                                  "<Limits>\n<Limit low=\"-1\"/>\n<Limit high=\"1\"/>\n"
+                                  "</Limits>\n")),
+       {},
+       "top.dwc.xml",
+       "<Limits>",
+       "expected 1 <Limit> (one per free DOF of a Revolute constraint: rotation about z), got 2"},
+      {"ConstraintLimitLowAboveHigh",
+       withConstraints(
+           constraint("Prismatic", "<Limits>\n<Limit low=\"0.5\" high=\"0.1\"/>\n</Limits>\n")),
+       {},
+       "top.dwc.xml",
+       "<Limit low",
+       "low 0.5 > high 0.1; expected low <= high"},
+      {"ConstraintAngularLimitBeyondPi",
+       withConstraints(constraint("Piston",
+                                  "<Limits>\n<Limit low=\"-1\" high=\"1\"/>\n"
+                                  "<Limit high=\"4\"/>\n</Limits>\n")),
+       {},
+       "top.dwc.xml",
+       "<Limit high=\"4\"",
+       "an angular limit must lie in [-pi, pi] rad"},
+      {"SphericalConstraintWithLimits",
+       withConstraints(
+           constraint("Spherical", "<Limits>\n<Limit/>\n<Limit/>\n<Limit/>\n</Limits>\n")),
+       {},
+       "top.dwc.xml",
+       "<Limits>",
+       "a Spherical constraint takes no limits"},
+      {"ConstraintSpringMatrixOfTheWrongSize",
+       withConstraints(constraint("Universal",
+                                  "<Spring>\n<Compliance>1 0 0 1</Compliance>\n"
+                                  "<Damping>1 0 0</Damping>\n</Spring>\n")),
+       {},
+       "top.dwc.xml",
+       "<Damping>",
+       "expected 4 numbers (a 2 x 2 matrix for the free DOF of a Universal constraint), got 3"},
+      {"ConstraintSpringIsNotSupportedYet",
+       withConstraints(constraint("Revolute",
+                                  "<Spring>\n<Compliance>0.001</Compliance>\n"
+                                  "<Damping>0.1</Damping>\n</Spring>\n")),
+       {},
+       "top.dwc.xml",
+       "<Spring>",
+       "springs on constraints are not supported yet"},
+      {"ConstraintRotationThatIsNoRotation",
+       withConstraints(constraint("Fixed",
+                                  "<Transform3D>\n<Rotation3D>1 0 0 0 1 0 0 0 2</Rotation3D>\n"
+                                  "</Transform3D>\n")),
+       {},
+       "top.dwc.xml",
+       "<Rotation3D>",
+       "not a rotation matrix"},
       {"ErrorInTheWorkCell",
        "<DynamicWorkcell workcell=\"broken.wc.xml\">\n</DynamicWorkcell>\n",
        {{"broken.wc.xml",

@@ -78,6 +78,7 @@ class Builder {
     for (const PlannedBody& p : freeBodies_) addBody(p);
     for (const PlannedDevice& d : devices_) addDevice(d);
     for (const ControllerDesc& c : desc_.controllers) addController(c);
+    for (const ConstraintDesc& c : desc_.constraints) addConstraint(c);
     if (sink_.hasErrors()) return nullptr;
     return std::move(dwc_);
   }
@@ -102,6 +103,7 @@ class Builder {
   bool setMassProperties(const BodyDesc& b, Body& body);
   void addDevice(const PlannedDevice& d);
   void addController(const ControllerDesc& c);
+  void addConstraint(const ConstraintDesc& c);
 
   const DynamicWorkCellDesc& desc_;
   DiagnosticSink& sink_;
@@ -448,6 +450,55 @@ void Builder::addController(const ControllerDesc& c) {
   }
   try {
     dwc_->addController(std::move(controller));
+  } catch (const std::invalid_argument& e) {
+    sink_.error(c.location, c.element + ": " + e.what());
+  }
+}
+
+const char* kindName(BodyKind kind) {
+  switch (kind) {
+    case BodyKind::kRigid:
+      return "rigid";
+    case BodyKind::kKinematic:
+      return "kinematic";
+    case BodyKind::kFixed:
+      return "fixed";
+  }
+  return "unknown";
+}
+
+void Builder::addConstraint(const ConstraintDesc& c) {
+  if (!c.type || c.parent == c.child) return;  // reported by the parser
+  bool ok = true;
+  const auto find = [&](const std::string& name, const char* role) {
+    const BodyId id = dwc_->findBody(name);
+    if (!id.valid()) {
+      sink_.error(c.location, c.element + ": unknown " + role + " body \"" + name +
+                                  "\" (expected the frame name of a RigidBody, FixedBody, "
+                                  "KinematicBody or device body)");
+      ok = false;
+    }
+    return id;
+  };
+  rwsim::dynamics::Constraint constraint;
+  constraint.parent = find(c.parent, "parent");
+  constraint.child = find(c.child, "child");
+  if (!ok) return;
+  const BodyKind parentKind = dwc_->body(constraint.parent).kind;
+  const BodyKind childKind = dwc_->body(constraint.child).kind;
+  if (parentKind != BodyKind::kRigid && childKind != BodyKind::kRigid) {
+    sink_.error(c.location, c.element + ": parent \"" + c.parent + "\" is " + kindName(parentKind) +
+                                " and child \"" + c.child + "\" is " + kindName(childKind) +
+                                "; expected at least one rigid body (one that can move)");
+    return;
+  }
+  constraint.name = c.name;
+  constraint.type = *c.type;
+  constraint.X_parent_constraint = c.X_parent_constraint;
+  constraint.limits = c.limits;
+  constraint.spring = c.spring;
+  try {
+    dwc_->addConstraint(std::move(constraint));
   } catch (const std::invalid_argument& e) {
     sink_.error(c.location, c.element + ": " + e.what());
   }

@@ -9,6 +9,7 @@
 #include "rw/common/diagnostic_sink.hpp"
 #include "rw/kinematics/property_map.hpp"
 #include "rw/math/types.hpp"
+#include "rwsim/dynamics/constraint.hpp"
 #include "rwsim/dynamics/material_map.hpp"
 
 namespace rwsim::loaders::detail {
@@ -103,6 +104,28 @@ struct ControllerDesc {
   double timeStep = 0.01;
 };
 
+/// A <Constraint name type parent child>.
+struct ConstraintDesc {
+  /// Constraint name.
+  std::string name;
+  /// How messages name the element.
+  std::string element;
+  /// Where the element starts.
+  SourceLocation location;
+  /// The type (none if the type was bad; reported by the parser).
+  std::optional<rwsim::dynamics::ConstraintType> type;
+  /// Parent body name as written.
+  std::string parent;
+  /// Child body name as written.
+  std::string child;
+  /// The <Transform3D>, identity if none.
+  rw::math::Transform3D X_parent_constraint = rw::math::Transform3D::Identity();
+  /// One entry per <Limit> (checked against the type's DOF by the parser).
+  std::vector<rwsim::dynamics::ConstraintLimit> limits;
+  /// The <Spring>, if given.
+  std::optional<rwsim::dynamics::ConstraintSpring> spring;
+};
+
 /// Everything a dynamic workcell file and its includes say, before the workcell is consulted.
 struct DynamicWorkCellDesc {
   /// The workcell attribute as written.
@@ -125,6 +148,8 @@ struct DynamicWorkCellDesc {
   std::vector<DeviceDesc> devices;
   /// PDDeviceController elements in document order.
   std::vector<ControllerDesc> controllers;
+  /// Constraint elements in document order.
+  std::vector<ConstraintDesc> constraints;
 };
 
 }  // namespace rwsim::loaders::detail

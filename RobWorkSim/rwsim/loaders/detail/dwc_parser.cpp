@@ -8,12 +8,14 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <numbers>
 #include <set>
 #include <sstream>
 #include <utility>
 
 #include "rw/common/numbers.hpp"
 #include "rw/common/xml_attributes.hpp"
+#include "rw/math/rpy.hpp"
 
 namespace rwsim::loaders::detail {
 
@@ -34,12 +36,11 @@ constexpr std::array<std::string_view, 5> kControllerTypes = {"Position", "CntPo
                                                               "Force", "Current"};
 
 /// Elements read but not simulated by this project.
-constexpr std::array<std::string_view, 11> kNotSimulated = {"TactileArraySensor",
+constexpr std::array<std::string_view, 10> kNotSimulated = {"TactileArraySensor",
                                                             "BodyContactSensor",
                                                             "FTSensor",
                                                             "TactileMultiAxisSensor",
                                                             "SuctionCup",
-                                                            "Constraint",
                                                             "KinematicDevice",
                                                             "PoseDeviceController",
                                                             "SerialDeviceController",
@@ -47,8 +48,12 @@ constexpr std::array<std::string_view, 11> kNotSimulated = {"TactileArraySensor"
                                                             "Spring"};
 
 /// Elements whose text is a list of numbers (for explainDynamicWorkCellValueError).
-constexpr std::array<std::string_view, 8> kNumberElements = {
-    "Gravity", "Mass", "COG", "Inertia", "PDParams", "TimeStep", "CollisionMargin", "ForceLimit"};
+constexpr std::array<std::string_view, 13> kNumberElements = {
+    "Gravity",    "Mass", "COG", "Inertia",    "PDParams",   "TimeStep", "CollisionMargin",
+    "ForceLimit", "Pos",  "RPY", "Rotation3D", "Compliance", "Damping"};
+
+/// Tolerance of the orthonormality check of a <Rotation3D>.
+constexpr double kRotationTolerance = 1e-6;
 
 std::string lower(std::string_view text) {
   std::string out(text);
@@ -109,6 +114,10 @@ class Parser {
   void rigidDevice(const XmlElement& e);
   void deviceBase(const XmlElement& child, DeviceDesc& device);
   void controller(const XmlElement& e);
+  void constraint(const XmlElement& e);
+  std::optional<rw::math::Transform3D> transform(const XmlElement& e);
+  void constraintLimits(const XmlElement& e, ConstraintDesc& c);
+  void constraintSpring(const XmlElement& e, ConstraintDesc& c);
   void finish();
 
   std::optional<double> number(const XmlElement& e) { return read_.textNumber(e); }
@@ -145,6 +154,8 @@ void Parser::topLevelElement(const XmlElement& e) {
     rigidDevice(e);
   } else if (n == "PDDeviceController") {
     controller(e);
+  } else if (n == "Constraint") {
+    constraint(e);
   } else if (std::find(kNotSimulated.begin(), kNotSimulated.end(), n) != kNotSimulated.end()) {
     warning(e, "not simulated by this project; ignored");
   } else {
@@ -463,6 +474,180 @@ void Parser::controller(const XmlElement& e) {
                                      [](const XmlElement& x) { return x.name == "PDParams"; });
   if (!hasParams) error(e, "missing <PDParams> (a P and a D gain per DOF)");
   desc_.controllers.push_back(std::move(c));
+}
+
+void Parser::constraint(const XmlElement& e) {
+  using rwsim::dynamics::constraintTypeFromName;
+  ConstraintDesc c;
+  c.name = e.attributeOr("name", "");
+  c.parent = e.attributeOr("parent", "");
+  c.child = e.attributeOr("child", "");
+  c.element = describeElement(e);
+  c.location = e.location;
+  const std::string type = e.attributeOr("type", "");
+  c.type = constraintTypeFromName(type);
+  if (!c.type) {
+    error(e, "unknown type \"" + type + "\" (expected " + rwsim::dynamics::constraintTypeNames() +
+                 "; any case)");
+  }
+  for (const ConstraintDesc& other : desc_.constraints) {
+    if (other.name == c.name) {
+      error(e, "a second constraint named \"" + c.name + "\" (the first is at line " +
+                   std::to_string(other.location.line) + ")");
+      break;
+    }
+  }
+  if (c.parent == c.child) {
+    error(e,
+          "parent and child are the same body \"" + c.parent + "\"; expected two different bodies");
+  }
+  std::set<std::string> seen;
+  for (const XmlElement& child : e.children) {
+    if (!seen.insert(child.name).second) {
+      error(child, "given twice in " + c.element);
+      continue;
+    }
+    if (child.name == "Transform3D") {
+      if (auto X = transform(child)) c.X_parent_constraint = *X;
+    } else if (child.name == "Limits") {
+      constraintLimits(child, c);
+    } else if (child.name == "Spring") {
+      constraintSpring(child, c);
+    }
+  }
+  if (c.type == rwsim::dynamics::ConstraintType::kFree && seen.count("Spring") == 0) {
+    warning(e, "a Free constraint leaves all six DOF free: without a <Spring> it has no effect");
+  }
+  desc_.constraints.push_back(std::move(c));
+}
+
+std::optional<rw::math::Transform3D> Parser::transform(const XmlElement& e) {
+  rw::math::Transform3D X = rw::math::Transform3D::Identity();
+  bool ok = true;
+  const XmlElement* rotation = nullptr;
+  for (const XmlElement& c : e.children) {
+    if (c.name == "Pos") {
+      const auto p = vector3(c);
+      if (p) X.translation() = *p;
+      ok = ok && p.has_value();
+    } else if (c.name == "RPY" || c.name == "Rotation3D") {
+      if (rotation != nullptr) {
+        error(c, "a second rotation in <Transform3D> (the first is <" + rotation->name +
+                     "> at line " + std::to_string(rotation->location.line) +
+                     "); expected one <RPY> or <Rotation3D>");
+        ok = false;
+        continue;
+      }
+      rotation = &c;
+      if (c.name == "RPY") {
+        const auto rpy = vector3(c);
+        if (rpy) X.linear() = rw::math::rpyToRotation(*rpy);  // radians in a .dwc.xml
+        ok = ok && rpy.has_value();
+        continue;
+      }
+      const auto values = read_.textNumbers(c, 9, "a row-major 3x3 rotation matrix");
+      if (!values) {
+        ok = false;
+        continue;
+      }
+      Eigen::Matrix3d R;
+      for (int k = 0; k < 9; ++k) R(k / 3, k % 3) = (*values)[static_cast<std::size_t>(k)];
+      if (!(R.transpose() * R).isApprox(Eigen::Matrix3d::Identity(), kRotationTolerance) ||
+          !(R.determinant() > 0.0)) {
+        error(c, "not a rotation matrix (expected orthonormal rows and determinant +1)");
+        ok = false;
+        continue;
+      }
+      X.linear() = R;
+    }
+  }
+  if (!ok) return std::nullopt;
+  return X;
+}
+
+void Parser::constraintLimits(const XmlElement& e, ConstraintDesc& c) {
+  using rwsim::dynamics::ConstraintLimit;
+  using rwsim::dynamics::ConstraintType;
+  bool ok = true;
+  std::vector<ConstraintLimit> limits;
+  for (const XmlElement& l : e.children) {
+    if (l.name != "Limit") continue;  // the schema rejects anything else
+    ConstraintLimit limit;
+    for (const char* key : {"low", "high"}) {
+      if (!l.has(key)) continue;
+      const auto value = read_.optionalNumber(l, key);
+      if (!value) {
+        ok = false;
+        continue;
+      }
+      (std::string_view(key) == "low" ? limit.low : limit.high) = *value;
+    }
+    if (limit.low > limit.high) {
+      error(l, "low " + formatNumber(limit.low) + " > high " + formatNumber(limit.high) +
+                   "; expected low <= high");
+      ok = false;
+    }
+    const bool angular = c.type && limits.size() >= rwsim::dynamics::constraintDof(*c.type).linear;
+    constexpr double kPi = std::numbers::pi;
+    if (angular && ((std::isfinite(limit.low) && limit.low < -kPi) ||
+                    (std::isfinite(limit.high) && limit.high > kPi))) {
+      error(l, "an angular limit must lie in [-pi, pi] rad (ODE's stop range)");
+      ok = false;
+    }
+    limits.push_back(limit);
+  }
+  if (!ok || !c.type) return;
+  const std::string typeName(rwsim::dynamics::constraintTypeName(*c.type));
+  if (*c.type == ConstraintType::kFree) {
+    warning(e, "ignored: a Free constraint has no stops (RobWork ignores them too)");
+    return;
+  }
+  if (*c.type == ConstraintType::kSpherical) {
+    error(e, "a Spherical constraint takes no limits (RobWork's ODE engine rejects them too)");
+    return;
+  }
+  const std::size_t dof = rwsim::dynamics::constraintDof(*c.type).total();
+  if (limits.size() != dof) {
+    error(e, "expected " + std::to_string(dof) + " <Limit> (one per free DOF of a " + typeName +
+                 " constraint: " + std::string(rwsim::dynamics::constraintDofText(*c.type)) +
+                 "), got " + std::to_string(limits.size()));
+    return;
+  }
+  c.limits = std::move(limits);
+}
+
+void Parser::constraintSpring(const XmlElement& e, ConstraintDesc& c) {
+  const std::size_t n = c.type ? rwsim::dynamics::constraintDof(*c.type).total() : 0;
+  const auto size = static_cast<Eigen::Index>(n);
+  rwsim::dynamics::ConstraintSpring spring{Eigen::MatrixXd::Zero(size, size),
+                                           Eigen::MatrixXd::Zero(size, size)};
+  bool ok = c.type.has_value();
+  for (const XmlElement& m : e.children) {
+    if (m.name != "Compliance" && m.name != "Damping") continue;  // the schema rejects others
+    const auto values = numbers(m);
+    if (!values || !c.type) {
+      ok = false;
+      continue;
+    }
+    if (values->size() != n * n) {
+      error(m, "expected " + std::to_string(n * n) + " numbers (a " + std::to_string(n) + " x " +
+                   std::to_string(n) + " matrix for the free DOF of a " +
+                   std::string(rwsim::dynamics::constraintTypeName(*c.type)) +
+                   " constraint), got " + std::to_string(values->size()));
+      ok = false;
+      continue;
+    }
+    Eigen::MatrixXd& target = m.name == "Compliance" ? spring.compliance : spring.damping;
+    for (std::size_t k = 0; k < values->size(); ++k) {
+      // Column by column, as RobWork's readMatrixD fills it.
+      target(static_cast<Eigen::Index>(k % n), static_cast<Eigen::Index>(k / n)) = (*values)[k];
+    }
+  }
+  if (!ok) return;  // the matrix's own error says enough
+  c.spring = std::move(spring);
+  error(e,
+        "springs on constraints are not supported yet (this project does not simulate "
+        "RobWorkSim's compliance/damping forces); remove the <Spring>");
 }
 
 void Parser::finish() {

@@ -123,6 +123,134 @@ SimJoint describeJoint(const rw::kinematics::FrameTree& tree, const dynamics::Ri
   return sj;
 }
 
+/// How one free DOF of a constraint maps onto its ODE joint: the parameter setter, the
+/// position getter and the parameter group (dParamLoStop + group * dParamGroup).
+struct OdeAxis {
+  void (*setParam)(dJointID, int, dReal);
+  dReal (*position)(dJointID);
+  int group;
+};
+
+/// The ODE axes of a constraint type's free DOF, in dynamics::Constraint::limits order (linear
+/// first). RobWorkSim's ODE engine (ODEConstraint::setLoStop) sets stops for DOF 0 and 1 only,
+/// in ODE's groups 0 and 1; for a PrismaticUniversal those are the universal axes, while here
+/// its first DOF is the translation (ODE's group 2) and all three get stops.
+std::vector<OdeAxis> odeAxes(dynamics::ConstraintType type) {
+  using T = dynamics::ConstraintType;
+  switch (type) {
+    case T::kPrismatic:
+      return {{dJointSetSliderParam, dJointGetSliderPosition, 0}};
+    case T::kRevolute:
+      return {{dJointSetHingeParam, dJointGetHingeAngle, 0}};
+    case T::kUniversal:
+      return {{dJointSetUniversalParam, dJointGetUniversalAngle1, 0},
+              {dJointSetUniversalParam, dJointGetUniversalAngle2, 1}};
+    case T::kPiston:
+      return {{dJointSetPistonParam, dJointGetPistonPosition, 0},
+              {dJointSetPistonParam, dJointGetPistonAngle, 1}};
+    case T::kPrismaticRotoid:
+      return {{dJointSetPRParam, dJointGetPRPosition, 0}, {dJointSetPRParam, dJointGetPRAngle, 1}};
+    case T::kPrismaticUniversal:
+      return {{dJointSetPUParam, dJointGetPUPosition, 2},
+              {dJointSetPUParam, dJointGetPUAngle1, 0},
+              {dJointSetPUParam, dJointGetPUAngle2, 1}};
+    case T::kFixed:
+    case T::kSpherical:
+    case T::kFree:
+      break;
+  }
+  return {};
+}
+
+/// Rows of a constraint's ODE joint without stops.
+std::size_t baseRows(dynamics::ConstraintType type) {
+  using T = dynamics::ConstraintType;
+  switch (type) {
+    case T::kFixed:
+      return 6;
+    case T::kPrismatic:
+    case T::kRevolute:
+      return 5;
+    case T::kUniversal:
+    case T::kPiston:
+    case T::kPrismaticRotoid:
+      return 4;
+    case T::kSpherical:
+    case T::kPrismaticUniversal:
+      return 3;
+    case T::kFree:
+      break;
+  }
+  return 0;
+}
+
+/// Creates the ODE joint of a constraint between ODE bodies `first` and `second` (either may be
+/// null, not both), with the axes of the constraint frame X_W_c (RobWorkSim's
+/// ODEConstraint::createJoint).
+dJointID createConstraintJoint(dWorldID world, dynamics::ConstraintType type, dBodyID first,
+                               dBodyID second, const Transform3D& X_W_c) {
+  using T = dynamics::ConstraintType;
+  const Vector3D p = X_W_c.translation();
+  const Vector3D x = X_W_c.linear().col(0);
+  const Vector3D y = X_W_c.linear().col(1);
+  const Vector3D z = X_W_c.linear().col(2);
+  dJointID j = nullptr;
+  switch (type) {
+    case T::kFixed:
+      j = dJointCreateFixed(world, nullptr);
+      dJointAttach(j, first, second);
+      dJointSetFixed(j);
+      break;
+    case T::kPrismatic:
+      j = dJointCreateSlider(world, nullptr);
+      dJointAttach(j, first, second);
+      dJointSetSliderAxis(j, z.x(), z.y(), z.z());
+      break;
+    case T::kRevolute:
+      j = dJointCreateHinge(world, nullptr);
+      dJointAttach(j, first, second);
+      dJointSetHingeAnchor(j, p.x(), p.y(), p.z());
+      dJointSetHingeAxis(j, z.x(), z.y(), z.z());
+      break;
+    case T::kUniversal:
+      j = dJointCreateUniversal(world, nullptr);
+      dJointAttach(j, first, second);
+      dJointSetUniversalAnchor(j, p.x(), p.y(), p.z());
+      dJointSetUniversalAxis1(j, x.x(), x.y(), x.z());
+      dJointSetUniversalAxis2(j, y.x(), y.y(), y.z());
+      break;
+    case T::kSpherical:
+      j = dJointCreateBall(world, nullptr);
+      dJointAttach(j, first, second);
+      dJointSetBallAnchor(j, p.x(), p.y(), p.z());
+      break;
+    case T::kPiston:
+      j = dJointCreatePiston(world, nullptr);
+      dJointAttach(j, first, second);
+      dJointSetPistonAnchor(j, p.x(), p.y(), p.z());
+      dJointSetPistonAxis(j, z.x(), z.y(), z.z());
+      break;
+    case T::kPrismaticRotoid:
+      j = dJointCreatePR(world, nullptr);
+      dJointAttach(j, first, second);
+      dJointSetPRAnchor(j, p.x(), p.y(), p.z());
+      dJointSetPRAxis1(j, z.x(), z.y(), z.z());
+      dJointSetPRAxis2(j, x.x(), x.y(), x.z());
+      break;
+    case T::kPrismaticUniversal:
+      j = dJointCreatePU(world, nullptr);
+      dJointAttach(j, first, second);
+      dJointSetPUAnchor(j, p.x(), p.y(), p.z());
+      dJointSetPUAxis1(j, x.x(), x.y(), x.z());
+      dJointSetPUAxis2(j, y.x(), y.y(), y.z());
+      dJointSetPUAxis3(j, z.x(), z.y(), z.z());
+      break;
+    case T::kFree:
+      break;
+  }
+  return j;
+}
+
 }  // namespace
 
 Transform3D odePose(dBodyID body) {
@@ -153,6 +281,7 @@ OdeWorld::OdeWorld(const dynamics::DynamicWorkCell& dwc, const rw::kinematics::S
   try {
     createBodies(dwc, state);
     createDevices(dwc, state);
+    createConstraints(dwc, state);
   } catch (...) {
     destroy();
     throw;
@@ -233,6 +362,59 @@ void OdeWorld::createDevices(const dynamics::DynamicWorkCell& dwc,
     }
     closeLoops(dwc, rd, fk, sim);
   }
+}
+
+void OdeWorld::createConstraints(const dynamics::DynamicWorkCell& dwc,
+                                 const rw::kinematics::State& state) {
+  const rw::kinematics::FKTable fk(dwc.workcell().frames(), state);
+  constraints_.reserve(dwc.constraints().size());
+  for (std::size_t i = 0; i < dwc.constraints().size(); ++i) {
+    const dynamics::Constraint& c = dwc.constraints()[i];
+    if (c.spring) {
+      throw std::invalid_argument("constraint " + c.name +
+                                  ": springs on constraints are not simulated yet");
+    }
+    SimConstraint sim;
+    sim.index = i;
+    sim.type = c.type;
+    const dBodyID parent = bodies_[c.parent.index()].id;
+    const dBodyID child = bodies_[c.child.index()].id;
+    const Transform3D X_W_c = fk.worldTransform(dwc.body(c.parent).frame) * c.X_parent_constraint;
+    dBodyID first = parent;
+    if (first == nullptr && c.type != dynamics::ConstraintType::kFree) {
+      if (staticAnchor_ == nullptr) {
+        staticAnchor_ = dBodyCreate(world_);
+        dBodySetKinematic(staticAnchor_);
+      }
+      first = staticAnchor_;
+    }
+    sim.id = createConstraintJoint(world_, c.type, first, child, X_W_c);
+    const std::vector<OdeAxis> axes = odeAxes(c.type);
+    if (!c.limits.empty() && c.limits.size() != axes.size()) {
+      throw std::invalid_argument("constraint " + c.name + ": limits do not match its free DOF");
+    }
+    for (std::size_t k = 0; k < c.limits.size(); ++k) {
+      // ODE's coordinate is minus the child's motion relative to the parent.
+      const double lo = -c.limits[k].high;
+      const double hi = -c.limits[k].low;
+      const int group = axes[k].group * dParamGroup;
+      axes[k].setParam(sim.id, dParamLoStop + group, std::isfinite(lo) ? lo : -dInfinity);
+      axes[k].setParam(sim.id, dParamHiStop + group, std::isfinite(hi) ? hi : dInfinity);
+      sim.odeStops.emplace_back(lo, hi);
+    }
+    constraints_.push_back(std::move(sim));
+  }
+}
+
+std::size_t OdeWorld::constraintRows(const SimConstraint& c) const {
+  std::size_t rows = baseRows(c.type);
+  if (c.odeStops.empty()) return rows;
+  const std::vector<OdeAxis> axes = odeAxes(c.type);
+  for (std::size_t k = 0; k < axes.size(); ++k) {
+    const double pos = axes[k].position(c.id);
+    if (pos <= c.odeStops[k].first || pos >= c.odeStops[k].second) ++rows;
+  }
+  return rows;
 }
 
 void OdeWorld::closeLoops(const dynamics::DynamicWorkCell& dwc, const dynamics::RigidDevice& rd,

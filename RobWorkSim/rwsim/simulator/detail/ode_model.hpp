@@ -88,13 +88,32 @@ struct SimDevice {
   std::vector<dJointID> welds;
 };
 
+/// A constraint of the dynamic workcell (dynamics::Constraint) as one ODE joint. As in
+/// RobWorkSim's ODE engine the parent is ODE's first body and the child its second, so ODE's
+/// coordinates are minus the child's motion relative to the parent. A fixed child is ODE's
+/// static world (body 0). A fixed parent is OdeWorld's static anchor, a kinematic ODE body that
+/// never moves: attached to body 0 first, ODE swaps the two bodies and then measures a hinge's
+/// stops in the opposite sense to its angle.
+struct SimConstraint {
+  /// Index in DynamicWorkCell::constraints().
+  std::size_t index = 0;
+  /// What it leaves free.
+  dynamics::ConstraintType type = dynamics::ConstraintType::kFixed;
+  /// The ODE joint; null for a Free constraint (no joint).
+  dJointID id = nullptr;
+  /// Stops in ODE's coordinates, one (low, high) pair per free DOF when the constraint has
+  /// limits; empty otherwise.
+  std::vector<std::pair<double, double>> odeStops;
+};
+
 /// An ODE world holding every body, joint and motor of a dynamic workcell in one State.
 /// Owns the ODE objects; not copyable.
 class OdeWorld {
  public:
   /// Builds the world with bodies where `state` puts them, at rest.
   /// @throws std::invalid_argument for bodies or devices ODE cannot simulate (mass <= 0,
-  /// inertia not positive definite, a joint link that is not a rigid body, ...).
+  /// inertia not positive definite, a joint link that is not a rigid body, a constraint with a
+  /// spring, ...).
   OdeWorld(const dynamics::DynamicWorkCell& dwc, const rw::kinematics::State& state,
            const SimulatorOptions& options);
   ~OdeWorld();
@@ -113,6 +132,12 @@ class OdeWorld {
   std::vector<SimDevice>& devices() { return devices_; }
   /// Devices.
   const std::vector<SimDevice>& devices() const { return devices_; }
+  /// Constraints, indexed like DynamicWorkCell::constraints().
+  const std::vector<SimConstraint>& constraints() const { return constraints_; }
+  /// Constraint rows the constraint's joint gives ODE's next step: 6 for Fixed, 5 for Prismatic
+  /// and Revolute, 4 for Universal, Piston and PrismaticRotoid, 3 for Spherical and
+  /// PrismaticUniversal, 0 for Free, plus 1 per DOF at or past one of its stops.
+  std::size_t constraintRows(const SimConstraint& constraint) const;
   /// Marks the world as left inconsistent by an ODE error thrown out of a step: its ODE objects
   /// are then leaked instead of destroyed (destroying them would trip ODE's own assertions).
   void poison() { poisoned_ = true; }
@@ -137,6 +162,7 @@ class OdeWorld {
  private:
   void createBodies(const dynamics::DynamicWorkCell& dwc, const rw::kinematics::State& state);
   void createDevices(const dynamics::DynamicWorkCell& dwc, const rw::kinematics::State& state);
+  void createConstraints(const dynamics::DynamicWorkCell& dwc, const rw::kinematics::State& state);
   void destroy();
   void closeLoops(const dynamics::DynamicWorkCell& dwc, const dynamics::RigidDevice& rd,
                   const rw::kinematics::FKTable& fk, SimDevice& sim);
@@ -149,6 +175,8 @@ class OdeWorld {
   bool poisoned_ = false;
   std::vector<SimBody> bodies_;
   std::vector<SimDevice> devices_;
+  std::vector<SimConstraint> constraints_;
+  dBodyID staticAnchor_ = nullptr;
 };
 
 /// Pose of an ODE body's own frame (its centre of mass).
