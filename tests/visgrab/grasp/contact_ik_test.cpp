@@ -143,6 +143,15 @@ TEST(ContactIk, Pg70TwoJaws) {
   EXPECT_NEAR(r.qOpen[0], r.qContact[0] + 0.01, 1e-4);  // each jaw backed off by 1 cm
 }
 
+// Every junction of a parallel hand closes at q (residual at rounding level).
+void expectLoopsClosed(const HandGraspSetup& hand, const Q& q) {
+  auto state = hand.workcell().defaultState();
+  hand.device().setQ(q, state);
+  for (std::size_t j = 0; j < hand.device().parallel()->junctions().size(); ++j) {
+    EXPECT_LT(hand.device().parallel()->residual(j, state).position, 1e-9) << "junction " << j;
+  }
+}
+
 // The project's 2F-85 is a parallel device: each finger a closed four-bar linkage, so its joint
 // moves the pads through the closure solver. Two contacts 50 mm apart along the TCP's x axis,
 // pushing towards each other: the solution puts the pads on them at the knuckle angle where the
@@ -188,11 +197,7 @@ TEST(ContactIk, Robotiq2F85ClosedLinkages) {
                               {"Robotiq2F85.LeftPad", {0, 0, 0}, {0, 0, 1}}};
   EXPECT_LT(deviation(*hand, r, contacts, pads), 0.001);
   // The linkage closed at the solution: every junction's residual at rounding level.
-  auto state = hand->workcell().defaultState();
-  hand->device().setQ(r.qContact, state);
-  for (std::size_t j = 0; j < hand->device().parallel()->junctions().size(); ++j) {
-    EXPECT_LT(hand->device().parallel()->residual(j, state).position, 1e-9);
-  }
+  expectLoopsClosed(*hand, r.qContact);
 }
 
 // RobWork's own Robotiq model (RW_COMPAT_DATA, scenes/hands/robwork-robotiq): three DOF, the
@@ -219,11 +224,7 @@ TEST(ContactIk, RobWorksRobotiqThreeDofClosedLoops) {
   const std::vector<Pad> pads{{"RobotiqFingerControl.RightMotorEnd", {0, 0, 0}, {0, 0, 1}},
                               {"RobotiqFingerControl.LeftMotorEnd", {0, 0, 0}, {0, 0, 1}}};
   EXPECT_LT(deviation(*hand, r, contacts, pads), 0.001);
-  auto state = hand->workcell().defaultState();
-  hand->device().setQ(r.qContact, state);
-  for (std::size_t j = 0; j < hand->device().parallel()->junctions().size(); ++j) {
-    EXPECT_LT(hand->device().parallel()->residual(j, state).position, 1e-9);
-  }
+  expectLoopsClosed(*hand, r.qContact);
 }
 
 TEST(ContactIk, ContactsTooFarApartAreInvalid) {

@@ -100,6 +100,24 @@ visgrab::grasp::GraspRequest downAt(const std::string& id, const Vector3D& tcp) 
   return r;
 }
 
+// Runs `grasps` with `hand` into `dir` (no grasp may be rejected) and returns the trials by
+// grasp id.
+std::map<std::string, visgrab::results::TrialRecord> runGrasps(
+    const std::vector<visgrab::grasp::GraspRequest>& grasps, const fs::path& hand,
+    const fs::path& dir, int threads = 1) {
+  visgrab::taskio::writeGraspList(grasps, dir / "plan.csv");
+  visgrab::runner::RunOptions options;
+  options.database = visgrab::test::testDatabase().root();
+  options.grasps = {dir / "plan.csv"};
+  options.out = dir / "results";
+  options.hand = hand;
+  options.threads = threads;
+  EXPECT_TRUE(visgrab::runner::runBenchmark(options).rejected.empty());
+  std::map<std::string, visgrab::results::TrialRecord> trial;
+  for (const auto& t : visgrab::results::readResults(options.out).trials) trial[t.graspId] = t;
+  return trial;
+}
+
 TEST(NewHand, TheSceneGetsTheGivenHand) {
   const auto hand = visgrab::grasp::loadHandGraspSetup(handFolder());  // the folder is enough
   EXPECT_EQ(hand->deviceName(), "Jaws");
@@ -165,16 +183,7 @@ TEST(NewHand, TheLinkedClawHoldsTheCanAndItsClosingsEnd) {
   const Vector3D high = canBase() + Vector3D(0, 0, 0.08);
   const std::vector<visgrab::grasp::GraspRequest> grasps = {
       downAt("around", high), downAt("beside", high + Vector3D(0.25, 0, 0))};
-  visgrab::taskio::writeGraspList(grasps, tmp.path() / "plan.csv");
-  visgrab::runner::RunOptions options;
-  options.database = visgrab::test::testDatabase().root();
-  options.grasps = {tmp.path() / "plan.csv"};
-  options.out = tmp.path() / "results";
-  options.hand = claw;
-  const auto summary = visgrab::runner::runBenchmark(options);
-  EXPECT_TRUE(summary.rejected.empty());
-  std::map<std::string, visgrab::results::TrialRecord> trial;
-  for (const auto& t : visgrab::results::readResults(options.out).trials) trial[t.graspId] = t;
+  const auto trial = runGrasps(grasps, claw, tmp.path());
   ASSERT_EQ(trial.size(), 2u);
   EXPECT_EQ(rwsim::simulator::outcomeName(trial.at("around").outcome), "stable")
       << trial.at("around").detail;
@@ -303,16 +312,7 @@ TEST(NewHand, RobWorksRobotiqRunsAsAHand) {
   const std::vector<visgrab::grasp::GraspRequest> grasps = {
       downAt("around", high), downAt("beside", high + Vector3D(0.25, 0, 0))};
   visgrab::test::TempDir tmp;
-  visgrab::taskio::writeGraspList(grasps, tmp.path() / "plan.csv");
-  visgrab::runner::RunOptions options;
-  options.database = visgrab::test::testDatabase().root();
-  options.grasps = {tmp.path() / "plan.csv"};
-  options.out = tmp.path() / "results";
-  options.hand = folder;
-  options.threads = 2;
-  EXPECT_TRUE(visgrab::runner::runBenchmark(options).rejected.empty());
-  std::map<std::string, visgrab::results::TrialRecord> trial;
-  for (const auto& t : visgrab::results::readResults(options.out).trials) trial[t.graspId] = t;
+  const auto trial = runGrasps(grasps, folder, tmp.path(), 2);
   ASSERT_EQ(trial.size(), 2u);
   EXPECT_EQ(rwsim::simulator::outcomeName(trial.at("around").outcome), "stable")
       << trial.at("around").detail;
