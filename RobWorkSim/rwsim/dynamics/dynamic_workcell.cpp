@@ -208,7 +208,7 @@ DeviceId DynamicWorkCell::addDevice(RigidDevice device) {
            "\" (it must be an unused rigid body on that joint's frame)");
     }
   }
-  loopClosures(*this, device);  // throws if the junctions cannot be closed
+  device.loopClosures = loopClosures(*this, device);  // throws if they cannot be closed
   const DeviceId id(devices_.size());
   Body& base = bodies_[device.baseBody.index()];
   if (!base.device.valid()) base.device = id;
@@ -306,7 +306,7 @@ std::vector<std::pair<BodyId, BodyId>> jointConnectedBodyPairs(const DynamicWork
       if (above.valid() && above != link)
         pairs.emplace_back(std::min(link, above), std::max(link, above));
     }
-    for (const LoopClosure& c : loopClosures(dwc, rd)) {
+    for (const LoopClosure& c : rd.loopClosures) {
       pairs.emplace_back(std::min(c.parent, c.child), std::max(c.parent, c.child));
     }
   }

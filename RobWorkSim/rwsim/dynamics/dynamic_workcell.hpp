@@ -56,6 +56,28 @@ struct Body {
 };
 
 /// A device simulated with rigid links driven by joint motors (RobWork's RigidDevice).
+/// How the simulator closes one leg of a parallel device's junction against the junction's
+/// first leg. The links of every leg are simulated as a tree (one body per link, a hinge or
+/// slider per joint); each junction then adds, per leg after the first, one joint between the
+/// bodies that carry the leg ends (a project extension: RobWorkSim has no dwc syntax for
+/// parallel devices).
+struct LoopClosure {
+  /// Index of the junction in ParallelKinematics::junctions().
+  std::size_t junction = 0;
+  /// Index of the leg closed against leg 0.
+  std::size_t leg = 0;
+  /// The joint that closes the loop: a joint on the way from a leg end up to the body carrying
+  /// it that has no link body of its own (RobWork's models end a leg with such a joint, e.g.
+  /// the Robotiq's LinkConnection). It becomes a hinge or slider between `parent` and `child`.
+  /// None when both leg ends sit rigidly on their bodies: the two bodies are then welded.
+  rw::kinematics::FrameId joint;
+  /// The body above `joint` (for a weld: the body carrying leg 0's end).
+  BodyId parent;
+  /// The body carrying the other leg's end, which moves with `joint` (for a weld: the body
+  /// carrying this leg's end).
+  BodyId child;
+};
+
 struct RigidDevice {
   /// The kinematic device in the workcell.
   const rw::models::Device* device = nullptr;
@@ -65,6 +87,9 @@ struct RigidDevice {
   std::vector<BodyId> linkBodies;
   /// Motor force/torque limit of each joint of device->joints() (N m or N).
   std::vector<double> forceLimits;
+  /// How the simulator closes each junction of a parallel device (empty otherwise): set by
+  /// DynamicWorkCell::addDevice (rwsim::dynamics::loopClosures); whatever it held is replaced.
+  std::vector<LoopClosure> loopClosures;
 };
 
 /// A PD joint controller (RobWork's PDDeviceController).

@@ -8,7 +8,6 @@
 #include <string>
 
 #include "rw/kinematics/frame_tree.hpp"
-#include "rwsim/dynamics/loop_closure.hpp"
 
 namespace rwsim::simulator::detail {
 
@@ -360,6 +359,9 @@ void OdeWorld::createDevices(const dynamics::DynamicWorkCell& dwc,
       attachJoint(sim.joints.back(), link, parent, fk.worldTransform(joints[j]),
                   tree.frame(joints[j]).isPassive());
     }
+    for (const SimJoint& sj : sim.joints) {
+      if (sj.owner) sim.joints[*sj.owner].leads = true;
+    }
     closeLoops(dwc, rd, fk, sim);
   }
 }
@@ -421,7 +423,7 @@ void OdeWorld::closeLoops(const dynamics::DynamicWorkCell& dwc, const dynamics::
                           const rw::kinematics::FKTable& fk, SimDevice& sim) {
   const auto& tree = dwc.workcell().frames();
   const auto& joints = rd.device->joints();
-  for (const dynamics::LoopClosure& c : dynamics::loopClosures(dwc, rd)) {
+  for (const dynamics::LoopClosure& c : rd.loopClosures) {
     if (bodies_[c.child.index()].kind != dynamics::BodyKind::kRigid) {
       throw std::invalid_argument("rigid device " + rd.device->name() + ": junction " +
                                   std::to_string(c.junction) + " closes on body " +
@@ -477,6 +479,7 @@ void OdeWorld::trackJoints() {
   for (auto& device : devices_) {
     for (auto& joint : device.joints) {
       joint.lastRelative = jointPosition(joint) - joint.q0;
+      if (!joint.leads) continue;  // only a dependent joint's owner needs its speeds
       const double v = jointVelocity(joint);
       joint.meanVelocity = 0.5 * (joint.lastVelocity + v);
       joint.lastVelocity = v;

@@ -58,7 +58,9 @@ struct SimJoint {
   double q0 = 0.0;
   /// q - q0 after the last step, to unwrap ODE's hinge angle (it wraps at +-pi).
   double lastRelative = 0.0;
-  /// Joint speed after the last step.
+  /// True when a dependent joint follows this one: only then are the two speeds below kept.
+  bool leads = false;
+  /// Joint speed after the last step (a leading joint's).
   double lastVelocity = 0.0;
   /// Mean joint speed over the last two steps (what a dependent joint follows; see
   /// Simulator's driveMotors).
