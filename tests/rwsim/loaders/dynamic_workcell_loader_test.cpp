@@ -314,6 +314,7 @@ TEST_F(DynamicWorkCellLoader, AKinematicBaseMayBeTheMovableFrameHoldingTheDevice
     rwsim::loaders::loadDynamicWorkCell(scene_.writeTop(dwcText("Other")));
     ADD_FAILURE() << "loaded";
   } catch (const rw::common::LoadError& e) {
+    EXPECT_EQ(e.diagnostics().size(), 1u) << e.what();  // not also "unknown frame"
     EXPECT_EQ(e.diagnostics().front().line, 5) << e.what();
     EXPECT_NE(std::string(e.what()).find("frame \"Other\" is neither a frame of device \"Jaw\" "
                                          "nor a frame that holds its base \"Jaw.Base\" rigidly"),

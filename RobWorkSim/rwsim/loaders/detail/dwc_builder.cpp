@@ -91,7 +91,8 @@ class Builder {
   }
 
   std::optional<FrameId> claimFrame(const BodyDesc& b, const std::string& name);
-  std::string baseFrameName(const Device& device, const BodyDesc& base, const std::string& prefix);
+  std::optional<std::string> baseFrameName(const Device& device, const BodyDesc& base,
+                                           const std::string& prefix);
   void planFreeBody(const BodyDesc& b);
   void planDevice(const DeviceDesc& d);
   bool planForceLimits(PlannedDevice& planned);
@@ -148,9 +149,10 @@ void Builder::planFreeBody(const BodyDesc& b) {
 
 /// The frame of a device's base element: the device's own frame of that name (RobWork), else
 /// (this project's extension) a frame outside the device that holds the device's base rigidly,
-/// such as a Movable mount frame put before a device file that cannot be edited.
-std::string Builder::baseFrameName(const Device& device, const BodyDesc& base,
-                                   const std::string& prefix) {
+/// such as a Movable mount frame put before a device file that cannot be edited. nullopt after
+/// an error (a frame outside the device that does not hold its base).
+std::optional<std::string> Builder::baseFrameName(const Device& device, const BodyDesc& base,
+                                                  const std::string& prefix) {
   const std::string scoped = prefix + base.frame;
   const auto& wc = dwc_->workcell();
   const FrameId outside = wc.findFrame(base.frame);
@@ -162,7 +164,7 @@ std::string Builder::baseFrameName(const Device& device, const BodyDesc& base,
   error(base, "frame \"" + base.frame + "\" is neither a frame of device \"" + device.name() +
                   "\" nor a frame that holds its base \"" + tree().frame(device.base()).name() +
                   "\" rigidly");
-  return scoped;
+  return std::nullopt;
 }
 
 void Builder::planDevice(const DeviceDesc& d) {
@@ -182,7 +184,8 @@ void Builder::planDevice(const DeviceDesc& d) {
   const std::string prefix = d.name + ".";
   bool ok = planForceLimits(planned);
   if (d.base && d.base->tag != "RefBase") {
-    auto id = claimFrame(*d.base, baseFrameName(*planned.device, *d.base, prefix));
+    const auto name = baseFrameName(*planned.device, *d.base, prefix);
+    auto id = name ? claimFrame(*d.base, *name) : std::nullopt;
     if (id) planned.base = PlannedBody{&*d.base, *id, prefix};
     ok = ok && id.has_value();
   } else if (d.base) {
