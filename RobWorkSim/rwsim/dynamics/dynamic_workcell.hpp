@@ -55,7 +55,6 @@ struct Body {
   rw::kinematics::PropertyMap properties;
 };
 
-/// A device simulated with rigid links driven by joint motors (RobWork's RigidDevice).
 /// How the simulator closes one leg of a parallel device's junction against the junction's
 /// first leg. The links of every leg are simulated as a tree (one body per link, a hinge or
 /// slider per joint); each junction then adds, per leg after the first, one joint between the
@@ -78,6 +77,7 @@ struct LoopClosure {
   BodyId child;
 };
 
+/// A device simulated with rigid links driven by joint motors (RobWork's RigidDevice).
 struct RigidDevice {
   /// The kinematic device in the workcell.
   const rw::models::Device* device = nullptr;
