@@ -9,7 +9,7 @@
 #include "visgrab/database/atomic_file.hpp"
 #include "visgrab/database/database.hpp"
 #include "visgrab/database/scene_filter.hpp"
-#include "visgrab/grasp/grasp_request.hpp"
+#include "visgrab/request/grasp_request.hpp"
 #include "visgrab/taskio/grasp_list.hpp"
 #include "visgrab/vision/baseline.hpp"
 

@@ -15,7 +15,7 @@
 #include <utility>
 
 #include "visgrab/database/database.hpp"
-#include "visgrab/grasp/grasp_request.hpp"
+#include "visgrab/request/grasp_request.hpp"
 #include "visgrab/grasp/hand_grasp_setup.hpp"
 
 /// The C++ side of the Python module `visgrab` (the extension `visgrab._visgrab`; the package's

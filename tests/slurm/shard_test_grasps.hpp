@@ -5,7 +5,7 @@
 #include <string_view>
 #include <vector>
 
-#include "visgrab/grasp/grasp_request.hpp"
+#include "visgrab/request/grasp_request.hpp"
 
 /// Grasps on the shared test database for the shard, merge and Slurm tests.
 namespace visgrab::test {

@@ -41,6 +41,7 @@ struct detail::TrialData {
   std::vector<dynamics::BodyId> objects;
   std::vector<double> radius;
   std::shared_ptr<const contacts::ContactDetector> detector;
+  std::shared_ptr<const trial::EngineFactory> engine;
   std::unique_ptr<const rw::proximity::CollisionDetector> collision;
   // Per frame index: its collision geometry for penetration depths (empty without geometry).
   std::vector<std::vector<FrameShape>> frameShapes;
@@ -218,9 +219,10 @@ class TrialRun {
         data_(data),
         grasp_(grasp),
         observer_(observer),
-        sim_(dwc, data.detector, setup.simulator),
+        engine_(data.engine->create()),
+        sim_(*engine_),
         pd_(data.controller->p, data.controller->d),
-        dt_(sim_.options().timeStep) {}
+        dt_(sim_.timeStep()) {}
 
   GraspTrialResult run(const rw::kinematics::State& initial);
 
@@ -237,7 +239,7 @@ class TrialRun {
   void evaluate(const Transform3D& X_h0, const Transform3D& X_o0);
   GraspTrialResult withMessages() {
     if (!closingNote_.empty()) result_.detail += " [" + closingNote_ + "]";
-    if (!sim_.odeMessages().empty()) result_.detail += " [" + sim_.odeMessages() + "]";
+    if (!sim_.engineMessages().empty()) result_.detail += " [" + sim_.engineMessages() + "]";
     return result_;
   }
 
@@ -246,7 +248,8 @@ class TrialRun {
   const detail::TrialData& data_;
   const GraspParameters& grasp_;
   const Observer& observer_;
-  Simulator sim_;
+  std::unique_ptr<trial::PhysicsEngine> engine_;
+  trial::PhysicsEngine& sim_;
   control::PDController pd_;
   double dt_;
   GraspTrialResult result_;
@@ -436,18 +439,23 @@ GraspTrialResult TrialRun::run(const rw::kinematics::State& initial) {
 
 }  // namespace
 
-GraspTrial::GraspTrial(const dynamics::DynamicWorkCell& dwc, GraspTrialSetup setup)
+GraspTrial::GraspTrial(const dynamics::DynamicWorkCell& dwc, GraspTrialSetup setup,
+                       std::shared_ptr<const trial::EngineFactory> engine)
     : dwc_(&dwc), setup_(std::move(setup)) {
   auto data = prepare(dwc, setup_);
   classifyBodies(dwc, *data);
   data->detector = std::make_shared<contacts::ContactDetector>(
       dwc, setup_.simulator.contacts, dynamics::jointConnectedBodyPairs(dwc));
+  data->engine =
+      engine ? std::move(engine) : odeEngineFactory(dwc, setup_.simulator, data->detector);
   data->collision = std::make_unique<rw::proximity::CollisionDetector>(dwc.workcell());
   prepareFrameShapes(dwc, *data);
   data_ = std::move(data);
 }
 
 dynamics::DeviceId GraspTrial::handDevice() const { return data_->hand; }
+
+const trial::EngineFactory& GraspTrial::engine() const { return *data_->engine; }
 
 bool GraspTrial::isHandBody(dynamics::BodyId body) const {
   return body.valid() && body.index() < data_->isHandBody.size() && data_->isHandBody[body.index()];

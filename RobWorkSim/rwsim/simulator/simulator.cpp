@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -436,11 +437,13 @@ StepStatus Simulator::step() {
   return impl_->status;
 }
 
-const std::string& Simulator::odeMessages() const { return impl_->odeMessages; }
+const std::string& Simulator::engineMessages() const { return impl_->odeMessages; }
 
 const std::string& Simulator::failureDetail() const { return impl_->failureDetail; }
 
 double Simulator::time() const { return impl_->time; }
+
+double Simulator::timeStep() const { return impl_->options.timeStep; }
 
 const rw::kinematics::State& Simulator::state() const { return impl_->state; }
 
@@ -528,5 +531,47 @@ const std::vector<SolvedBodyContact>& Simulator::contacts() const { return impl_
 std::size_t Simulator::lastStepRows() const { return impl_->rows; }
 
 const SimulatorOptions& Simulator::options() const { return impl_->options; }
+
+namespace {
+
+class OdeEngineFactory final : public trial::EngineFactory {
+ public:
+  OdeEngineFactory(const dynamics::DynamicWorkCell& dwc, SimulatorOptions options,
+                   std::shared_ptr<const contacts::ContactDetector> detector)
+      : dwc_(dwc), options_(std::move(options)), detector_(std::move(detector)) {}
+
+  std::string name() const override { return "ode"; }
+
+  std::string settings() const override {
+    char text[512];
+    std::snprintf(text, sizeof(text),
+                  "ODE %s; step %.9g s %s; cfm %.9g erp %.9g; contact cfm %.9g erp %.9g, "
+                  "surface layer %.9g m, max correcting velocity %.9g m/s, margin %.9g m, "
+                  "%d points per manifold",
+                  VISGRAB_ODE_VERSION, options_.timeStep, options_.stepMethod.c_str(),
+                  options_.worldCfm, options_.worldErp, options_.contactCfm, options_.contactErp,
+                  options_.contactSurfaceLayer, options_.maxCorrectingVelocity,
+                  options_.contacts.margin, options_.contacts.maxPointsPerManifold);
+    return text;
+  }
+
+  std::unique_ptr<trial::PhysicsEngine> create() const override {
+    if (detector_) return std::make_unique<Simulator>(dwc_, detector_, options_);
+    return std::make_unique<Simulator>(dwc_, options_);
+  }
+
+ private:
+  const dynamics::DynamicWorkCell& dwc_;
+  SimulatorOptions options_;
+  std::shared_ptr<const contacts::ContactDetector> detector_;
+};
+
+}  // namespace
+
+std::shared_ptr<const trial::EngineFactory> odeEngineFactory(
+    const dynamics::DynamicWorkCell& dwc, SimulatorOptions options,
+    std::shared_ptr<const contacts::ContactDetector> detector) {
+  return std::make_shared<OdeEngineFactory>(dwc, std::move(options), std::move(detector));
+}
 
 }  // namespace rwsim::simulator

@@ -8,60 +8,15 @@
 #include "rw/math/types.hpp"
 #include "rwsim/contacts/contact_detector.hpp"
 #include "rwsim/dynamics/dynamic_workcell.hpp"
+#include "rwsim/trial/physics_engine.hpp"
+#include "rwsim/trial/trial_types.hpp"
 
 namespace rwsim::simulator {
 
-/// Engine settings; defaults follow RobWork's ODE simulator (reference §8.3), overridable from
-/// the dwc file's PhysicsEngine properties.
-struct SimulatorOptions {
-  /// Integration step, s (RobWork's grasp simulator uses 0.005).
-  double timeStep = 0.005;
-  /// "WorldStep" (dense LCP) or "WorldQuickStep" (iterative).
-  std::string stepMethod = "WorldStep";
-  /// Global constraint force mixing.
-  double worldCfm = 1e-7;
-  /// Global error reduction parameter.
-  double worldErp = 0.2;
-  /// Allowed penetration before correction, m.
-  double contactSurfaceLayer = 0.0001;
-  /// Largest velocity used to correct penetration, m/s.
-  double maxCorrectingVelocity = 0.1;
-  /// Contact generation.
-  contacts::ContactOptions contacts;
-  /// Constraint force mixing of contact joints (RobWork: 1e-6).
-  double contactCfm = 1e-6;
-  /// Error reduction parameter of contact joints (RobWork: 0.2).
-  double contactErp = 0.2;
-  /// A body faster than this (m/s) or farther than escapeDistance from its start is a failure.
-  double maxSpeed = 50.0;
-  /// See maxSpeed, m.
-  double escapeDistance = 50.0;
-};
-
-/// Result of one step.
-enum class StepStatus {
-  kOk,                ///< the step succeeded
-  kNumericalFailure,  ///< a pose or velocity became NaN/inf, or ODE reported a fatal error
-  kRunaway,           ///< a rigid body exceeded maxSpeed or moved beyond escapeDistance
-};
-
-/// A contact point with the force the solver applied in the step (world coordinates).
-struct SolvedContact {
-  /// The geometric contact.
-  contacts::ContactPoint point;
-  /// Force on body B from body A, N (equal and opposite on A).
-  rw::math::Vector3D force = rw::math::Vector3D::Zero();
-};
-
-/// Contacts of one body pair after a step, with solver forces.
-struct SolvedBodyContact {
-  /// First body.
-  dynamics::BodyId bodyA;
-  /// Second body.
-  dynamics::BodyId bodyB;
-  /// Points with their forces.
-  std::vector<SolvedContact> points;
-};
+using trial::SimulatorOptions;
+using trial::SolvedBodyContact;
+using trial::SolvedContact;
+using trial::StepStatus;
 
 /// One ODE world over a dynamic workcell (ODE is private to this module). Not copyable; one per
 /// thread. The DynamicWorkCell must outlive it.
@@ -83,7 +38,7 @@ struct SolvedBodyContact {
 /// further. ODE's fatal errors become kNumericalFailure, never an exit or abort. The same
 /// input gives bitwise the same result in any thread (WorldStep; WorldQuickStep uses ODE's
 /// global random generator and is only deterministic single-threaded).
-class Simulator {
+class Simulator final : public trial::PhysicsEngine {
  public:
   /// Creates the world, bodies, joints and motors. @throws std::runtime_error if ODE is not
   /// double precision.
@@ -94,46 +49,46 @@ class Simulator {
   Simulator(const dynamics::DynamicWorkCell& dwc,
             std::shared_ptr<const contacts::ContactDetector> detector,
             SimulatorOptions options = {});
-  ~Simulator();
-  Simulator(const Simulator&) = delete;
-  Simulator& operator=(const Simulator&) = delete;
+  ~Simulator() override;
 
   /// Puts every body where `state` says, at rest; time restarts at 0. Motor targets, force
   /// limits (back to the dwc's) and kinematic velocities are cleared; the status is kOk again.
-  void reset(const rw::kinematics::State& state);
+  void reset(const rw::kinematics::State& state) override;
   /// Advances by options().timeStep: contacts, controllers' commands, integration. After a
   /// failure every further step returns the same status until reset().
-  StepStatus step();
+  StepStatus step() override;
   /// Why the failing step failed (empty while every step succeeded).
-  const std::string& failureDetail() const;
+  const std::string& failureDetail() const override;
   /// ODE's non-fatal messages since reset() (e.g. "LCP internal error"), "; "-separated.
-  const std::string& odeMessages() const;
+  const std::string& engineMessages() const override;
   /// Simulated time since reset, s.
-  double time() const;
+  double time() const override;
+  /// options().timeStep, s.
+  double timeStep() const override;
   /// The state after the last step (movable frames of bodies, joint values of devices).
-  const rw::kinematics::State& state() const;
+  const rw::kinematics::State& state() const override;
 
   /// World pose of a body's frame.
-  rw::math::Transform3D bodyPose(dynamics::BodyId body) const;
+  rw::math::Transform3D bodyPose(dynamics::BodyId body) const override;
   /// Linear velocity of a body's frame origin, m/s.
-  rw::math::Vector3D bodyLinearVelocity(dynamics::BodyId body) const;
+  rw::math::Vector3D bodyLinearVelocity(dynamics::BodyId body) const override;
   /// Angular velocity, rad/s.
-  rw::math::Vector3D bodyAngularVelocity(dynamics::BodyId body) const;
+  rw::math::Vector3D bodyAngularVelocity(dynamics::BodyId body) const override;
   /// Commands a kinematic body's velocity (world frame, about its frame origin) until changed.
   void setKinematicVelocity(dynamics::BodyId body, const rw::math::Vector3D& linear,
-                            const rw::math::Vector3D& angular);
+                            const rw::math::Vector3D& angular) override;
 
   /// Joint positions of a rigid device's active joints (DOF order).
-  rw::math::Q jointPositions(dynamics::DeviceId device) const;
+  rw::math::Q jointPositions(dynamics::DeviceId device) const override;
   /// Joint velocities (DOF order).
-  rw::math::Q jointVelocities(dynamics::DeviceId device) const;
+  rw::math::Q jointVelocities(dynamics::DeviceId device) const override;
   /// Motor velocity targets per DOF (dependent joints follow their owners).
-  void setMotorVelocityTargets(dynamics::DeviceId device, const rw::math::Q& velocities);
+  void setMotorVelocityTargets(dynamics::DeviceId device, const rw::math::Q& velocities) override;
   /// Motor torque/force limits per DOF (a dependent joint takes its owner's).
-  void setMotorForceLimits(dynamics::DeviceId device, const rw::math::Q& limits);
+  void setMotorForceLimits(dynamics::DeviceId device, const rw::math::Q& limits) override;
 
   /// Contacts of the last step with their forces.
-  const std::vector<SolvedBodyContact>& contacts() const;
+  const std::vector<SolvedBodyContact>& contacts() const override;
   /// Constraint rows the last step gave ODE's solver, summed over its islands: 5 per hinge or
   /// slider, 1 more while its motor or a stop acts, 3 per contact with friction (1 without),
   /// and per constraint 6 (Fixed), 5 (Prismatic, Revolute), 4 (Universal, Piston,
@@ -147,6 +102,12 @@ class Simulator {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+/// The factory of ODE engines (Simulator) for `dwc`'s trials: name "ode", settings the ODE
+/// version and `options`; the engines share `detector` (null: each makes its own).
+std::shared_ptr<const trial::EngineFactory> odeEngineFactory(
+    const dynamics::DynamicWorkCell& dwc, SimulatorOptions options,
+    std::shared_ptr<const contacts::ContactDetector> detector = nullptr);
 
 /// Options from a dwc file's PhysicsEngine properties over `defaults`.
 /// @throws std::invalid_argument for a known key with a bad value.

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "rwsim/simulator/grasp_trial.hpp"
+#include "rwsim/trial/grasp_outcome.hpp"
 #include "visgrab/database/scene_set.hpp"
 #include "visgrab/results/trial_record.hpp"
 
@@ -15,8 +15,8 @@
 /// Definitions: docs/report.md.
 namespace visgrab::analysis {
 
-/// Number of grasp outcomes (rwsim::simulator::kOutcomeTable order).
-inline constexpr std::size_t kOutcomeCount = rwsim::simulator::kOutcomeTable.size();
+/// Number of grasp outcomes (rwsim::trial::kOutcomeTable order).
+inline constexpr std::size_t kOutcomeCount = rwsim::trial::kOutcomeTable.size();
 
 /// Settings of the analyses.
 struct AnalysisOptions {
@@ -59,7 +59,7 @@ struct MethodColumn {
   /// Grasps of this method rejected before simulation (malformed input).
   int rejected = 0;
   /// Trials of this method whose closing hit the closing cap (their detail says so: see
-  /// rwsim::simulator::closingHitCap); judged as they stood, they cost the cap's simulated time.
+  /// rwsim::trial::closingHitCap); judged as they stood, they cost the cap's simulated time.
   int closingCapped = 0;
 };
 

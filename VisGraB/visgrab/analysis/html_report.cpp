@@ -12,8 +12,8 @@ namespace {
 
 using detail::fixed;
 using detail::percent;
-using rwsim::simulator::GraspOutcome;
-using rwsim::simulator::kOutcomeTable;
+using rwsim::trial::GraspOutcome;
+using rwsim::trial::kOutcomeTable;
 
 /// Line colours of the compared methods in Figure 7 (cycled).
 constexpr std::array<std::string_view, 8> kMethodColours = {

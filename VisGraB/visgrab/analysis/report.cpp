@@ -14,8 +14,8 @@ namespace visgrab::analysis {
 
 namespace {
 
-using rwsim::simulator::GraspOutcome;
-using rwsim::simulator::kOutcomeTable;
+using rwsim::trial::GraspOutcome;
+using rwsim::trial::kOutcomeTable;
 
 /// One per outcome, in kOutcomeTable order.
 struct OutcomeStyle {

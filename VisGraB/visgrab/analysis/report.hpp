@@ -12,11 +12,11 @@
 namespace visgrab::analysis {
 
 /// Colour (CSS hex) of an outcome in the plots; kNoGraspColour for "no grasp suggested".
-std::string_view outcomeColour(rwsim::simulator::GraspOutcome outcome);
+std::string_view outcomeColour(rwsim::trial::GraspOutcome outcome);
 /// Grey of the "no grasp suggested" share (paper Figure 6).
 inline constexpr std::string_view kNoGraspColour = "#a6a6a6";
 /// Legend text of an outcome ("stable grasp", "object slipped", ...; paper §2.4).
-std::string_view outcomeLegend(rwsim::simulator::GraspOutcome outcome);
+std::string_view outcomeLegend(rwsim::trial::GraspOutcome outcome);
 
 /// `text` with &, <, >, " and ' replaced by entities (for HTML and SVG).
 std::string escapeHtml(std::string_view text);

@@ -90,7 +90,7 @@ std::string showcaseCaption(const Showcase& showcase) {
   const results::TrialRecord& t = showcase.trial;
   std::string text = showcase.role + ": " + t.sceneId + " " + t.graspId + " (rank " +
                      std::to_string(t.rank + 1) + "), " +
-                     std::string(rwsim::simulator::outcomeName(t.outcome));
+                     std::string(rwsim::trial::outcomeName(t.outcome));
   if (results::isSuccess(t.outcome)) {
     char q[40];
     std::snprintf(q, sizeof q, ", Q_lift %.3f", t.qLift);

@@ -7,7 +7,7 @@
 #include "rw/math/types.hpp"
 #include "rwsim/simulator/grasp_trial.hpp"
 #include "visgrab/grasp/contact_ik.hpp"
-#include "visgrab/grasp/grasp_request.hpp"
+#include "visgrab/request/grasp_request.hpp"
 #include "visgrab/grasp/hand_grasp_setup.hpp"
 
 namespace visgrab::grasp {

@@ -270,8 +270,8 @@ std::string formatTrialLine(const TrialRecord& t) {
   line += csvField(t.method) + ',';
   line += csvField(t.graspId) + ',';
   line += std::to_string(t.rank) + ',';
-  line += std::string(rwsim::simulator::outcomeName(t.outcome)) + ',';
-  line += std::to_string(rwsim::simulator::robworkCode(t.outcome)) + ',';
+  line += std::string(rwsim::trial::outcomeName(t.outcome)) + ',';
+  line += std::to_string(rwsim::trial::robworkCode(t.outcome)) + ',';
   line += formatDouble(t.qLift) + ',';
   line += formatQuality(t.qGws) + ',';
   line += formatQuality(t.qGwsUnit) + ',';
@@ -306,6 +306,10 @@ std::string formatRunFile(const RunResults& run) {
     text += "grasps," + csvField(file.string()) + ",,,,,,\n";
   }
   if (!run.sources.hand.empty()) text += "hand," + csvField(run.sources.hand.string()) + ",,,,,,\n";
+  if (!run.sources.engine.empty()) text += "engine," + csvField(run.sources.engine) + ",,,,,,\n";
+  if (!run.sources.engineSettings.empty()) {
+    text += "engine_settings," + csvField(run.sources.engineSettings) + ",,,,,,\n";
+  }
   return text;
 }
 
@@ -340,16 +344,16 @@ TrialsFile parseTrials(std::string_view text, const std::string& file) {
     t.graspId = f[2];
     if (t.sceneId.empty()) fail(file, lineNo, "empty scene id");
     if (t.method.empty()) fail(file, lineNo, "empty method");
-    const auto outcome = rwsim::simulator::outcomeFromName(f[4]);
+    const auto outcome = rwsim::trial::outcomeFromName(f[4]);
     if (!outcome) fail(file, lineNo, "unknown outcome '" + f[4] + "'");
     t.outcome = *outcome;
     try {
       t.rank = parseInt(f[3]);
       const int code = parseInt(f[5]);
-      if (code != rwsim::simulator::robworkCode(t.outcome)) {
+      if (code != rwsim::trial::robworkCode(t.outcome)) {
         fail(file, lineNo,
              "RobWork code " + f[5] + " does not match outcome '" + f[4] + "' (expected " +
-                 std::to_string(rwsim::simulator::robworkCode(t.outcome)) + ")");
+                 std::to_string(rwsim::trial::robworkCode(t.outcome)) + ")");
       }
       t.qLift = parseDouble(f[6]);
       if (v1) {
@@ -440,10 +444,15 @@ RunResults parseRunFile(std::string_view text, const std::string& file) {
       run.sources.grasps.emplace_back(f[1]);
     } else if (f[0] == "hand") {
       run.sources.hand = f[1];
+    } else if (f[0] == "engine") {
+      run.sources.engine = f[1];
+    } else if (f[0] == "engine_settings") {
+      run.sources.engineSettings = f[1];
     } else {
       fail(file, lineNo,
            "unknown record '" + f[0] +
-               "' (expected scene, method, rejected, database, grasps or hand)");
+               "' (expected scene, method, rejected, database, grasps, hand, engine or "
+               "engine_settings)");
     }
   }
   return run;

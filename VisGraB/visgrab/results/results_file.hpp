@@ -21,7 +21,8 @@
 ///    count`, then one `scene` record per scene (conditions empty when unknown; objects separated
 ///    by spaces), one `method` record per method, one `rejected` record (count in the last
 ///    column) per method with rejected grasps, and `database`, `grasps`, `hand` records naming
-///    the run's inputs.
+///    the run's inputs, and `engine` and `engine_settings` records naming the physics engine and
+///    its settings (absent in older files, whose runs were ODE's).
 /// The column line identifies the format: a later version that changes what a column means
 /// changes the column line. Older files are still read: they start with a comment line
 /// `# visgrab trials 1|2` or `# visgrab run 1` before the column line, hold one record per line

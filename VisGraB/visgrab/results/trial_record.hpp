@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "rwsim/simulator/grasp_trial.hpp"
+#include "rwsim/trial/grasp_outcome.hpp"
 #include "visgrab/database/scene_set.hpp"
 
 /// Results of a benchmark run: one record per simulated (or rejected) grasp.
@@ -25,7 +25,7 @@ struct TrialRecord {
   /// user gave them (the analyses' "attempts").
   int rank = 0;
   /// Outcome (kInvalidContacts when the grasp utilities rejected the contacts).
-  rwsim::simulator::GraspOutcome outcome = rwsim::simulator::GraspOutcome::kSimulationFailure;
+  rwsim::trial::GraspOutcome outcome = rwsim::trial::GraspOutcome::kSimulationFailure;
   /// Paper eq. 5 (0 unless held).
   double qLift = 0.0;
   /// Paper eq. 6-7 as the paper's tables computed it: cones on the measured contact forces (0
@@ -45,10 +45,7 @@ struct TrialRecord {
 
 /// True for the outcomes the paper counts as a successful grasp (§2.4: "stable grasp" or
 /// "object slipped": the object is in the hand after lifting).
-inline bool isSuccess(rwsim::simulator::GraspOutcome outcome) {
-  return outcome == rwsim::simulator::GraspOutcome::kStable ||
-         outcome == rwsim::simulator::GraspOutcome::kSlipped;
-}
+inline bool isSuccess(rwsim::trial::GraspOutcome outcome) { return rwsim::trial::isHeld(outcome); }
 
 /// A scene that was part of a run, with or without grasps (a method that suggests no grasp for
 /// a scene is part of the analyses: the paper's grey "no grasp suggested" share).
@@ -68,6 +65,11 @@ struct RunSources {
   std::vector<std::filesystem::path> grasps;
   /// The hand's grasp description; empty if unknown.
   std::filesystem::path hand;
+  /// The physics engine the trials ran on ("ode", "mujoco"; empty in files older than the
+  /// record: those runs were ODE's).
+  std::string engine;
+  /// The engine's version and settings (EngineFactory::settings()); empty if unknown.
+  std::string engineSettings;
 };
 
 /// Everything a run produced: the analyses' input.

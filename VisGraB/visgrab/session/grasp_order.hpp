@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "visgrab/database/database.hpp"
-#include "visgrab/grasp/grasp_request.hpp"
+#include "visgrab/request/grasp_request.hpp"
 #include "visgrab/results/trial_record.hpp"
 #include "visgrab/taskio/grasp_file.hpp"
 

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "rw/common/diagnostic.hpp"
-#include "visgrab/grasp/grasp_request.hpp"
+#include "visgrab/request/grasp_request.hpp"
 
 namespace visgrab::taskio {
 

@@ -6,7 +6,7 @@
 #include <string_view>
 #include <vector>
 
-#include "visgrab/grasp/grasp_request.hpp"
+#include "visgrab/request/grasp_request.hpp"
 #include "visgrab/taskio/grasp_file.hpp"
 
 namespace visgrab::taskio {

@@ -109,11 +109,11 @@ GraspTarget& targetAt(GraspTask& task, std::size_t index) {
                           std::to_string(task.targetCount()) + ")");
 }
 
-void setResult(GraspTarget& target, rwsim::simulator::GraspOutcome outcome, double qLift,
+void setResult(GraspTarget& target, rwsim::trial::GraspOutcome outcome, double qLift,
                double qGws, double qGwsUnit, const rw::math::Q& qGrasp) {
   if (!target.result) target.result.emplace();
   GraspResult& r = *target.result;
-  r.testStatus = rwsim::simulator::robworkCode(outcome);
+  r.testStatus = rwsim::trial::robworkCode(outcome);
   r.liftResult = qLift;
   r.qualityAfterLifting = rw::math::Q::Constant(1, qLift);
   r.qualityBeforeLifting = rw::math::Q(2);

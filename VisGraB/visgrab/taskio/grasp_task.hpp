@@ -9,8 +9,8 @@
 
 #include "rw/common/xml_tree.hpp"
 #include "rw/math/types.hpp"
-#include "rwsim/simulator/grasp_trial.hpp"
-#include "visgrab/grasp/grasp_request.hpp"
+#include "rwsim/trial/grasp_outcome.hpp"
+#include "visgrab/request/grasp_request.hpp"
 
 /// Grasp and task file formats: RobWork's GraspTask XML, the original VisGraB experiment XML
 /// and the project's plain grasp list (docs/grasp-format.md).
@@ -165,7 +165,7 @@ GraspTarget& targetAt(GraspTask& task, std::size_t index);
 /// QualityAfterLifting = {qLift}, LiftResult = qLift, QualityBeforeLifting = {qGws, qGwsUnit}
 /// (the VisGraB-era plugin's q0, GWS with the measured forces, and q1, with unit forces),
 /// GripperConfiguration = qGrasp. Other result fields are kept.
-void setResult(GraspTarget& target, rwsim::simulator::GraspOutcome outcome, double qLift,
+void setResult(GraspTarget& target, rwsim::trial::GraspOutcome outcome, double qLift,
                double qGws, double qGwsUnit, const rw::math::Q& qGrasp);
 
 }  // namespace visgrab::taskio

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "visgrab/database/database.hpp"
-#include "visgrab/grasp/grasp_request.hpp"
+#include "visgrab/request/grasp_request.hpp"
 #include "visgrab/vision/ega.hpp"
 #include "visgrab/vision/segmentation.hpp"
 #include "visgrab/vision/stereo.hpp"

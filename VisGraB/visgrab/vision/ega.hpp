@@ -6,7 +6,7 @@
 #include <string_view>
 #include <vector>
 
-#include "visgrab/grasp/grasp_request.hpp"
+#include "visgrab/request/grasp_request.hpp"
 #include "visgrab/vision/segmentation.hpp"
 
 namespace visgrab::vision {

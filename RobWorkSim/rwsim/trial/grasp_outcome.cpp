@@ -1,8 +1,9 @@
 #include <cstddef>
+#include <string_view>
 
-#include "rwsim/simulator/grasp_trial.hpp"
+#include "rwsim/trial/grasp_outcome.hpp"
 
-namespace rwsim::simulator {
+namespace rwsim::trial {
 
 namespace {
 
@@ -54,4 +55,4 @@ std::optional<GraspOutcome> outcomeFromName(std::string_view name) {
   return std::nullopt;
 }
 
-}  // namespace rwsim::simulator
+}  // namespace rwsim::trial

@@ -1,4 +1,4 @@
-#include "visgrab/grasp/grasp_request.hpp"
+#include "visgrab/request/grasp_request.hpp"
 
 namespace visgrab::grasp {
 
