@@ -7,7 +7,8 @@ Trials are matched by (scene, method, grasp). Prints the trials only in one file
 outcome counts, the verdicts that differ (as "A -> B" pairs, most frequent first, and the first N
 of them with --list) and the simulated time of each run. Exit 0 when both files are read (the
 verdicts may differ), 1 when a file cannot be read or is not a trials.csv, 2 on a usage mistake.
-Reads every trials.csv version: 3 (RFC 4180, what `visgrab run` writes) and the older 1 and 2.
+Reads every trials.csv version: 4 (RFC 4180, what `visgrab run` writes), 3 (the same without
+closing_capped) and the older 1 and 2.
 docs/performance.md ("Where a trial's time goes") uses it to say how far a change moves verdicts.
 """
 

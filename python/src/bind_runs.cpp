@@ -6,13 +6,16 @@
 #include <set>
 #include <string>
 #include <tuple>
+#include <variant>
 #include <vector>
 
 #include "common.hpp"
 #include "rw/common/diagnostic.hpp"
+#include "rwsim/engines/engine_registry.hpp"
 #include "visgrab/analysis/report.hpp"
 #include "visgrab/grasp/grasp_resolver.hpp"
 #include "visgrab/results/results_file.hpp"
+#include "visgrab/results/trial_columns.hpp"
 #include "visgrab/runner/benchmark_runner.hpp"
 #include "visgrab/taskio/grasp_list.hpp"
 #include "visgrab/view/report_pictures.hpp"
@@ -68,8 +71,13 @@ py::dict summaryDict(const runner::RunSummary& s) {
 
 py::dict runBenchmark(const fs::path& database, const fs::path& grasps, const fs::path& out,
                       const fs::path& hand, const std::string& scenes, int threads, bool resume,
-                      const py::object& progress) {
+                      const std::string& engine, const py::object& progress) {
   if (threads < 1) throw py::value_error("threads must be >= 1, got " + std::to_string(threads));
+  try {
+    rwsim::engines::checkEngine(engine);
+  } catch (const std::invalid_argument& e) {
+    throw py::value_error(std::string("engine: ") + e.what());
+  }
   runner::RunOptions options;
   options.database = database;
   options.grasps = {grasps};
@@ -78,6 +86,7 @@ py::dict runBenchmark(const fs::path& database, const fs::path& grasps, const fs
   options.scenes = scenes;
   options.threads = threads;
   options.resume = resume;
+  options.engine = engine;
   std::mutex mutex;
   runner::RunProgress latest;
   bool fresh = false;
@@ -118,7 +127,7 @@ py::object conditionsOf(const std::optional<database::SceneConditions>& c) {
 std::string trialRepr(const TrialRecord& t) {
   return "visgrab.TrialResult(scene=" + quoted(t.sceneId) + ", method=" + quoted(t.method) +
          ", id=" + quoted(t.graspId) + ", rank=" + std::to_string(t.rank) +
-         ", outcome=" + quoted(std::string(rwsim::simulator::outcomeName(t.outcome))) +
+         ", outcome=" + quoted(std::string(rwsim::trial::outcomeName(t.outcome))) +
          ", q_lift=" + py::repr(py::float_(t.qLift)).cast<std::string>() +
          ", q_gws=" + py::repr(py::float_(t.qGws)).cast<std::string>() + ")";
 }
@@ -137,39 +146,24 @@ results::RunResults readResults(const fs::path& dir, std::vector<std::string>& w
 }  // namespace
 
 void bindRuns(py::module_& m) {
-  py::class_<TrialRecord>(m, "TrialResult", R"doc(
+  py::class_<TrialRecord> trial(m, "TrialResult", R"doc(
 One grasp trial of a run: a row of trials.csv (docs/report.md), read by the C++ results reader.
-outcome is the outcome's name (stable, slipped, dropped, missed, in_collision, invalid_contacts,
-simulation_failure, ...), robwork_code RobWork's status code for it.
-)doc")
-      .def_readonly("scene", &TrialRecord::sceneId, "The scene id.")
-      .def_readonly("method", &TrialRecord::method, "The method (grasp list field 2).")
-      .def_readonly("id", &TrialRecord::graspId, "The grasp id.")
-      .def_readonly("rank", &TrialRecord::rank,
-                    "0-based position among the scene's grasps of this method, as given.")
-      .def_property_readonly(
-          "outcome",
-          [](const TrialRecord& t) {
-            return std::string(rwsim::simulator::outcomeName(t.outcome));
-          },
-          "The outcome's name.")
-      .def_property_readonly(
-          "robwork_code",
-          [](const TrialRecord& t) { return rwsim::simulator::robworkCode(t.outcome); },
-          "RobWork's status code of the outcome.")
+Its properties are trials.csv's columns (results::trialColumns(), the per-trial record's one
+definition; the grasp column is `id`), plus `success` and `conditions`.
+)doc");
+  for (const results::TrialColumn& column : results::trialColumns()) {
+    const auto value = column.value;
+    trial.def_property_readonly(
+        std::string(column.property).c_str(),
+        [value](const TrialRecord& t) {
+          return std::visit([](const auto& v) { return py::cast(v); }, value(t));
+        },
+        std::string(column.doc).c_str());
+  }
+  trial
       .def_property_readonly(
           "success", [](const TrialRecord& t) { return results::isSuccess(t.outcome); },
           "True for the outcomes the paper counts as success (stable, slipped).")
-      .def_readonly("q_lift", &TrialRecord::qLift, "Paper eq. 5 (0 unless held).")
-      .def_readonly("q_gws", &TrialRecord::qGws,
-                    "Paper eq. 6-7 on the measured contact forces (0 unless held; NaN when not "
-                    "computed).")
-      .def_readonly("q_gws_unit", &TrialRecord::qGwsUnit,
-                    "The grasp wrench space quality with unit normal forces (0 unless held).")
-      .def_readonly("object", &TrialRecord::object,
-                    "Id (1..18) of the object held or touched most; 0 when none was touched.")
-      .def_readonly("simulated_time", &TrialRecord::simulatedTime, "Simulated time, s.")
-      .def_readonly("detail", &TrialRecord::detail, "Free text (failure details).")
       .def_property_readonly(
           "conditions", [](const TrialRecord& t) { return conditionsOf(t.conditions); },
           "The scene's conditions (texture, kind, arrangement, object_ids, pose) or None.")
@@ -207,9 +201,12 @@ input files. Iterating or indexing goes over the trials.
             for (const auto& g : r.sources.grasps) grasps.push_back(g.string());
             d["grasps"] = grasps;
             d["hand"] = r.sources.hand.string();
+            d["engine"] = r.sources.engine.empty() ? std::string("ode") : r.sources.engine;
+            d["engine_settings"] = r.sources.engineSettings;
             return d;
           },
-          "The run's input files (run.csv): database, grasps, hand.")
+          "The run's inputs (run.csv): database, grasps, hand, engine (\"ode\" for runs older "
+          "than the record) and engine_settings.")
       .def_readonly("label", &results::RunResults::label, "The folder's name.")
       .def("__len__", [](const results::RunResults& r) { return r.trials.size(); })
       .def(
@@ -245,7 +242,11 @@ input files. Iterating or indexing goes over the trials.
 
   m.def("_run", &runBenchmark, py::arg("database"), py::arg("grasps"), py::arg("out"),
         py::arg("hand"), py::arg("scenes"), py::arg("threads"), py::arg("resume"),
-        py::arg("progress"), "run's C++ side: runner::runBenchmark; returns its summary.");
+        py::arg("engine"), py::arg("progress"),
+        "run's C++ side: runner::runBenchmark; returns its summary.");
+  m.def("engines", &rwsim::engines::availableEngines,
+        "The physics engines this build has: [\"ode\"], and \"mujoco\" when it was built with "
+        "MuJoCo.");
 
   m.def(
       "_analyze",

@@ -64,6 +64,11 @@ def test_trials_csv_is_byte_identical_to_the_cli(runs):
         for name in ("q_lift", "q_gws", "q_gws_unit", "simulated_time"):
             assert getattr(t, name) == pytest.approx(float(row[name]), rel=1e-12, abs=0), name
         assert str(t.object) == row["object"] and t.detail == row["detail"]
+        assert t.closing_capped is (row["closing_capped"] == "1")
+    # Every column of trials.csv is a property of TrialResult (one definition drives both; the
+    # grasp column is `id`).
+    for column in rows[0]:
+        assert hasattr(trials[0], "id" if column == "grasp" else column), column
     # The grasp 0.4 m above the object closes on nothing.
     assert [t.outcome for t in trials if t.id == "above"] == ["missed", "missed"]
     assert trials.summary["trials"] == 4 and trials.rejected == []

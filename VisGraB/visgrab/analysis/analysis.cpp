@@ -232,7 +232,7 @@ Analysis analyze(const std::vector<RunResults>& runs, const AnalysisOptions& opt
       column.label = methodUses[m] > 1 ? a.runLabels[r] + ": " + m : m;
       for (const auto& [name, count] : runs[r].rejected) column.rejected += name == m ? count : 0;
       for (const TrialRecord& t : runs[r].trials) {
-        column.closingCapped += t.method == m && rwsim::trial::closingHitCap(t.detail) ? 1 : 0;
+        column.closingCapped += t.method == m && t.closingCapped ? 1 : 0;
       }
       a.columns.push_back(column);
       tallies.push_back(tallyScenes(runs[r], m));

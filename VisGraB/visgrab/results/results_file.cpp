@@ -7,6 +7,7 @@
 #include <iterator>
 #include <limits>
 #include <map>
+#include <span>
 #include <sstream>
 #include <stdexcept>
 #include <tuple>
@@ -15,6 +16,7 @@
 
 #include "visgrab/database/atomic_file.hpp"
 #include "visgrab/results/csv.hpp"
+#include "visgrab/results/trial_columns.hpp"
 
 namespace visgrab::results {
 
@@ -24,14 +26,15 @@ using rw::common::LoadError;
 
 namespace {
 
-constexpr std::string_view kTrialsColumns =
+// Version 3 (before closing_capped; version 2 has the same columns): closing_capped is read from
+// the detail text, where the trial noted it.
+constexpr std::string_view kTrialsColumnsVersion3 =
     "scene,method,grasp,rank,outcome,robwork_code,q_lift,q_gws,q_gws_unit,object,simulated_time,"
     "detail";
 // Version 1 (before q_gws_unit): its q_gws was computed with unit normal forces.
 constexpr std::string_view kTrialsColumnsVersion1 =
     "scene,method,grasp,rank,outcome,robwork_code,q_lift,q_gws,object,simulated_time,detail";
 constexpr std::string_view kRunColumns = "record,id,texture,kind,arrangement,objects,pose,count";
-constexpr std::size_t kTrialFieldCount = 12;
 constexpr std::size_t kRunFieldCount = 8;
 
 [[noreturn]] void fail(const std::string& file, int line, const std::string& message) {
@@ -50,11 +53,21 @@ struct Format {
   bool legacy = false;
 };
 
-constexpr std::array<Format, 3> kTrialsFormats = {{
-    {kTrialsFormatVersion, kTrialsColumns, false},
-    {2, kTrialsColumns, true},
-    {1, kTrialsColumnsVersion1, true},
-}};
+// The current column line, from the per-trial record's table.
+const std::string& trialsColumns() {
+  static const std::string line = trialColumnLine();
+  return line;
+}
+
+const std::array<Format, 4>& trialsFormats() {
+  static const std::array<Format, 4> formats = {{
+      {kTrialsFormatVersion, trialsColumns(), false},
+      {3, kTrialsColumnsVersion3, false},
+      {2, kTrialsColumnsVersion3, true},
+      {1, kTrialsColumnsVersion1, true},
+  }};
+  return formats;
+}
 constexpr std::array<Format, 2> kRunFormats = {{
     {kRunFormatVersion, kRunColumns, false},
     {1, kRunColumns, true},
@@ -174,7 +187,11 @@ Body readBody(std::string_view text, std::string_view what, const std::array<For
     body.tornLine = body.torn ? 1 : 0;
     return body;
   }
-  if (first != current.columns) {
+  const Format* format = nullptr;
+  for (const Format& f : formats) {
+    if (!f.legacy && first == f.columns) format = &f;
+  }
+  if (!format) {
     fail(file, 1,
          "expected the column line '" + std::string(current.columns) + "', found '" +
              std::string(first) + "'");
@@ -185,20 +202,13 @@ Body readBody(std::string_view text, std::string_view what, const std::array<For
   } catch (const CsvSyntaxError& e) {
     fail(file, e.recordLine(), e.what());
   }
-  body.format = &current;
+  body.format = format;
   body.torn = csv.torn;
   body.tornLine = csv.tornLine;
   body.completeBytes = csv.completeBytes;
   body.records.assign(std::make_move_iterator(csv.records.begin() + 1),
                       std::make_move_iterator(csv.records.end()));
   return body;
-}
-
-// A Q value: empty means "not computed" (NaN).
-std::string formatQuality(double q) { return std::isnan(q) ? std::string() : formatDouble(q); }
-
-double parseQuality(const std::string& field) {
-  return field.empty() ? std::numeric_limits<double>::quiet_NaN() : parseDouble(field);
 }
 
 std::string joinObjects(const std::vector<int>& objects) {
@@ -262,22 +272,15 @@ std::string readWholeFile(const fs::path& path) {
 
 }  // namespace
 
-std::string trialsHeader() { return std::string(kTrialsColumns) + "\n"; }
+std::string trialsHeader() { return trialsColumns() + "\n"; }
 
 std::string formatTrialLine(const TrialRecord& t) {
   std::string line;
-  line += csvField(t.sceneId) + ',';
-  line += csvField(t.method) + ',';
-  line += csvField(t.graspId) + ',';
-  line += std::to_string(t.rank) + ',';
-  line += std::string(rwsim::trial::outcomeName(t.outcome)) + ',';
-  line += std::to_string(rwsim::trial::robworkCode(t.outcome)) + ',';
-  line += formatDouble(t.qLift) + ',';
-  line += formatQuality(t.qGws) + ',';
-  line += formatQuality(t.qGwsUnit) + ',';
-  line += std::to_string(t.object) + ',';
-  line += formatDouble(t.simulatedTime) + ',';
-  line += csvField(t.detail, true) + '\n';
+  for (const TrialColumn& column : trialColumns()) {
+    if (!line.empty()) line += ',';
+    line += column.format(t);
+  }
+  line += '\n';
   return line;
 }
 
@@ -315,7 +318,7 @@ std::string formatRunFile(const RunResults& run) {
 
 TrialsFile parseTrials(std::string_view text, const std::string& file) {
   TrialsFile out;
-  Body body = readBody(text, "trials", kTrialsFormats, file);
+  Body body = readBody(text, "trials", trialsFormats(), file);
   out.tornLastLine = body.torn;
   out.tornLine = body.tornLine;
   out.completeBytes = body.completeBytes;
@@ -323,9 +326,11 @@ TrialsFile parseTrials(std::string_view text, const std::string& file) {
   // the file is empty: nothing to read; the writer starts the file afresh.
   if (!body.format) return out;
   out.version = body.format->version;
-  const bool v1 = out.version == 1;
-  const std::size_t fieldCount = v1 ? kTrialFieldCount - 1 : kTrialFieldCount;
-  const std::string_view columns = body.format->columns;
+  const std::span<const TrialColumn> columns = trialColumns();
+  // Older versions lack columns: q_gws_unit (version 1) and closing_capped (before 4).
+  const std::size_t missing = (out.version < 4 ? 1 : 0) + (out.version == 1 ? 1 : 0);
+  const std::size_t fieldCount = columns.size() - missing;
+  const std::string_view columnLine = body.format->columns;
   std::map<std::tuple<std::string, std::string, std::string>, int> seen;
   for (CsvRecord& record : body.records) {
     const int lineNo = record.line;
@@ -334,46 +339,26 @@ TrialsFile parseTrials(std::string_view text, const std::string& file) {
     if (f.size() != fieldCount) {
       fail(file, lineNo,
            std::to_string(f.size()) + " fields, expected " + std::to_string(fieldCount) + " (" +
-               std::string(columns) + ")");
+               std::string(columnLine) + ")");
     }
-    // Version 1 has no q_gws_unit: shift the later fields into place.
-    if (v1) f.insert(f.begin() + 8, std::string());
+    // Bring an older record into the current column order.
+    if (out.version == 1) f.insert(f.begin() + 8, std::string());
+    if (out.version < 4) {
+      f.insert(f.end() - 1, rwsim::trial::closingHitCap(f.back()) ? "1" : "0");
+    }
     TrialRecord t;
-    t.sceneId = f[0];
-    t.method = f[1];
-    t.graspId = f[2];
-    if (t.sceneId.empty()) fail(file, lineNo, "empty scene id");
-    if (t.method.empty()) fail(file, lineNo, "empty method");
-    const auto outcome = rwsim::trial::outcomeFromName(f[4]);
-    if (!outcome) fail(file, lineNo, "unknown outcome '" + f[4] + "'");
-    t.outcome = *outcome;
-    try {
-      t.rank = parseInt(f[3]);
-      const int code = parseInt(f[5]);
-      if (code != rwsim::trial::robworkCode(t.outcome)) {
-        fail(file, lineNo,
-             "RobWork code " + f[5] + " does not match outcome '" + f[4] + "' (expected " +
-                 std::to_string(rwsim::trial::robworkCode(t.outcome)) + ")");
+    for (std::size_t i = 0; i < columns.size(); ++i) {
+      try {
+        columns[i].parse(f[i], t);
+      } catch (const std::invalid_argument& e) {
+        fail(file, lineNo, e.what());
       }
-      t.qLift = parseDouble(f[6]);
-      if (v1) {
-        // Its q_gws was the unit-force epsilon; the paper's Q_GWS was not computed.
-        t.qGwsUnit = parseDouble(f[7]);
-        t.qGws = std::numeric_limits<double>::quiet_NaN();
-      } else {
-        t.qGws = parseQuality(f[7]);
-        t.qGwsUnit = parseQuality(f[8]);
-      }
-      t.object = parseInt(f[9]);
-      t.simulatedTime = parseDouble(f[10]);
-    } catch (const std::invalid_argument& e) {
-      fail(file, lineNo, e.what());
     }
-    if (t.rank < 0) fail(file, lineNo, "negative rank " + f[3]);
-    if (t.object < 0 || t.object > database::kObjectCount) {
-      fail(file, lineNo, "object " + f[9] + " is not 0..18");
+    if (out.version == 1) {
+      // Its q_gws was the unit-force epsilon; the paper's Q_GWS was not computed.
+      t.qGwsUnit = t.qGws;
+      t.qGws = std::numeric_limits<double>::quiet_NaN();
     }
-    t.detail = f[11];
     const auto [it, inserted] =
         seen.emplace(std::make_tuple(t.sceneId, t.method, t.graspId), lineNo);
     if (!inserted) {

@@ -14,9 +14,10 @@
 /// the first line is the column line, fields holding a comma, a double quote or a line break
 /// (or beginning or ending with a space) are quoted with quotes doubled, line breaks stay literal
 /// inside quotes (a record may then span lines), nothing is escaped with backslashes.
-///  - `trials.csv` (version 3): the column line `scene,method,grasp,rank,outcome,robwork_code,
-///    q_lift,q_gws,q_gws_unit,object,simulated_time,detail` (one line), then one record per
-///    finished trial (detail always quoted; an empty q_gws or q_gws_unit is "not computed", NaN).
+///  - `trials.csv` (version 4): the column line `scene,method,grasp,rank,outcome,robwork_code,
+///    q_lift,q_gws,q_gws_unit,object,simulated_time,closing_capped,detail` (one line; the columns
+///    are trial_columns.hpp's table), then one record per finished trial (detail always quoted;
+///    an empty q_gws or q_gws_unit is "not computed", NaN; closing_capped is 0 or 1).
 ///  - `run.csv` (version 2): the column line `record,id,texture,kind,arrangement,objects,pose,
 ///    count`, then one `scene` record per scene (conditions empty when unknown; objects separated
 ///    by spaces), one `method` record per method, one `rejected` record (count in the last
@@ -29,15 +30,18 @@
 /// and escape `\`, line feed and carriage return inside quotes as `\\`, `\n`, `\r`. trials.csv
 /// version 1 has no q_gws_unit: its q_gws was computed with unit normal forces, so it becomes
 /// qGwsUnit and qGws is NaN (the paper's Q_GWS was not computed); version 2 has the columns of 3.
+/// Version 3 (RFC 4180 like 4) has no closing_capped column: it is read from the detail text,
+/// where the trial noted it (rwsim::trial::closingHitCap).
 namespace visgrab::results {
 
 /// Name of the trials file in a result folder.
 inline constexpr std::string_view kTrialsFileName = "trials.csv";
 /// Name of the run file in a result folder.
 inline constexpr std::string_view kRunFileName = "run.csv";
-/// Format version of the trials.csv written (3: RFC 4180, no comment line; 2: the same columns
-/// after `# visgrab trials 2`, backslash escapes; 1: no q_gws_unit, q_gws was the unit-force one).
-inline constexpr int kTrialsFormatVersion = 3;
+/// Format version of the trials.csv written (4: RFC 4180, no comment line, with closing_capped;
+/// 3: the same without closing_capped; 2: the columns of 3 after `# visgrab trials 2`, backslash
+/// escapes; 1: no q_gws_unit, q_gws was the unit-force one).
+inline constexpr int kTrialsFormatVersion = 4;
 /// Format version of the run.csv written (2: RFC 4180, no comment line; 1: `# visgrab run 1`
 /// first, backslash escapes).
 inline constexpr int kRunFormatVersion = 2;
@@ -65,11 +69,11 @@ struct TrialsFile {
   /// continue); 0 when not even the column line (or an older file's two header lines) is
   /// complete.
   std::size_t completeBytes = 0;
-  /// Format version of the file (kTrialsFormatVersion, 2 or 1; see above).
+  /// Format version of the file (kTrialsFormatVersion, 3, 2 or 1; see above).
   int version = kTrialsFormatVersion;
 };
 
-/// Reads trials.csv text of version 3, 2 or 1; `file` names it in errors. A last record without
+/// Reads trials.csv text of version 4, 3, 2 or 1; `file` names it in errors. A last record without
 /// its line break is torn (see TrialsFile) and dropped, whatever it holds. @throws
 /// rw::common::LoadError with `file:line` (the line where the record starts; the message gives
 /// the column) for a wrong column line or version, a malformed record, an unknown outcome, a

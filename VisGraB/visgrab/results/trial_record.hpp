@@ -39,6 +39,9 @@ struct TrialRecord {
   int object = 0;
   /// Simulated time, s.
   double simulatedTime = 0.0;
+  /// The closing ran into the trial's closing time limit with the fingers still moving: the grasp
+  /// was judged as it stood (GraspTrialResult::closingCapped).
+  bool closingCapped = false;
   /// Free text (failure details).
   std::string detail;
 };

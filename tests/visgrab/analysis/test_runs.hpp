@@ -11,7 +11,7 @@ namespace visgrab::analysis::test_runs {
 
 using database::SceneConditions;
 using database::Texture;
-using rwsim::simulator::GraspOutcome;
+using rwsim::trial::GraspOutcome;
 
 /// A trial of method `method` in `scene`, rank = position in the scene's list.
 inline results::TrialRecord trial(const results::RunScene& scene, const std::string& method,
@@ -74,6 +74,8 @@ inline results::RunResults runA() {
       "object drift 0.001 m [closing hit the cap: 5 s simulated with J still "
       "at 0.02 rad/s (at rest below 0.01)]";
   run.trials[5].detail = "no hand contact on x after lifting [closing hit the cap: ...]";
+  run.trials[2].closingCapped = true;
+  run.trials[5].closingCapped = true;
   return run;
 }
 

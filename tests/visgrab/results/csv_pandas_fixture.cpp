@@ -119,13 +119,13 @@ RunResults makeRun() {
         t.method = method;
         t.graspId = graspIds[static_cast<std::size_t>(rank)];
         t.rank = rank;
-        t.outcome =
-            rwsim::simulator::kOutcomeTable[n % rwsim::simulator::kOutcomeTable.size()].outcome;
+        t.outcome = rwsim::trial::kOutcomeTable[n % rwsim::trial::kOutcomeTable.size()].outcome;
         t.qLift = 0.1 * static_cast<double>(n);
         t.qGws = n % 3 == 0 ? std::nan("") : 1.0 / static_cast<double>(n + 1);
         t.qGwsUnit = n % 4 == 0 ? std::nan("") : 0.25 * static_cast<double>(n);
         t.object = scene.conditions ? scene.conditions->objects[0] : 0;
         t.simulatedTime = 0.5 + 1e-3 * static_cast<double>(n);
+        t.closingCapped = n % 5 == 2;
         t.detail = kDetails[n % kDetails.size()];
         run.trials.push_back(t);
       }
@@ -137,18 +137,18 @@ RunResults makeRun() {
 Table trialsTruth(const RunResults& run) {
   Table table{"results/trials.csv",
               {"scene", "method", "grasp", "rank", "outcome", "robwork_code", "q_lift", "q_gws",
-               "q_gws_unit", "object", "simulated_time", "detail"},
+               "q_gws_unit", "object", "simulated_time", "closing_capped", "detail"},
               {}};
   // ResultsWriter::finalize writes the canonical order: the run's scenes, methods, then rank.
   std::vector<TrialRecord> sorted = run.trials;
   visgrab::results::sortTrials(sorted, run.scenes, run.methods);
   for (const TrialRecord& t : sorted) {
-    table.rows.push_back(
-        {jsonString(t.sceneId), jsonString(t.method), jsonString(t.graspId), std::to_string(t.rank),
-         jsonString(rwsim::simulator::outcomeName(t.outcome)),
-         std::to_string(rwsim::simulator::robworkCode(t.outcome)), jsonNumber(t.qLift),
-         jsonNumber(t.qGws), jsonNumber(t.qGwsUnit), std::to_string(t.object),
-         jsonNumber(t.simulatedTime), jsonString(t.detail)});
+    table.rows.push_back({jsonString(t.sceneId), jsonString(t.method), jsonString(t.graspId),
+                          std::to_string(t.rank), jsonString(rwsim::trial::outcomeName(t.outcome)),
+                          std::to_string(rwsim::trial::robworkCode(t.outcome)), jsonNumber(t.qLift),
+                          jsonNumber(t.qGws), jsonNumber(t.qGwsUnit), std::to_string(t.object),
+                          jsonNumber(t.simulatedTime), std::string(t.closingCapped ? "1" : "0"),
+                          jsonString(t.detail)});
   }
   return table;
 }

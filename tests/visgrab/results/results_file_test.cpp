@@ -10,13 +10,14 @@
 
 #include "support/test_support.hpp"
 #include "visgrab/results/csv.hpp"
+#include "visgrab/results/trial_columns.hpp"
 
 namespace visgrab::results {
 namespace {
 
 using database::SceneConditions;
 using database::Texture;
-using rwsim::simulator::GraspOutcome;
+using rwsim::trial::GraspOutcome;
 
 std::string readText(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
@@ -58,6 +59,7 @@ RunResults smallRun() {
   t1.qGwsUnit = 0.1 / 3.0;
   t1.object = 5;
   t1.simulatedTime = 2.5;
+  t1.closingCapped = true;
   t1.detail = "line one\nline \"two\", with \\ backslash";
   TrialRecord t2 = makeTrial(run.scenes[1].id, "s3EGA1", "g,7", 1, GraspOutcome::kInCollision);
   t2.detail = "hand.finger1 vs table (RobWork 12)";
@@ -203,6 +205,7 @@ TEST(ResultsFileTest, RoundTripKeepsEveryField) {
     EXPECT_EQ(b.qGwsUnit, a.qGwsUnit);
     EXPECT_EQ(b.object, a.object);
     EXPECT_EQ(b.simulatedTime, a.simulatedTime);
+    EXPECT_EQ(b.closingCapped, a.closingCapped);
     EXPECT_EQ(b.detail, a.detail);
     EXPECT_EQ(b.conditions, run.scenes[i].conditions);
   }
@@ -210,9 +213,12 @@ TEST(ResultsFileTest, RoundTripKeepsEveryField) {
   // first one's detail spanning two lines (RFC 4180: no backslash escapes).
   const std::string text = readText(dir.path() / "trials.csv");
   EXPECT_EQ(text.rfind("scene,method,grasp,rank,outcome,robwork_code,q_lift,q_gws,q_gws_unit,"
-                       "object,simulated_time,detail\n",
+                       "object,simulated_time,closing_capped,detail\n",
                        0),
             0u);
+  // The first trial's closing was capped: 1 before its detail; the others 0.
+  EXPECT_NE(text.find(",5,2.5,1,\"line one"), std::string::npos) << text;
+  EXPECT_NE(text.find(",0,0,0,\"hand.finger1"), std::string::npos) << text;
   EXPECT_NE(text.find(",in_collision,2,"), std::string::npos);
   EXPECT_NE(text.find(",\"line one\nline \"\"two\"\", with \\ backslash\"\n"), std::string::npos)
       << text;
@@ -289,22 +295,22 @@ void expectLoadError(const std::string& text, const std::string& where, const st
 
 TEST(ResultsFileTest, CorruptLinesGiveFileAndLine) {
   const std::string h = trialsHeader();
-  const std::string good = "s,m,g,0,stable,1,0.9,0.5,0.25,5,1.2,\"\"\n";
+  const std::string good = "s,m,g,0,stable,1,0.9,0.5,0.25,5,1.2,0,\"\"\n";
   // A record spanning lines 3 and 4 (its detail holds a line break) moves the later lines down.
-  const std::string twoLines = "s,m,g1,0,stable,1,0.9,0.5,0.25,5,1.2,\"a\nb\"\n";
+  const std::string twoLines = "s,m,g1,0,stable,1,0.9,0.5,0.25,5,1.2,0,\"a\nb\"\n";
   expectLoadError(h + good + "s,m,g2,0,stable,1,0.9\n" + good, "r/trials.csv:3", "7 fields");
   expectLoadError(h + good + twoLines + "s,m,g2,0,stable,1,\"0.9\n\"\n", "r/trials.csv:5",
                   "7 fields");
-  expectLoadError(h + good + twoLines + "s,m,g2,0,wobbly,1,0,0,0,0,0,\"\"\n", "r/trials.csv:5",
+  expectLoadError(h + good + twoLines + "s,m,g2,0,wobbly,1,0,0,0,0,0,0,\"\"\n", "r/trials.csv:5",
                   "unknown outcome 'wobbly'");
-  expectLoadError(h + good + "s,m,g2,0,stable,3,0,0,0,0,0,\"\"\n", "r/trials.csv:3",
+  expectLoadError(h + good + "s,m,g2,0,stable,3,0,0,0,0,0,0,\"\"\n", "r/trials.csv:3",
                   "RobWork code 3 does not match");
-  expectLoadError(h + good + "s,m,g2,zero,stable,1,0,0,0,0,0,\"\"\n", "r/trials.csv:3",
+  expectLoadError(h + good + "s,m,g2,zero,stable,1,0,0,0,0,0,0,\"\"\n", "r/trials.csv:3",
                   "'zero' is not an integer");
   // Syntax errors: the line where the record starts, and the error's own line and column.
-  expectLoadError(h + good + "s,m,\"g\nx\"y,0,stable,1,0,0,0,0,0,\"\"\n" + good, "r/trials.csv:3",
+  expectLoadError(h + good + "s,m,\"g\nx\"y,0,stable,1,0,0,0,0,0,0,\"\"\n" + good, "r/trials.csv:3",
                   "line 4, column 3: text after a closing quote");
-  expectLoadError(h + good + "s,m,g\"2,0,stable,1,0,0,0,0,0,\"\"\n", "r/trials.csv:3",
+  expectLoadError(h + good + "s,m,g\"2,0,stable,1,0,0,0,0,0,0,\"\"\n", "r/trials.csv:3",
                   "column 6: quote inside an unquoted field");
   expectLoadError(h + good + good, "r/trials.csv:3", "given twice (first at line 2)");
   expectLoadError(h + good + twoLines + twoLines, "r/trials.csv:5",
@@ -315,7 +321,7 @@ TEST(ResultsFileTest, CorruptLinesGiveFileAndLine) {
   expectLoadError("sc\"ene", "r/trials.csv:1", "expected the column line");
   // A version 1 line (11 fields) under the current column line, and the other way round.
   expectLoadError(h + "s,m,g,0,stable,1,0.9,0.5,5,1.2,\"\"\n", "r/trials.csv:2", "11 fields");
-  expectLoadError(std::string(kVersion1Header) + good, "r/trials.csv:3", "12 fields, expected 11");
+  expectLoadError(std::string(kVersion1Header) + good, "r/trials.csv:3", "13 fields, expected 11");
   // Older files keep their rules: a backslash escape it does not know, a line break at the end
   // of a line inside quotes.
   expectLoadError(std::string(kVersion2Header) + "s,m,g,0,stable,1,0,0,0,0,0,\"\\q\"\n",
@@ -337,6 +343,60 @@ TEST(ResultsFileTest, EmptyQualityMeansNotComputed) {
   EXPECT_TRUE(std::isnan(back.trials[0].qGws));
   EXPECT_EQ(back.trials[0].qGwsUnit, 0.125);
   EXPECT_EQ(back.version, kTrialsFormatVersion);
+}
+
+TEST(ResultsFileTest, ColumnLineIsTheRecordTable) {
+  // One definition: the header, each record's field count and the Python properties follow
+  // trialColumns(); the header written is its names in order.
+  std::string names;
+  for (const TrialColumn& c : trialColumns())
+    names += std::string(names.empty() ? "" : ",") + std::string(c.name);
+  EXPECT_EQ(trialsHeader(), names + "\n");
+  EXPECT_EQ(trialColumns().size(), 13u);
+  EXPECT_EQ(trialColumns()[2].property, "id");
+  TrialRecord t = makeTrial("s", "m", "g", 0, GraspOutcome::kSlipped);
+  t.closingCapped = true;
+  EXPECT_EQ(std::get<bool>(trialColumns()[11].value(t)), true);
+  EXPECT_EQ(std::get<std::string>(trialColumns()[4].value(t)), "slipped");
+  EXPECT_EQ(std::get<long long>(trialColumns()[5].value(t)), 5);
+}
+
+TEST(ResultsFileTest, Version3FilesReadClosingCappedFromTheDetail) {
+  // Version 3: RFC 4180 without closing_capped; the trial noted a capped closing in its detail.
+  const std::string header =
+      "scene,method,grasp,rank,outcome,robwork_code,q_lift,q_gws,q_gws_unit,object,"
+      "simulated_time,detail\n";
+  const std::string capped =
+      "s,m,g1,0,slipped,5,0.5,0.25,0.125,3,6.5,\"drift [closing hit the cap: 5 s "
+      "simulated with f1.Joint2 still at 0.02 rad/s (at rest below 0.01)]\"\n";
+  const std::string plain = "s,m,g2,1,dropped,4,0,0,0,3,2,\"object fell\"\n";
+  const TrialsFile back = parseTrials(header + capped + plain, "old/trials.csv");
+  EXPECT_EQ(back.version, 3);
+  ASSERT_EQ(back.trials.size(), 2u);
+  EXPECT_TRUE(back.trials[0].closingCapped);
+  EXPECT_FALSE(back.trials[1].closingCapped);
+  EXPECT_EQ(back.trials[0].qGwsUnit, 0.125);
+  EXPECT_EQ(back.trials[0].simulatedTime, 6.5);
+  // Written again it is version 4 with the column.
+  const std::string again = formatTrialLine(back.trials[0]);
+  EXPECT_NE(again.find(",3,6.5,1,\"drift"), std::string::npos) << again;
+  // A version 3 record with a version 4 field count is an error naming file and line.
+  try {
+    parseTrials(header + "s,m,g1,0,slipped,5,0.5,0.25,0.125,3,6.5,1,\"x\"\n", "old/trials.csv");
+    ADD_FAILURE() << "expected a LoadError";
+  } catch (const rw::common::LoadError& e) {
+    EXPECT_NE(std::string(e.what()).find("old/trials.csv:2"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("13 fields, expected 12"), std::string::npos) << e.what();
+  }
+  // closing_capped must be 0 or 1.
+  try {
+    parseTrials(trialsHeader() + "s,m,g1,0,slipped,5,0.5,0.25,0.125,3,6.5,yes,\"x\"\n", "t.csv");
+    ADD_FAILURE() << "expected a LoadError";
+  } catch (const rw::common::LoadError& e) {
+    EXPECT_NE(std::string(e.what()).find("t.csv:2"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("closing_capped 'yes' is not 0 or 1"), std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(ResultsFileTest, Version1FilesAreReadWithTheirQGwsAsTheUnitColumn) {

@@ -17,7 +17,7 @@ namespace {
 
 using database::SceneConditions;
 using database::Texture;
-using rwsim::simulator::GraspOutcome;
+using rwsim::trial::GraspOutcome;
 
 std::string readText(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
@@ -183,7 +183,7 @@ TEST(ResultsWriterTest, ResumingAVersion2FileRewritesItInTheCurrentFormat) {
   }
   const std::string text = readText(dir.path() / "trials.csv");
   EXPECT_EQ(text, trialsHeader() + trials[0].sceneId +
-                      ",zeta,g1,1,stable,1,0.875,0.5,0.25,3,1.5,\"a\nb\"\n" +
+                      ",zeta,g1,1,stable,1,0.875,0.5,0.25,3,1.5,0,\"a\nb\"\n" +
                       formatTrialLine(trials[0]));
   const TrialsFile back = parseTrials(text, "trials.csv");
   EXPECT_EQ(back.version, kTrialsFormatVersion);
