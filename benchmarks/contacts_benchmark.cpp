@@ -262,7 +262,7 @@ const RecordedTrial& recordedTrial() {
     setup.tcpFrame = "SchunkHand.SDHTCP";
     setup.simulator = sim::optionsFromEngineProperties(dwc);
     setup.computeGws = false;
-    setup.observer = [&out, &dwc](const sim::Simulator& simulator, std::string_view) {
+    setup.observer = [&out, &dwc](const rwsim::trial::PhysicsEngine& simulator, std::string_view) {
       std::vector<Transform3D> poses;
       for (std::size_t i = 0; i < dwc.bodies().size(); ++i) {
         poses.push_back(simulator.bodyPose(rwsim::dynamics::BodyId(i)));

@@ -82,7 +82,8 @@ void runTrials(benchmark::State& state, bool computeGws) {
   double separated = 0.0;
   std::int64_t steps = 0;
   const sim::GraspTrial* running = nullptr;
-  setup.observer = [&](const sim::Simulator& s, std::string_view) {
+  setup.observer = [&](const rwsim::trial::PhysicsEngine& engine, std::string_view) {
+    const auto& s = dynamic_cast<const sim::Simulator&>(engine);
     rows += static_cast<double>(s.lastStepRows());
     for (const auto& bc : s.contacts()) {
       const bool hand = running->isHandBody(bc.bodyA) || running->isHandBody(bc.bodyB);

@@ -1,7 +1,12 @@
 #!/usr/bin/env python3
 """Checks the include graph: each target includes only headers of the targets it links.
 
-Usage: scripts/check-includes.py MODULE_MAP.json
+Usage: scripts/check-includes.py MODULE_MAP.json [--not-linking TARGETS=FORBIDDEN]...
+
+--not-linking A,B=X,Y also checks that none of the targets A, B links any of X, Y, directly or
+through any chain of links (PUBLIC or PRIVATE: a static library's private links are linked too).
+A violation reads "TARGET links FORBIDDEN (TARGET -> ... -> FORBIDDEN), which it must not".
+The project uses it to prove that the layers that only read results link no physics engine.
 
 The module map is written by CMake at configure time (cmake/VisgrabModuleMap.cmake): every
 target of the source tree with its folder, sources, include folders and link items. A header
@@ -187,15 +192,75 @@ def check(map_path, out=sys.stdout):
     return violations, checked
 
 
+def link_path(start, forbidden, targets):
+    """The shortest chain of links from target `start` to a target or link item in `forbidden`
+    (breadth first over every direct link), or None."""
+    previous = {start: None}
+    queue = [start]
+    while queue:
+        name = queue.pop(0)
+        links = targets[name].direct if name in targets else []
+        for d in links:
+            if d in previous:
+                continue
+            previous[d] = name
+            if d in forbidden:
+                chain = [d]
+                while previous[chain[-1]] is not None:
+                    chain.append(previous[chain[-1]])
+                return list(reversed(chain))
+            queue.append(d)
+    return None
+
+
+def check_not_linking(map_path, rules, out=sys.stdout):
+    """rules: [(targets, forbidden)]; returns the number of violations."""
+    _, targets = load(map_path)
+    violations = 0
+    for names, forbidden in rules:
+        for name in names:
+            if name not in targets:
+                raise KeyError(f"--not-linking names target {name}, which the map lacks")
+            chain = link_path(name, set(forbidden), targets)
+            if chain:
+                out.write(f"{name} links {chain[-1]} ({' -> '.join(chain)}), which it must not\n")
+                violations += 1
+    return violations
+
+
+def parse_rules(args):
+    rules = []
+    if len(args) % 2 != 0:
+        raise ValueError("--not-linking needs TARGETS=FORBIDDEN")
+    for flag, value in zip(args[::2], args[1::2]):
+        if flag != "--not-linking" or value.count("=") != 1:
+            raise ValueError(f"expected --not-linking A,B=X,Y, got {flag} {value}")
+        left, right = value.split("=")
+        rules.append(([n for n in left.split(",") if n], [n for n in right.split(",") if n]))
+    return rules
+
+
 def main(argv):
-    if len(argv) != 2:
+    if len(argv) < 2:
         sys.stderr.write(__doc__)
         return 2
     try:
+        rules = parse_rules(argv[2:])
+    except ValueError as e:
+        sys.stderr.write(f"check-includes: {e}\n")
+        return 2
+    try:
         violations, checked = check(argv[1])
+        link_violations = check_not_linking(argv[1], rules)
     except (OSError, KeyError, ValueError) as e:
         sys.stderr.write(f"check-includes: cannot read the module map {argv[1]}: {e}\n")
         return 2
+    if link_violations:
+        print(f"check-includes: {link_violations} targets link what they must not")
+        return 1
+    if rules:
+        names = sorted({n for left, _ in rules for n in left})
+        print(f"check-includes: {', '.join(names)} link none of the targets they must not")
     if violations:
         print(f"check-includes: {violations} of {checked} includes of other targets' headers "
               "are of targets not linked")

@@ -145,6 +145,7 @@ ViewerData loadViewerData(const ViewerOptions& options) {
     data.results = results::readResults(*options.results, &warnings);
     for (const auto& w : warnings) data.warnings.push_back(w.format());
     sources = data.results->sources;
+    if (!sources.engine.empty()) data.engine = sources.engine;
   }
 
   data.databasePath =

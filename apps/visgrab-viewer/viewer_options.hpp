@@ -76,6 +76,8 @@ struct ViewerData {
   bool haveGraspFiles = false;
   /// The run's results, when --results was given.
   std::optional<results::RunResults> results;
+  /// The physics engine trials replay on: the run's (run.csv), else ODE.
+  std::string engine = "ode";
   /// Problems that did not stop loading (rejected grasps, result warnings), one line each.
   std::vector<std::string> warnings;
 };

@@ -41,7 +41,7 @@ namespace visgrab::viewer {
 
 namespace {
 
-using rwsim::simulator::GraspOutcome;
+using rwsim::trial::GraspOutcome;
 
 constexpr int kPlayIntervalMs = 30;
 constexpr int kStatusMs = 8000;
@@ -282,7 +282,8 @@ void ViewerWindow::openScene(const std::string& id) {
   setWindowTitle("VisGraB viewer");
   {
     BusyCursor busy;
-    if (!loader_) loader_ = std::make_unique<session::SceneLoader>(*data_.database, *data_.hand);
+    if (!loader_)
+      loader_ = std::make_unique<session::SceneLoader>(*data_.database, *data_.hand, data_.engine);
     session_ = std::make_unique<session::SceneSession>(*loader_, entry);
   }
   view_->setSession(session_.get());
@@ -339,7 +340,7 @@ void ViewerWindow::fillGraspTable() {
     cell(kIdColumn, qs(g.request.id));
     if (g.record) {
       QTableWidgetItem* outcome =
-          cell(kOutcomeColumn, qs(std::string(rwsim::simulator::outcomeName(g.record->outcome))));
+          cell(kOutcomeColumn, qs(std::string(rwsim::trial::outcomeName(g.record->outcome))));
       outcome->setIcon(swatch(outcomeQColor(g.record->outcome)));
       cell(kQLiftColumn, number(g.record->qLift, 3));
       cell(kQGwsColumn, number(g.record->qGws, 4));
@@ -415,7 +416,7 @@ QString ViewerWindow::replayGrasp(std::size_t index) {
   const GraspOutcome outcome = replay_->result.outcome;
   if (grasp.record && grasp.record->outcome != outcome) {
     replayNote_ = QString("the results say %1 (another build, hand or database than the run's?)")
-                      .arg(qs(std::string(rwsim::simulator::outcomeName(grasp.record->outcome))));
+                      .arg(qs(std::string(rwsim::trial::outcomeName(grasp.record->outcome))));
   }
   if (!grasp.record) showReplayedOutcome(index);
   std::vector<SceneView::FramedPart> framed{{session_->initialState(), false}};
@@ -433,8 +434,7 @@ QString ViewerWindow::replayGrasp(std::size_t index) {
   }
   showMoment(Moment::kPlaced);
   statusBar()->showMessage(
-      QString("%1: %2").arg(name, qs(std::string(rwsim::simulator::outcomeName(outcome)))),
-      kStatusMs);
+      QString("%1: %2").arg(name, qs(std::string(rwsim::trial::outcomeName(outcome)))), kStatusMs);
   return {};
 }
 
@@ -452,7 +452,7 @@ void ViewerWindow::showReplayedOutcome(std::size_t index) {
     graspTable_->setItem(row, column, item);
     return item;
   };
-  set(kOutcomeColumn, qs(std::string(rwsim::simulator::outcomeName(outcome))))
+  set(kOutcomeColumn, qs(std::string(rwsim::trial::outcomeName(outcome))))
       ->setIcon(swatch(outcomeQColor(outcome)));
   set(kQLiftColumn, number(replay_->result.qLift, 3));
   set(kQGwsColumn, number(replay_->result.qGws, 4));

@@ -10,6 +10,7 @@
 #include "cli_common/cli_errors.hpp"
 #include "cli_common/data_folder.hpp"
 #include "rw/common/diagnostic.hpp"
+#include "rwsim/engines/engine_registry.hpp"
 
 namespace visgrab::app {
 
@@ -209,6 +210,30 @@ CLI::Option* addScenesOption(CLI::App& cmd) {
                   "repeatable: OR)")
       ->type_name("FILTER")
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+}
+
+CLI::Option* addEngineOption(CLI::App& cmd) {
+  std::string names;
+  for (const auto& e : rwsim::engines::knownEngines()) names += (names.empty() ? "" : "|") + e;
+  std::string built;
+  for (const auto& e : rwsim::engines::availableEngines()) built += (built.empty() ? "" : ", ") + e;
+  const std::string help =
+      "The physics engine of the trials: ode (the benchmark's, default) or mujoco (a second "
+      "engine for cross-checks, built when Debian's libmujoco-dev is installed; "
+      "docs/validation.md). This build has: " +
+      built;
+  return cmd.add_option("--engine", help)->type_name(names);
+}
+
+std::string engineOption(const Arguments& a) {
+  const auto engine = a.option("engine");
+  if (!engine) return std::string(rwsim::engines::kDefaultEngine);
+  try {
+    rwsim::engines::checkEngine(*engine);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(std::string("--engine: ") + e.what());
+  }
+  return *engine;
 }
 
 std::string scenesFilter(const Arguments& a) {

@@ -107,6 +107,13 @@ inline constexpr const char* kDatabaseOptionHelp =
 /// `--scenes FILTER` on `cmd` (repeatable: the filters are OR-ed); read it with scenesFilter.
 CLI::Option* addScenesOption(CLI::App& cmd);
 
+/// `--engine ode|mujoco` on `cmd`: the physics engine of its trials; read it with engineOption.
+CLI::Option* addEngineOption(CLI::App& cmd);
+
+/// --engine's value ("ode" when not given). @throws UsageError for an unknown engine or one this
+/// build lacks (saying how to get it).
+std::string engineOption(const Arguments& a);
+
 /// The --scenes filters as one filter text (joined by ';', OR); empty when none was given.
 std::string scenesFilter(const Arguments& a);
 

@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "progress_reporter.hpp"
+#include "rwsim/engines/engine_registry.hpp"
 #include "visgrab/database/database.hpp"
 #include "visgrab/grasp/grasp_resolver.hpp"
 #include "visgrab/grasp/hand_grasp_setup.hpp"
@@ -64,6 +65,8 @@ struct RenderRequest {
   fs::path dbPath;
   std::vector<fs::path> graspFiles;
   fs::path handFile;
+  /// The engine the trials replay on: --engine, else the run's (run.csv), else ODE.
+  std::string engine;
 };
 
 // --scene and --out are required options of the CLI11 command (addRenderCommands).
@@ -147,6 +150,13 @@ RenderRequest parseRenderArguments(const Arguments& a) {
   request.dbPath = dbPath;
   request.graspFiles = graspFiles;
   request.handFile = handFile;
+  if (a.option("engine")) {
+    request.engine = engineOption(a);
+  } else {
+    request.engine = request.run && !request.run->sources.engine.empty()
+                         ? request.run->sources.engine
+                         : std::string(rwsim::engines::kDefaultEngine);
+  }
   return request;
 }
 
@@ -158,7 +168,7 @@ class RenderScene {
       : db_(database::Database::openAny(request.dbPath)),
         entry_(&db_.scene(request.sceneId)),
         hand_(grasp::loadHandGraspSetup(request.handFile)),
-        loader_(db_, *hand_),
+        loader_(db_, *hand_, request.engine),
         session_(loader_, *entry_) {
     if (request.graspFiles.empty()) return;
     const auto contents = taskio::readGraspSources(request.graspFiles);
@@ -189,11 +199,11 @@ struct RenderedPicture {
 
 /// The outcome of `g` for a montage tile: its trial record, else simulated again (reported on
 /// `progress` unless it is null).
-rwsim::simulator::GraspOutcome tileOutcome(const RenderScene& scene, const session::SceneGrasp& g,
-                                           const grasp::ResolvedGrasp& resolved, int n,
-                                           ProgressReporter* progress) {
+rwsim::trial::GraspOutcome tileOutcome(const RenderScene& scene, const session::SceneGrasp& g,
+                                       const grasp::ResolvedGrasp& resolved, int n,
+                                       ProgressReporter* progress) {
   if (g.record) return g.record->outcome;
-  if (!resolved.placed()) return rwsim::simulator::GraspOutcome::kInvalidContacts;
+  if (!resolved.placed()) return rwsim::trial::GraspOutcome::kInvalidContacts;
   if (progress) progress->update(n, static_cast<long>(scene.grasps().size()));
   const auto& s = scene.session();
   return s.trial().run(resolved.parameters, s.initialState()).outcome;
@@ -270,7 +280,7 @@ std::optional<RenderedPicture> renderOverlay(const RenderScene& scene,
                          resolved.parameters.X_W_tcp, left, scene.database().calibration(entry.id),
                          outcome,
                          entry.id + "   " + chosen.request.method + " " + chosen.request.id),
-      std::string(rwsim::simulator::outcomeName(outcome))};
+      std::string(rwsim::trial::outcomeName(outcome))};
 }
 
 /// --grasp: the trial's three moments; nullopt (after saying why) for a grasp the hand cannot
@@ -289,8 +299,7 @@ std::optional<RenderedPicture> renderTrial(const RenderRequest& request, const R
     return std::nullopt;
   }
   if (!picture.note.empty()) std::cerr << "visgrab render: " << picture.note << "\n";
-  return RenderedPicture{picture.image,
-                         std::string(rwsim::simulator::outcomeName(picture.outcome))};
+  return RenderedPicture{picture.image, std::string(rwsim::trial::outcomeName(picture.outcome))};
 }
 
 /// No --grasp: the scene alone, framed on its objects.
@@ -382,6 +391,9 @@ void addRenderCommands(CommandLine& cli) {
                   "480x360 per moment, 320x240 per montage tile)")
       ->type_name("WxH");
   addFlag(render, "--no-contacts", "Leave the contact forces out");
+  addEngineOption(render)->description(
+      "The physics engine the trials replay on (default: the one the --results run recorded, "
+      "else ode): ode or mujoco (when built)");
   addDataOption(render);
   addQuietFlag(render);
 }

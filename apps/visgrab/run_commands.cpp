@@ -77,6 +77,7 @@ int runRun(const Arguments& a) {
   options.grasps.assign(grasps.begin(), grasps.end());
   options.out = a.option("out").value();
   options.hand = handOption(a, dataFolder(a));
+  options.engine = engineOption(a);
   options.scenes = scenesFilter(a);
   options.threads = threadsOption(a);
   options.resume = a.flag("resume");
@@ -224,6 +225,7 @@ int runBenchmarkCommand(const Arguments& a) {
   options.grasps = graspSources;
   options.out = fs::path(*out) / "results";
   options.hand = handOption(a, data);
+  options.engine = engineOption(a);
   options.scenes = scenes;
   options.threads = threads;
   options.resume = a.flag("resume");
@@ -271,6 +273,7 @@ void addRunCommands(CommandLine& cli) {
   addThreadsOption(run);
   addFlag(run, "--resume", kResumeHelp);
   run.add_option("--hand", kHandHelp)->type_name("NAME|DIR|GRASP.xml");
+  addEngineOption(run);
   addScenesOption(run);
   run.add_option("--shard",
                  "Run only shard K of the work cut into --of N shards (K from 1 to N): whole "
@@ -307,6 +310,7 @@ void addRunCommands(CommandLine& cli) {
   addThreadsOption(benchmark);
   addFlag(benchmark, "--resume", kResumeHelp);
   benchmark.add_option("--hand", kHandHelp)->type_name("NAME|DIR|GRASP.xml");
+  addEngineOption(benchmark);
   addScenesOption(benchmark);
   addDataOption(benchmark);
   addFlag(benchmark, "--no-pictures", "Leave the report's pictures out");

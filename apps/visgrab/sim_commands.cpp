@@ -16,6 +16,7 @@
 #include "json_writer.hpp"
 #include "rw/common/diagnostic.hpp"
 #include "rw/math/rpy.hpp"
+#include "rwsim/engines/engine_registry.hpp"
 #include "rwsim/loaders/dynamic_workcell_loader.hpp"
 #include "rwsim/simulator/grasp_trial.hpp"
 #include "rwsim/simulator/simulator.hpp"
@@ -196,16 +197,16 @@ std::string handName(const std::optional<std::string>& hand, const DynamicWorkCe
 }
 
 void printResult(const rwsim::simulator::GraspTrialResult& r, const DynamicWorkCell& dwc) {
-  std::cout << "outcome: " << rwsim::simulator::outcomeName(r.outcome) << " (RobWork code "
-            << rwsim::simulator::robworkCode(r.outcome) << ")\n"
+  std::cout << "outcome: " << rwsim::trial::outcomeName(r.outcome) << " (RobWork code "
+            << rwsim::trial::robworkCode(r.outcome) << ")\n"
             << "Q_lift: " << fmt(r.qLift) << "\nQ_GWS: " << fmt(r.qGws)
             << " (cones on the measured contact forces, the paper's)\nQ_GWS,unit: "
             << fmt(r.qGwsUnit) << " (unit normal forces)\n"
             << "object: " << (r.object.valid() ? dwc.body(r.object).name : "-")
             << "\nsimulated time: " << fmt(r.simulatedTime) << " s\n"
             << "q grasp: " << vectorText(r.qGrasp) << "\n";
-  if (r.outcome == rwsim::simulator::GraspOutcome::kStable ||
-      r.outcome == rwsim::simulator::GraspOutcome::kSlipped) {
+  if (r.outcome == rwsim::trial::GraspOutcome::kStable ||
+      r.outcome == rwsim::trial::GraspOutcome::kSlipped) {
     std::cout << "hand lift h: " << vectorText(r.handLift)
               << " m, object lift o: " << vectorText(r.objectLift) << " m\n";
   }
@@ -231,8 +232,8 @@ int printResultJson(const std::string& hand, const std::string& tcp, const std::
   JsonWriter j(std::cout);
   j.beginObject().key("schema").value("visgrab/grasp/1");
   j.key("hand").value(hand).key("tcp").value(tcp).key("controller").value(controller);
-  j.key("outcome").value(std::string(rwsim::simulator::outcomeName(r.outcome)));
-  j.key("robwork_code").value(rwsim::simulator::robworkCode(r.outcome));
+  j.key("outcome").value(std::string(rwsim::trial::outcomeName(r.outcome)));
+  j.key("robwork_code").value(rwsim::trial::robworkCode(r.outcome));
   j.key("q_lift").value(r.qLift).key("q_gws").value(r.qGws).key("q_gws_unit").value(r.qGwsUnit);
   j.key("object");
   if (r.object.valid()) {
@@ -419,9 +420,11 @@ int runGrasp(const Arguments& a) {
     throw UsageError("--preshape needs --hand DIR|GRASP.xml (a hand description with pre-shapes)");
   }
   const rwsim::simulator::GraspTrialSetup setup = graspTrialSetup(command, scene);
+  const std::string engineName = engineOption(a);
   std::unique_ptr<rwsim::simulator::GraspTrial> trial;
   try {
-    trial = std::make_unique<rwsim::simulator::GraspTrial>(*scene.dwc, setup);
+    auto engine = rwsim::engines::engineFactory(engineName, *scene.dwc, setup);
+    trial = std::make_unique<rwsim::simulator::GraspTrial>(*scene.dwc, setup, std::move(engine));
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
@@ -434,7 +437,7 @@ int runGrasp(const Arguments& a) {
   }
   std::cout << "hand " << setup.hand << ", TCP "
             << dwc.workcell().frames().frame(trial->tcpFrame()).name() << ", controller "
-            << setup.controller << "\n";
+            << setup.controller << ", engine " << trial->engine().name() << "\n";
   printResult(trial->run(grasp, dwc.workcell().defaultState()), dwc);
   return 0;
 }
@@ -487,9 +490,10 @@ void addSimulationCommands(CommandLine& cli) {
   grasp.add_option("--tcp", "The TCP frame (with --hand NAME only)")->type_name("FRAME");
   grasp.add_option("--controller", "The hand's controller (default: the hand's own)")
       ->type_name("NAME");
-  grasp.add_option("--dt", "Time step in s (default: the workcell's engine properties)")
+  grasp.add_option("--dt", "ODE's time step in s (default: the workcell's engine properties)")
       ->type_name("SECONDS")
       ->check(positiveNumber());
+  addEngineOption(grasp);
   addDataOption(grasp);
   addFlag(grasp, "--json", "Print JSON instead (docs/schemas/grasp.schema.json; SI units)");
 }

@@ -15,8 +15,8 @@
 #include <utility>
 
 #include "visgrab/database/database.hpp"
-#include "visgrab/request/grasp_request.hpp"
 #include "visgrab/grasp/hand_grasp_setup.hpp"
+#include "visgrab/request/grasp_request.hpp"
 
 /// The C++ side of the Python module `visgrab` (the extension `visgrab._visgrab`; the package's
 /// __init__.py adds the Python-level helpers). docs/python.md describes the interface.

@@ -26,13 +26,13 @@ import tempfile
 import warnings
 
 from . import _location
-from ._visgrab import Database, Grasp, Hand, Results, Scene, TrialResult, __version__
+from ._visgrab import Database, Grasp, Hand, Results, Scene, TrialResult, __version__, engines
 from . import _visgrab
 
 __all__ = [
     "Database", "Scene", "Hand", "Grasp", "TrialResult", "Results", "RunTrials",
     "generate_database", "run", "write_grasps", "read_grasps", "read_results", "analyze",
-    "data_folder", "__version__",
+    "data_folder", "engines", "__version__",
 ]
 
 
@@ -293,7 +293,7 @@ class RunTrials(list):
 
 
 def run(db, grasps, hand=None, threads=None, out=None, scenes=None, resume=False, strict=True,
-        progress=None):
+        progress=None, engine="ode"):
     """Runs grasps through the simulator, as `visgrab run` does; returns a RunTrials list.
 
     db: a Database or its path; grasps: Grasp objects; hand: a Hand, a hand name or path
@@ -302,7 +302,9 @@ def run(db, grasps, hand=None, threads=None, out=None, scenes=None, resume=False
     grasps.csv the run read, so `visgrab render --results` and `visgrab analyze` work on it);
     None: a temporary folder, removed afterwards; scenes: only the scenes this filter selects;
     resume: continue an interrupted run in `out`; progress: called as progress(done, total)
-    from the calling thread.
+    from the calling thread; engine: the physics engine, "ode" (the benchmark's, default) or
+    "mujoco" (when this build has it: visgrab.engines()), recorded in run.csv; an engine the
+    build lacks is a ValueError that says how to get it.
 
     The grasps are written with the grasp list writer and the runner reads that file, exactly
     as `visgrab run --grasps FILE` would: trials.csv is byte-identical. strict=True (default)
@@ -334,7 +336,7 @@ def run(db, grasps, hand=None, threads=None, out=None, scenes=None, resume=False
             if problems:
                 raise ValueError("\n".join(problems))
         summary = _visgrab._run(db.path, str(grasp_file), str(folder), hand.file, scenes or "",
-                                threads, resume, progress)
+                                threads, resume, engine, progress)
         return RunTrials(read_results(folder), summary)
 
 

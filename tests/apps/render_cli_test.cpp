@@ -197,7 +197,7 @@ TEST_F(RenderCli, GraspNIsTheScenesNthRowOfTrialsCsv) {
       r = visgrab("render" + inputs + " --scene " + kScene + " --grasp " + std::to_string(n) +
                   " --size 120x90 --out " + shellQuoted(path("mixed.png")));
       ASSERT_EQ(r.exitCode, 0) << r.output;
-      const std::string outcome(rwsim::simulator::outcomeName(rows[n - 1].outcome));
+      const std::string outcome(rwsim::trial::outcomeName(rows[n - 1].outcome));
       EXPECT_NE(r.output.find(", " + outcome + ", hand"), std::string::npos) << r.output;
     }
   }

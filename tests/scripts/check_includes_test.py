@@ -48,13 +48,13 @@ class CheckIncludesTest(unittest.TestCase):
     def tearDown(self):
         self.tmp.cleanup()
 
-    def run_checker(self, targets):
+    def run_checker(self, targets, extra=()):
         path = os.path.join(self.root, "module_map.json")
         with open(path, "w", encoding="utf-8") as f:
             json.dump({"source_dir": self.root, "targets": targets}, f)
-        done = subprocess.run([sys.executable, SCRIPT, path], capture_output=True, text=True,
-                              check=False)
-        return done.returncode, done.stdout
+        done = subprocess.run([sys.executable, SCRIPT, path, *extra], capture_output=True,
+                              text=True, check=False)
+        return done.returncode, done.stdout + done.stderr
 
     def test_public_links_pass_on(self):
         rc, out = self.run_checker([
@@ -85,6 +85,38 @@ class CheckIncludesTest(unittest.TestCase):
         self.assertEqual(rc, 1, out)
         self.assertIn("src/b/b.hpp:2: includes a/a.hpp of target a, which b does not link", out)
         self.assertNotIn("src/c/", out)
+
+    def linked_chain(self):
+        """c links b privately, b links a privately: c's includes are fine (it includes b only
+        through b.hpp, which includes a.hpp: b's own business), but c links a."""
+        return [
+            target(self.root, "a", "a", ["a.cpp"]),
+            target(self.root, "b", "b", ["b.cpp"], public=["a"]),
+            target(self.root, "c", "c", ["c.cpp"], private=["b"]),
+        ]
+
+    def test_a_forbidden_link_through_a_chain_fails_with_the_chain(self):
+        rc, out = self.run_checker(self.linked_chain(), ["--not-linking", "c,b=a,Some::Engine"])
+        self.assertEqual(rc, 1, out)
+        self.assertIn("c links a (c -> b -> a), which it must not", out)
+        self.assertIn("b links a (b -> a), which it must not", out)
+
+    def test_an_external_forbidden_link_is_found_too(self):
+        rc, out = self.run_checker(self.linked_chain(), ["--not-linking", "c=Some::External"])
+        self.assertEqual(rc, 1, out)
+        self.assertIn("c links Some::External (c -> Some::External), which it must not", out)
+
+    def test_targets_free_of_the_forbidden_ones_pass(self):
+        rc, out = self.run_checker(self.linked_chain(), ["--not-linking", "a=b,c"])
+        self.assertEqual(rc, 0, out)
+        self.assertIn("a link none of the targets they must not", out)
+
+    def test_a_malformed_rule_or_unknown_target_is_an_error(self):
+        rc, out = self.run_checker(self.linked_chain(), ["--not-linking", "c-a"])
+        self.assertEqual(rc, 2, out)
+        rc, out = self.run_checker(self.linked_chain(), ["--not-linking", "nosuch=a"])
+        self.assertEqual(rc, 2, out)
+        self.assertIn("nosuch", out)
 
     def test_bad_map_is_an_error_not_a_pass(self):
         path = os.path.join(self.root, "module_map.json")

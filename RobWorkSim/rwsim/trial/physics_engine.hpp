@@ -84,7 +84,8 @@ class PhysicsEngine {
   /// Joint velocities (DOF order).
   virtual rw::math::Q jointVelocities(dynamics::DeviceId device) const = 0;
   /// Motor velocity targets per DOF (dependent joints follow their owners).
-  virtual void setMotorVelocityTargets(dynamics::DeviceId device, const rw::math::Q& velocities) = 0;
+  virtual void setMotorVelocityTargets(dynamics::DeviceId device,
+                                       const rw::math::Q& velocities) = 0;
   /// Motor torque/force limits per DOF (a dependent joint takes its owner's).
   virtual void setMotorForceLimits(dynamics::DeviceId device, const rw::math::Q& limits) = 0;
 

@@ -5,8 +5,8 @@
 
 #include "rw/math/types.hpp"
 #include "rwsim/simulator/grasp_trial.hpp"
-#include "visgrab/request/grasp_request.hpp"
 #include "visgrab/grasp/hand_grasp_setup.hpp"
+#include "visgrab/request/grasp_request.hpp"
 
 namespace visgrab::grasp {
 

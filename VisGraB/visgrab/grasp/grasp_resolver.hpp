@@ -4,9 +4,9 @@
 
 #include "rwsim/simulator/grasp_trial.hpp"
 #include "visgrab/grasp/contact_ik.hpp"
-#include "visgrab/request/grasp_request.hpp"
 #include "visgrab/grasp/hand_grasp_setup.hpp"
 #include "visgrab/grasp/placement.hpp"
+#include "visgrab/request/grasp_request.hpp"
 
 namespace visgrab::grasp {
 

@@ -7,8 +7,8 @@
 #include "rw/math/types.hpp"
 #include "rwsim/simulator/grasp_trial.hpp"
 #include "visgrab/grasp/contact_ik.hpp"
-#include "visgrab/request/grasp_request.hpp"
 #include "visgrab/grasp/hand_grasp_setup.hpp"
+#include "visgrab/request/grasp_request.hpp"
 
 namespace visgrab::grasp {
 

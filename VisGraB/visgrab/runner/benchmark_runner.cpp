@@ -18,6 +18,7 @@
 #include "visgrab/grasp/hand_grasp_setup.hpp"
 #include "visgrab/results/results_file.hpp"
 #include "visgrab/results/results_writer.hpp"
+#include "visgrab/results/trial_columns.hpp"
 #include "visgrab/runner/shard_record.hpp"
 #include "visgrab/session/grasp_order.hpp"
 #include "visgrab/session/scene_loader.hpp"
@@ -31,7 +32,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using rw::common::Diagnostic;
-using rwsim::simulator::GraspOutcome;
+using rwsim::trial::GraspOutcome;
 
 using session::RankedGrasp;
 using session::SceneGraspList;
@@ -55,6 +56,9 @@ class SceneRunner {
  public:
   SceneRunner(const SceneGraspList& work, const session::SceneLoader& loader)
       : work_(&work), session_(loader, *work.entry) {}
+
+  /// The engine's version and settings in this scene (EngineFactory::settings()).
+  std::string engineSettings() const { return session_.trial().engine().settings(); }
 
   /// The trial record of `job`, or nullopt (and `rejected` set) for a grasp rejected as input.
   std::optional<results::TrialRecord> run(const RankedGrasp& job, Diagnostic& rejected) const {
@@ -81,13 +85,7 @@ class SceneRunner {
       return record;
     }
     const auto result = session_.trial().run(resolved.parameters, session_.initialState());
-    record.outcome = result.outcome;
-    record.qLift = result.qLift;
-    record.qGws = result.qGws;
-    record.qGwsUnit = result.qGwsUnit;
-    record.object = objectIdOf(session_.dynamicWorkcell(), result.object);
-    record.simulatedTime = result.simulatedTime;
-    record.detail = result.detail;
+    results::recordResult(result, objectIdOf(session_.dynamicWorkcell(), result.object), record);
     if (resolved.placement && resolved.placement->tests > 1) {
       record.detail += "; " + resolved.placement->describe();
     }
@@ -157,6 +155,7 @@ RunPlan planRun(const RunOptions& options, const RunInputs& in) {
     run.sources.grasps.push_back(fs::absolute(g).lexically_normal());
   }
   run.sources.hand = fs::absolute(options.hand).lexically_normal();
+  run.sources.engine = options.engine;
   for (const auto* s : in.selected) run.scenes.push_back({s->id, s->conditions});
   plan.order = session::benchmarkOrder(in.db, in.selected, in.grasps.requests);
   run.methods = plan.order.methods;
@@ -232,6 +231,34 @@ PendingWork pendingScenes(const std::vector<SceneGraspList>& work,
   return pending;
 }
 
+/// The inputs run.csv records when `options` resumes a folder that has one.
+std::optional<results::RunSources> previousSources(const RunOptions& options) {
+  const fs::path file = options.out / results::kRunFileName;
+  if (!options.resume || !fs::exists(file)) return std::nullopt;
+  return results::parseRunFile(rw::common::readTextFileOrThrow(file), file.string()).sources;
+}
+
+/// A resumed folder's trials must come from the same engine with the same settings (a run.csv
+/// without an engine record is ODE's). `current` gets the previous settings when this run
+/// simulates nothing (it could not ask the engine).
+void checkSameEngine(const RunOptions& options, const std::optional<results::RunSources>& previous,
+                     results::RunSources& current) {
+  if (!previous) return;
+  const std::string before = previous->engine.empty() ? "ode" : previous->engine;
+  if (before != options.engine) {
+    throw std::runtime_error(options.out.string() + " holds trials of engine '" + before +
+                             "'; this run is on engine '" + options.engine +
+                             "': resume it with --engine " + before + " or choose another folder");
+  }
+  if (current.engineSettings.empty()) current.engineSettings = previous->engineSettings;
+  if (!previous->engineSettings.empty() && previous->engineSettings != current.engineSettings) {
+    throw std::runtime_error(options.out.string() + " holds trials of engine '" + before +
+                             "' with the settings \"" + previous->engineSettings +
+                             "\"; this run's are \"" + current.engineSettings +
+                             "\": choose another folder");
+  }
+}
+
 /// Writes run.csv with the plan's scenes, methods and rejected counts so far.
 void writeRunFile(RunPlan& plan, results::ResultsWriter& writer) {
   plan.run.rejected.clear();
@@ -240,17 +267,23 @@ void writeRunFile(RunPlan& plan, results::ResultsWriter& writer) {
 }
 
 /// A hand that does not fit (a missing dynamics file, a device or controller the scene's
-/// dynamics lack) fails every scene: reported once, as the run's error, not per grasp.
-void checkHandFits(const PendingWork& pending, const session::SceneLoader& loader,
-                   const fs::path& handFile) {
-  if (pending.scenes.empty()) return;
+/// dynamics lack) fails every scene: reported once, as the run's error, not per grasp. The probe
+/// is the first pending scene, else (a finished run resumed) the run's first. Returns the
+/// engine's settings in that scene (empty for a run without scenes).
+std::string checkHandFits(const PendingWork& pending, const RunPlan& plan,
+                          const session::SceneLoader& loader, const fs::path& handFile) {
+  const SceneGraspList* scene = !pending.scenes.empty()      ? pending.scenes.front()
+                                : !plan.order.scenes.empty() ? &plan.order.scenes.front()
+                                                             : nullptr;
+  if (scene == nullptr) return {};
   try {
-    const SceneRunner probe(*pending.scenes.front(), loader);
+    const SceneRunner probe(*scene, loader);
+    return probe.engineSettings();
   } catch (const rw::common::LoadError&) {
     throw;
   } catch (const std::exception& e) {
     throw std::runtime_error("the hand " + handFile.string() + " cannot run in scene " +
-                             pending.scenes.front()->entry->id + ": " + e.what());
+                             scene->entry->id + ": " + e.what());
   }
 }
 
@@ -337,7 +370,7 @@ RunSummary finishRun(RunPlan& plan, results::ResultsWriter& writer) {
   RunSummary summary;
   summary.resumed = static_cast<int>(writer.resumedCount());
   for (const auto& t : writer.trials()) {
-    ++summary.outcomes[std::string(rwsim::simulator::outcomeName(t.outcome))];
+    ++summary.outcomes[std::string(rwsim::trial::outcomeName(t.outcome))];
     ++summary.trials;
   }
   summary.trials -= summary.resumed;
@@ -373,7 +406,8 @@ RunSummary runBenchmark(const RunOptions& options,
   }
   const RunInputs in = openInputs(options);
   // After openInputs: the loader keeps the address of in.db.
-  const session::SceneLoader loader(in.db, *in.hand);
+  const session::SceneLoader loader(in.db, *in.hand, options.engine);
+  const std::optional<results::RunSources> previous = previousSources(options);
   RunPlan plan = planRun(options, in);
   std::optional<ShardRecord> shard;
   if (options.shard) {
@@ -382,8 +416,9 @@ RunSummary runBenchmark(const RunOptions& options,
   }
   results::ResultsWriter writer(options.out);
   PendingWork pending = pendingScenes(plan.order.scenes, writer);
+  plan.run.sources.engineSettings = checkHandFits(pending, plan, loader, options.hand);
+  checkSameEngine(options, previous, plan.run.sources);
   writeRunFile(plan, writer);
-  checkHandFits(pending, loader, options.hand);
   runScenes(options, loader, pending, plan, writer, [&] {
     pending.progress.elapsed =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -29,6 +29,10 @@ struct RunOptions {
   /// The hand: its grasp description (e.g. scenes/hands/sdh/sdh.grasp.xml) or its folder
   /// (scenes/hands/pg70); see session::SceneLoader.
   std::filesystem::path hand;
+  /// The physics engine ("ode", the default and the benchmark's; "mujoco" when built with it;
+  /// rwsim::engines). Recorded in run.csv with its settings; resuming a folder of another
+  /// engine is an error.
+  std::string engine = "ode";
   /// Only the scenes this filter selects (docs/database-format.md); empty: all.
   std::string scenes;
   /// Worker threads (each runs whole scenes; the results do not depend on the count).
@@ -91,9 +95,10 @@ struct RunSummary {
 /// @throws rw::common::LoadError for an unreadable database, grasp file, hand description or
 /// scene file, rw::common::WriteError (file and reason) for a failed write,
 /// rw::common::StopRequested when options.stop ended the run early, std::runtime_error for an
-/// existing result folder without `resume`, a shard folder of another shard or run, or a shard
+/// existing result folder without `resume`, a result folder resumed with another engine or other
+/// engine settings than its run.csv records, a shard folder of another shard or run, or a shard
 /// folder resumed without `shard`,
-/// std::invalid_argument for a shard outside 1..count.
+/// std::invalid_argument for a shard outside 1..count or an engine this build lacks.
 /// Why a grasp of scene `sceneId`, which `db` does not hold, is rejected: "unknown scene \"ID\""
 /// and the closest id as a "did you mean" (the runner's words; the Python module's check before a
 /// run uses them too).

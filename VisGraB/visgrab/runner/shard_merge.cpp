@@ -134,6 +134,16 @@ MergeSummary mergeShards(const std::vector<fs::path>& shardDirs, const fs::path&
       throw std::runtime_error("shard folders " + shards.front().dir.string() + " and " +
                                s.dir.string() +
                                " are shards of different runs: their run.csv lists other methods");
+    } else if (part.sources.engine != merged.sources.engine ||
+               part.sources.engineSettings != merged.sources.engineSettings) {
+      const auto engineOf = [](const results::RunSources& r) {
+        return (r.engine.empty() ? std::string("ode") : r.engine) +
+               (r.engineSettings.empty() ? "" : " (" + r.engineSettings + ")");
+      };
+      throw std::runtime_error(
+          "shard folders " + shards.front().dir.string() + " and " + s.dir.string() +
+          " ran on different engines: " + engineOf(merged.sources) + " and " +
+          engineOf(part.sources) + "; a run's shards must all run on one engine with one setting");
     } else if (part.sources.database != merged.sources.database ||
                part.sources.grasps != merged.sources.grasps ||
                part.sources.hand != merged.sources.hand) {

@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <string>
 #include <system_error>
+#include <utility>
 #include <vector>
 
 #include "rw/common/text_file.hpp"
@@ -70,8 +71,14 @@ rw::loaders::IncludeRedirects handRedirects(const fs::path& databaseRoot,
   return redirects;
 }
 
-SceneLoader::SceneLoader(const database::Database& db, const grasp::HandGraspSetup& hand)
-    : db_(&db), hand_(&hand), redirects_(handRedirects(db.root(), hand)) {}
+SceneLoader::SceneLoader(const database::Database& db, const grasp::HandGraspSetup& hand,
+                         std::string engine)
+    : db_(&db),
+      hand_(&hand),
+      engine_(std::move(engine)),
+      redirects_(handRedirects(db.root(), hand)) {
+  rwsim::engines::checkEngine(engine_);
+}
 
 std::unique_ptr<rwsim::dynamics::DynamicWorkCell> SceneLoader::load(
     const database::SceneEntry& entry) const {

@@ -2,9 +2,11 @@
 
 #include <filesystem>
 #include <memory>
+#include <string>
 
 #include "rw/loaders/workcell_loader.hpp"
 #include "rwsim/dynamics/dynamic_workcell.hpp"
+#include "rwsim/engines/engine_registry.hpp"
 #include "rwsim/simulator/grasp_trial.hpp"
 #include "visgrab/database/database.hpp"
 #include "visgrab/grasp/hand_grasp_setup.hpp"
@@ -32,17 +34,22 @@ rw::loaders::IncludeRedirects handRedirects(const std::filesystem::path& databas
                                             const grasp::HandGraspSetup& hand);
 
 /// Loads the scenes of one database with one hand put in: any hand runs in any scene without
-/// generating the database again. The redirects are worked out once (handRedirects).
+/// generating the database again. The redirects are worked out once (handRedirects). The
+/// loader also names the physics engine the scenes' trials run on (SceneSession).
 class SceneLoader {
  public:
-  /// `db` and `hand` must outlive the loader.
-  /// @throws rw::common::LoadError as handRedirects.
-  SceneLoader(const database::Database& db, const grasp::HandGraspSetup& hand);
+  /// `db` and `hand` must outlive the loader; `engine` is a name rwsim::engines knows.
+  /// @throws rw::common::LoadError as handRedirects; std::invalid_argument as
+  /// rwsim::engines::checkEngine.
+  SceneLoader(const database::Database& db, const grasp::HandGraspSetup& hand,
+              std::string engine = std::string(rwsim::engines::kDefaultEngine));
 
   /// The database.
   const database::Database& database() const { return *db_; }
   /// The hand.
   const grasp::HandGraspSetup& hand() const { return *hand_; }
+  /// The physics engine of the scenes' trials ("ode", "mujoco").
+  const std::string& engine() const { return engine_; }
   /// The redirects each scene is loaded with (empty: scenes as they are).
   const rw::loaders::IncludeRedirects& redirects() const { return redirects_; }
 
@@ -57,6 +64,7 @@ class SceneLoader {
  private:
   const database::Database* db_;
   const grasp::HandGraspSetup* hand_;
+  std::string engine_;
   rw::loaders::IncludeRedirects redirects_;
 };
 

@@ -1,11 +1,16 @@
 #include "visgrab/session/scene_session.hpp"
 
+#include <utility>
+
 namespace visgrab::session {
 
 SceneSession::SceneSession(const SceneLoader& loader, const database::SceneEntry& entry)
     : entry_(entry), hand_(&loader.hand()) {
   dwc_ = loader.load(entry);
-  trial_ = std::make_unique<rwsim::simulator::GraspTrial>(*dwc_, trialSetup(*hand_, *dwc_));
+  rwsim::simulator::GraspTrialSetup setup = trialSetup(*hand_, *dwc_);
+  auto engine = rwsim::engines::engineFactory(loader.engine(), *dwc_, setup);
+  trial_ =
+      std::make_unique<rwsim::simulator::GraspTrial>(*dwc_, std::move(setup), std::move(engine));
   initial_ = dwc_->workcell().defaultState();
   const auto& bodies = dwc_->bodies();
   for (std::size_t b = 0; b < bodies.size(); ++b) {

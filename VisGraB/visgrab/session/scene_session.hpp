@@ -7,9 +7,9 @@
 #include "rwsim/dynamics/dynamic_workcell.hpp"
 #include "rwsim/simulator/grasp_trial.hpp"
 #include "visgrab/database/database.hpp"
-#include "visgrab/request/grasp_request.hpp"
 #include "visgrab/grasp/grasp_resolver.hpp"
 #include "visgrab/grasp/hand_grasp_setup.hpp"
+#include "visgrab/request/grasp_request.hpp"
 #include "visgrab/session/scene_loader.hpp"
 
 namespace visgrab::session {

@@ -109,8 +109,8 @@ GraspTarget& targetAt(GraspTask& task, std::size_t index) {
                           std::to_string(task.targetCount()) + ")");
 }
 
-void setResult(GraspTarget& target, rwsim::trial::GraspOutcome outcome, double qLift,
-               double qGws, double qGwsUnit, const rw::math::Q& qGrasp) {
+void setResult(GraspTarget& target, rwsim::trial::GraspOutcome outcome, double qLift, double qGws,
+               double qGwsUnit, const rw::math::Q& qGrasp) {
   if (!target.result) target.result.emplace();
   GraspResult& r = *target.result;
   r.testStatus = rwsim::trial::robworkCode(outcome);

@@ -165,7 +165,7 @@ GraspTarget& targetAt(GraspTask& task, std::size_t index);
 /// QualityAfterLifting = {qLift}, LiftResult = qLift, QualityBeforeLifting = {qGws, qGwsUnit}
 /// (the VisGraB-era plugin's q0, GWS with the measured forces, and q1, with unit forces),
 /// GripperConfiguration = qGrasp. Other result fields are kept.
-void setResult(GraspTarget& target, rwsim::trial::GraspOutcome outcome, double qLift,
-               double qGws, double qGwsUnit, const rw::math::Q& qGrasp);
+void setResult(GraspTarget& target, rwsim::trial::GraspOutcome outcome, double qLift, double qGws,
+               double qGwsUnit, const rw::math::Q& qGrasp);
 
 }  // namespace visgrab::taskio

@@ -16,7 +16,7 @@ namespace visgrab::view {
 
 namespace {
 
-using rwsim::simulator::GraspOutcome;
+using rwsim::trial::GraspOutcome;
 
 constexpr int kCaptionHeight = 30;
 constexpr int kTitleHeight = 36;
@@ -102,7 +102,7 @@ Eigen::Vector3f outcomeColour(GraspOutcome outcome) {
 }
 
 std::string outcomeCaption(GraspOutcome outcome, double qLift, double qGws, double qGwsUnit) {
-  std::string text(rwsim::simulator::outcomeName(outcome));
+  std::string text(rwsim::trial::outcomeName(outcome));
   if (outcome == GraspOutcome::kStable || outcome == GraspOutcome::kSlipped) {
     const auto value = [](const char* name, double q, int digits) {
       if (std::isnan(q)) return "   " + std::string(name) + " -";  // ASCII: drawn by OpenCV
@@ -242,7 +242,7 @@ visual::RgbImage graspMontage(render::GlRenderer& renderer, const WorkcellDrawin
     // The outcome's colour as a band along the tile's top edge.
     cv::rectangle(image, cv::Rect(0, 0, image.cols, 6), outcomeInk(t.outcome), cv::FILLED);
     cells.push_back(
-        captioned(image, t.label + "  " + std::string(rwsim::simulator::outcomeName(t.outcome))));
+        captioned(image, t.label + "  " + std::string(rwsim::trial::outcomeName(t.outcome))));
   }
   for (auto& c : cells) c = framedPanel(c);
   const cv::Mat blank(cells.front().rows, cells.front().cols, CV_8UC3, kCaptionBackground);
@@ -266,7 +266,7 @@ visual::RgbImage graspMontage(render::GlRenderer& renderer, const WorkcellDrawin
   int x = 8;
   for (const int o : present) {
     const auto outcome = static_cast<GraspOutcome>(o);
-    const std::string name(rwsim::simulator::outcomeName(outcome));
+    const std::string name(rwsim::trial::outcomeName(outcome));
     cv::rectangle(legend, cv::Rect(x, 9, 12, 12), outcomeInk(outcome), cv::FILLED);
     cv::putText(legend, name, cv::Point(x + 18, 20), cv::FONT_HERSHEY_SIMPLEX, 0.45, kInk, 1,
                 cv::LINE_AA);
@@ -339,7 +339,7 @@ visual::RgbImage graspOverlay(render::GlRenderer& renderer, const WorkcellDrawin
     cv::arrowedLine(image, cv::Point2d(a.x(), a.y()), cv::Point2d(b.x(), b.y()), ink, 1,
                     cv::LINE_AA, 0, 0.2);
   }
-  return fromMat(titled(image, title, std::string(rwsim::simulator::outcomeName(outcome)), ink));
+  return fromMat(titled(image, title, std::string(rwsim::trial::outcomeName(outcome)), ink));
 }
 
 TrialPicture trialStrip(render::GlRenderer& renderer, const WorkcellDrawing& drawing,
@@ -371,9 +371,9 @@ TrialPicture trialStrip(render::GlRenderer& renderer, const WorkcellDrawing& dra
       replayTrial(session.trial(), resolved.parameters, session.initialState());
   picture.outcome = replay.result.outcome;
   if (grasp.record && grasp.record->outcome != replay.result.outcome) {
-    picture.note = "replayed as " + std::string(rwsim::simulator::outcomeName(picture.outcome)) +
+    picture.note = "replayed as " + std::string(rwsim::trial::outcomeName(picture.outcome)) +
                    " but the results say " +
-                   std::string(rwsim::simulator::outcomeName(grasp.record->outcome)) +
+                   std::string(rwsim::trial::outcomeName(grasp.record->outcome)) +
                    " (another build, hand or database than the run's?)";
   }
   picture.image = graspStrip(renderer, drawing, session, replay, title, options);

@@ -36,7 +36,7 @@ struct PictureOptions {
 
 /// The colour of an outcome in the pictures: the report's colour (analysis::outcomeColour)
 /// as linear RGB for the renderer.
-Eigen::Vector3f outcomeColour(rwsim::simulator::GraspOutcome outcome);
+Eigen::Vector3f outcomeColour(rwsim::trial::GraspOutcome outcome);
 
 /// The objects' bounding box in `state`, grown by `margin` metres (where pictures look).
 Eigen::AlignedBox3d objectsBox(const session::SceneSession& session, const WorkcellDrawing& drawing,
@@ -68,7 +68,7 @@ struct MontageTile {
   /// The resolved grasp; nullopt when it could not be placed (invalid contacts).
   std::optional<rwsim::simulator::GraspParameters> grasp;
   /// The outcome colouring the tile.
-  rwsim::simulator::GraspOutcome outcome = rwsim::simulator::GraspOutcome::kSimulationFailure;
+  rwsim::trial::GraspOutcome outcome = rwsim::trial::GraspOutcome::kSimulationFailure;
 };
 
 /// All grasps of a scene: first an overview with every grasp's approach as an arrow ending at
@@ -88,14 +88,14 @@ visual::RgbImage graspOverlay(render::GlRenderer& renderer, const WorkcellDrawin
                               const rw::kinematics::State& placed,
                               const rw::math::Transform3D& X_W_tcp, const visual::RgbImage& left,
                               const database::StereoCalibration& calibration,
-                              rwsim::simulator::GraspOutcome outcome, const std::string& title);
+                              rwsim::trial::GraspOutcome outcome, const std::string& title);
 
 /// A grasp's strip, made by trialStrip.
 struct TrialPicture {
   /// The picture.
   visual::RgbImage image;
   /// The outcome of the replayed trial (or kInvalidContacts when the grasp cannot be placed).
-  rwsim::simulator::GraspOutcome outcome = rwsim::simulator::GraspOutcome::kSimulationFailure;
+  rwsim::trial::GraspOutcome outcome = rwsim::trial::GraspOutcome::kSimulationFailure;
   /// Set when the replay's outcome differs from the grasp's trial record (another build, hand
   /// or database than the run's), or why the grasp could not be placed.
   std::string note;
@@ -111,7 +111,7 @@ TrialPicture trialStrip(render::GlRenderer& renderer, const WorkcellDrawing& dra
 
 /// "stable   Q_lift 0.930   Q_GWS 0.4210   Q_GWS,unit 0.0120" (the qualities only for held
 /// grasps; "-" for a value that was not computed, NaN).
-std::string outcomeCaption(rwsim::simulator::GraspOutcome outcome, double qLift, double qGws,
+std::string outcomeCaption(rwsim::trial::GraspOutcome outcome, double qLift, double qGws,
                            double qGwsUnit);
 
 }  // namespace visgrab::view

@@ -148,10 +148,14 @@ void drawShowcases(std::vector<analysis::Showcase>& showcases,
   std::vector<RunInputs> inputs;
   inputs.reserve(runs.size());
   for (const auto& run : runs) inputs.push_back(openInputs(run));
-  for (auto& in : inputs) {
+  for (std::size_t r = 0; r < inputs.size(); ++r) {
+    RunInputs& in = inputs[r];
     if (!in.problem.empty()) continue;
     try {
-      in.loader = std::make_unique<session::SceneLoader>(*in.db, *in.hand);
+      // The trials replay on the engine that ran them (run.csv; older runs were ODE's).
+      const std::string& engine = runs[r].sources.engine;
+      in.loader =
+          std::make_unique<session::SceneLoader>(*in.db, *in.hand, engine.empty() ? "ode" : engine);
     } catch (const std::exception& e) {
       in.problem = std::string("cannot open the run's input: ") + e.what();
     }

@@ -88,7 +88,7 @@ int main(int argc, char** argv) {
 
     const std::string object =
         result.object.valid() ? dwc->body(result.object).name : std::string("none");
-    std::cout << "outcome " << rwsim::simulator::outcomeName(result.outcome) << " contacts "
+    std::cout << "outcome " << rwsim::trial::outcomeName(result.outcome) << " contacts "
               << result.contacts.size() << " object " << object << "\n";
     return 0;
   } catch (const std::exception& e) {

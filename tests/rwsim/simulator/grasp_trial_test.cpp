@@ -20,12 +20,12 @@ namespace {
 using rw::math::Q;
 using rw::math::Transform3D;
 using rw::math::Vector3D;
-using rwsim::simulator::GraspOutcome;
 using rwsim::simulator::GraspParameters;
 using rwsim::simulator::GraspTrial;
 using rwsim::simulator::GraspTrialResult;
 using rwsim::simulator::GraspTrialSetup;
-using rwsim::simulator::outcomeName;
+using rwsim::trial::GraspOutcome;
+using rwsim::trial::outcomeName;
 using visgrab::test::sim::SceneBuilder;
 
 Transform3D at(double x, double y, double z) {
@@ -112,7 +112,7 @@ TEST(GraspTrialGripper, JawInsideTheBoxIsInCollision) {
   EXPECT_EQ(r.outcome, GraspOutcome::kInCollision) << describe(r);
   EXPECT_NE(r.detail.find("Box"), std::string::npos) << r.detail;
   EXPECT_EQ(r.simulatedTime, 0.0);
-  EXPECT_EQ(rwsim::simulator::robworkCode(r.outcome), 2);
+  EXPECT_EQ(rwsim::trial::robworkCode(r.outcome), 2);
 }
 
 TEST(GraspTrialGripper, WeakJawsDropOrSlip) {

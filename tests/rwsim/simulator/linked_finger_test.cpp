@@ -90,7 +90,7 @@ class LinkedFinger : public ::testing::Test {
   // Closes from straight (q 0) towards 1.5 rad, far past the cylinder; returns the trial and
   // sets closeEnd_ to the simulated time of the last closing step.
   rwsim::simulator::GraspTrialResult close() {
-    setup_.observer = [this](const rwsim::simulator::Simulator& sim, std::string_view phase) {
+    setup_.observer = [this](const rwsim::trial::PhysicsEngine& sim, std::string_view phase) {
       if (phase != "close") return;
       closeEnd_ = sim.time();
       proximal_ = sim.jointPositions(dwc_->findDevice("Finger"))[0];
@@ -113,12 +113,12 @@ TEST_F(LinkedFinger, ClosingOnAFixedCylinderEndsByTheRestTest) {
   const auto r = close();
   EXPECT_LT(closeEnd_, 1.0) << r.detail;
   EXPECT_FALSE(r.closingCapped) << r.detail;
-  EXPECT_FALSE(rwsim::simulator::closingHitCap(r.detail)) << r.detail;
+  EXPECT_FALSE(rwsim::trial::closingHitCap(r.detail)) << r.detail;
   // Blocked by the cylinder: touching it, far from the 1.5 rad it was closing towards.
   EXPECT_GT(proximal_, 0.08);
   EXPECT_LT(proximal_, 0.2);
   // The cylinder is fixed, not an object to lift: nothing to hold.
-  EXPECT_EQ(r.outcome, rwsim::simulator::GraspOutcome::kMissed) << r.detail;
+  EXPECT_EQ(r.outcome, rwsim::trial::GraspOutcome::kMissed) << r.detail;
 }
 
 // A closing that runs into the cap says so in the trial's detail (here the rest test is made
@@ -129,7 +129,7 @@ TEST_F(LinkedFinger, AClosingStoppedByTheCapSaysSo) {
   const auto r = close();
   EXPECT_TRUE(r.closingCapped);
   EXPECT_NEAR(closeEnd_, 0.5, 0.006);
-  EXPECT_TRUE(rwsim::simulator::closingHitCap(r.detail)) << r.detail;
+  EXPECT_TRUE(rwsim::trial::closingHitCap(r.detail)) << r.detail;
   EXPECT_NE(r.detail.find("[closing hit the cap: 0.5 s simulated with Finger.Proximal still at "),
             std::string::npos)
       << r.detail;

@@ -21,11 +21,11 @@ using rw::math::Transform3D;
 using rw::math::Vector3D;
 using rwsim::dynamics::BodyId;
 using rwsim::dynamics::DeviceId;
-using rwsim::simulator::GraspOutcome;
-using rwsim::simulator::kOutcomeTable;
 using rwsim::simulator::Simulator;
 using rwsim::simulator::SimulatorOptions;
 using rwsim::simulator::StepStatus;
+using rwsim::trial::GraspOutcome;
+using rwsim::trial::kOutcomeTable;
 using visgrab::test::sim::SceneBuilder;
 
 Transform3D at(double x, double y, double z) {
@@ -308,13 +308,13 @@ TEST(GraspOutcomeTable, NamesAndRobWorkCodes) {
   for (std::size_t i = 0; i < expected.size(); ++i) {
     const auto& [outcome, name, code] = expected[i];
     EXPECT_EQ(kOutcomeTable[i].outcome, outcome);
-    EXPECT_EQ(rwsim::simulator::outcomeName(outcome), name);
-    EXPECT_EQ(rwsim::simulator::robworkCode(outcome), code);
-    EXPECT_EQ(rwsim::simulator::outcomeFromName(name), outcome);
+    EXPECT_EQ(rwsim::trial::outcomeName(outcome), name);
+    EXPECT_EQ(rwsim::trial::robworkCode(outcome), code);
+    EXPECT_EQ(rwsim::trial::outcomeFromName(name), outcome);
     names.insert(kOutcomeTable[i].name);
   }
   EXPECT_EQ(names.size(), kOutcomeTable.size());
-  EXPECT_FALSE(rwsim::simulator::outcomeFromName("success").has_value());
+  EXPECT_FALSE(rwsim::trial::outcomeFromName("success").has_value());
 }
 
 }  // namespace

@@ -11,7 +11,7 @@
 namespace visgrab::analysis {
 namespace {
 
-using rwsim::simulator::GraspOutcome;
+using rwsim::trial::GraspOutcome;
 
 std::size_t groupIndex(const Analysis& a, const std::string& key) {
   for (std::size_t g = 0; g < a.groups.size(); ++g) {

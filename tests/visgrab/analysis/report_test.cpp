@@ -195,8 +195,8 @@ results::RunResults paperNamedRun() {
   run.scenes = {s1};
   run.methods = {"s3EGA1", "mine"};
   run.trials = {
-      test_runs::trial(s1, "s3EGA1", 0, rwsim::simulator::GraspOutcome::kStable, 0.9, 0.4, 5, 0.04),
-      test_runs::trial(s1, "mine", 0, rwsim::simulator::GraspOutcome::kStable, 0.5, 0.2, 5, 0.02)};
+      test_runs::trial(s1, "s3EGA1", 0, rwsim::trial::GraspOutcome::kStable, 0.9, 0.4, 5, 0.04),
+      test_runs::trial(s1, "mine", 0, rwsim::trial::GraspOutcome::kStable, 0.5, 0.2, 5, 0.02)};
   return run;
 }
 

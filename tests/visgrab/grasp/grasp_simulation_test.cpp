@@ -14,9 +14,9 @@
 namespace {
 
 using rw::math::Vector3D;
-using rwsim::simulator::GraspOutcome;
 using rwsim::simulator::GraspTrial;
 using rwsim::simulator::GraspTrialResult;
+using rwsim::trial::GraspOutcome;
 using visgrab::grasp::DesiredContact;
 using visgrab::grasp::GraspKind;
 using visgrab::grasp::GraspRequest;
@@ -24,7 +24,7 @@ using visgrab::grasp::resolve;
 using visgrab::test::grasp::sdh;
 
 std::string describe(const GraspTrialResult& r) {
-  return std::string(rwsim::simulator::outcomeName(r.outcome)) + " (" + r.detail + "), Q_lift " +
+  return std::string(rwsim::trial::outcomeName(r.outcome)) + " (" + r.detail + "), Q_lift " +
          std::to_string(r.qLift);
 }
 

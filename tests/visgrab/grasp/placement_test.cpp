@@ -20,9 +20,9 @@
 namespace {
 
 using rw::math::Vector3D;
-using rwsim::simulator::GraspOutcome;
 using rwsim::simulator::GraspParameters;
 using rwsim::simulator::GraspTrial;
+using rwsim::trial::GraspOutcome;
 using visgrab::grasp::DesiredContact;
 using visgrab::grasp::GraspKind;
 using visgrab::grasp::GraspRequest;

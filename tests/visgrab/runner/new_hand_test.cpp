@@ -160,7 +160,7 @@ TEST(NewHand, RunsGraspsWithTheOutcomesItsGeometryImplies) {
   std::map<std::string, std::string> outcome;
   const auto results = visgrab::results::readResults(options.out);
   for (const auto& t : results.trials) {
-    outcome[t.graspId] = std::string(rwsim::simulator::outcomeName(t.outcome)) + " " + t.detail;
+    outcome[t.graspId] = std::string(rwsim::trial::outcomeName(t.outcome)) + " " + t.detail;
   }
   EXPECT_EQ(outcome["around"].substr(0, 6), "stable") << outcome["around"];
   EXPECT_EQ(outcome["beside"].substr(0, 6), "missed") << outcome["beside"];
@@ -185,13 +185,13 @@ TEST(NewHand, TheLinkedClawHoldsTheCanAndItsClosingsEnd) {
       downAt("around", high), downAt("beside", high + Vector3D(0.25, 0, 0))};
   const auto trial = runGrasps(grasps, claw, tmp.path());
   ASSERT_EQ(trial.size(), 2u);
-  EXPECT_EQ(rwsim::simulator::outcomeName(trial.at("around").outcome), "stable")
+  EXPECT_EQ(rwsim::trial::outcomeName(trial.at("around").outcome), "stable")
       << trial.at("around").detail;
-  EXPECT_EQ(rwsim::simulator::outcomeName(trial.at("beside").outcome), "missed")
+  EXPECT_EQ(rwsim::trial::outcomeName(trial.at("beside").outcome), "missed")
       << trial.at("beside").detail;
   for (const auto& [id, t] : trial) {
     SCOPED_TRACE(id);
-    EXPECT_FALSE(rwsim::simulator::closingHitCap(t.detail)) << t.detail;
+    EXPECT_FALSE(rwsim::trial::closingHitCap(t.detail)) << t.detail;
     // A missed trial ends with its closing; a held one runs on for the lift (0.1 m at 0.5 m/s
     // after a 1 m/s^2 ramp: 0.3 s) and the 0.2 s settling.
     EXPECT_LT(t.simulatedTime, id == "beside" ? 1.0 : 1.5);
@@ -216,13 +216,13 @@ TEST(NewHand, TheProjectsHandsRunOnePreshapePlan) {
     options.hand = visgrab::test::sourceDir() / "scenes/hands" / hand;
     const auto summary = visgrab::runner::runBenchmark(options);
     EXPECT_TRUE(summary.rejected.empty());
-    std::map<std::string, rwsim::simulator::GraspOutcome> outcome;
+    std::map<std::string, rwsim::trial::GraspOutcome> outcome;
     for (const auto& t : visgrab::results::readResults(options.out).trials) {
       outcome[t.graspId] = t.outcome;
     }
     EXPECT_TRUE(visgrab::results::isSuccess(outcome.at("around")))
-        << rwsim::simulator::outcomeName(outcome.at("around"));
-    EXPECT_EQ(outcome.at("beside"), rwsim::simulator::GraspOutcome::kMissed);
+        << rwsim::trial::outcomeName(outcome.at("around"));
+    EXPECT_EQ(outcome.at("beside"), rwsim::trial::GraspOutcome::kMissed);
   }
 }
 
@@ -245,7 +245,7 @@ TEST(NewHand, The2F85HoldsOffCentreAndHighGraspsAsThePg70) {
   for (const Case& c : cases) grasps.push_back(downAt(c.id, canBase() + c.offset));
   visgrab::test::TempDir tmp;
   visgrab::taskio::writeGraspList(grasps, tmp.path() / "plan.csv");
-  std::map<std::string, std::map<std::string, rwsim::simulator::GraspOutcome>> outcome;
+  std::map<std::string, std::map<std::string, rwsim::trial::GraspOutcome>> outcome;
   for (const char* hand : {"pg70", "robotiq2f85"}) {
     visgrab::runner::RunOptions options;
     options.database = visgrab::test::testDatabase().root();
@@ -257,15 +257,15 @@ TEST(NewHand, The2F85HoldsOffCentreAndHighGraspsAsThePg70) {
       outcome[hand][t.graspId] = t.outcome;
     }
   }
-  using rwsim::simulator::GraspOutcome;
+  using rwsim::trial::GraspOutcome;
   for (const Case& c : cases) {
     SCOPED_TRACE(c.id);
     const GraspOutcome pg70 = outcome["pg70"].at(c.id);
     const GraspOutcome r2f85 = outcome["robotiq2f85"].at(c.id);
-    EXPECT_EQ(pg70, GraspOutcome::kStable) << rwsim::simulator::outcomeName(pg70);
-    EXPECT_TRUE(visgrab::results::isSuccess(r2f85)) << rwsim::simulator::outcomeName(r2f85);
+    EXPECT_EQ(pg70, GraspOutcome::kStable) << rwsim::trial::outcomeName(pg70);
+    EXPECT_TRUE(visgrab::results::isSuccess(r2f85)) << rwsim::trial::outcomeName(r2f85);
     if (std::string(c.id) != "across15") {
-      EXPECT_EQ(r2f85, GraspOutcome::kStable) << rwsim::simulator::outcomeName(r2f85);
+      EXPECT_EQ(r2f85, GraspOutcome::kStable) << rwsim::trial::outcomeName(r2f85);
     }
   }
 }
@@ -314,12 +314,12 @@ TEST(NewHand, RobWorksRobotiqRunsAsAHand) {
   visgrab::test::TempDir tmp;
   const auto trial = runGrasps(grasps, folder, tmp.path(), 2);
   ASSERT_EQ(trial.size(), 2u);
-  EXPECT_EQ(rwsim::simulator::outcomeName(trial.at("around").outcome), "stable")
+  EXPECT_EQ(rwsim::trial::outcomeName(trial.at("around").outcome), "stable")
       << trial.at("around").detail;
-  EXPECT_EQ(rwsim::simulator::outcomeName(trial.at("beside").outcome), "missed")
+  EXPECT_EQ(rwsim::trial::outcomeName(trial.at("beside").outcome), "missed")
       << trial.at("beside").detail;
   for (const auto& [id, t] : trial) {
-    EXPECT_FALSE(rwsim::simulator::closingHitCap(t.detail)) << id << ": " << t.detail;
+    EXPECT_FALSE(rwsim::trial::closingHitCap(t.detail)) << id << ": " << t.detail;
   }
 }
 

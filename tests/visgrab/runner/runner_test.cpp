@@ -84,7 +84,7 @@ std::string fileBytes(const fs::path& f) {
 std::map<std::string, std::string> outcomesById(const fs::path& results) {
   std::map<std::string, std::string> out;
   for (const auto& t : visgrab::results::readResults(results).trials) {
-    out[t.graspId] = std::string(rwsim::simulator::outcomeName(t.outcome));
+    out[t.graspId] = std::string(rwsim::trial::outcomeName(t.outcome));
   }
   return out;
 }

@@ -366,7 +366,7 @@ TEST(RwTaskIoTest, RequestsToTaskAndResultsBack) {
   GraspTask task = fromGraspRequests({r, r}, "SchunkHand", "SchunkHand.SDHTCP");
   EXPECT_EQ(stringProperty(task.otherProperties, "SceneID"), r.sceneId);
   ASSERT_EQ(task.targetCount(), 2u);
-  setResult(targetAt(task, 1), rwsim::simulator::GraspOutcome::kSlipped, 0.75, 0.02, 0.005,
+  setResult(targetAt(task, 1), rwsim::trial::GraspOutcome::kSlipped, 0.75, 0.02, 0.005,
             Q::Constant(7, 0.3));
   EXPECT_THROW(targetAt(task, 2), std::out_of_range);
   const GraspTask back = parseRwTask(formatRwTask(task), "x.rwtask.xml");

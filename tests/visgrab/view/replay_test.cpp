@@ -19,7 +19,7 @@
 namespace {
 
 using rw::math::Vector3D;
-using rwsim::simulator::GraspOutcome;
+using rwsim::trial::GraspOutcome;
 using visgrab::view::TrialReplay;
 
 constexpr const char* kScene = "plain/single/cocacola/01";
@@ -194,7 +194,7 @@ TEST(GraspPictures, StripAndMontageLayout) {
 }
 
 TEST(OutcomeCaption, HeldGraspsShowBothGwsColumns) {
-  using rwsim::simulator::GraspOutcome;
+  using rwsim::trial::GraspOutcome;
   EXPECT_EQ(visgrab::view::outcomeCaption(GraspOutcome::kStable, 0.93, 0.421, 0.012),
             "stable   Q_lift 0.930   Q_GWS 0.4210   Q_GWS,unit 0.0120");
   // Results written before Q_GWS,unit existed have no Q_GWS.

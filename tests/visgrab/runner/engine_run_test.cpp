@@ -1,0 +1,214 @@
+// A run's physics engine: recorded in run.csv with its settings; a resumed folder of another
+// engine or other settings is refused; `visgrab run --engine` refuses an engine it does not know
+// (or this build lacks) as a command-line error.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "rw/math/rpy.hpp"
+#include "rwsim/engines/engine_registry.hpp"
+#include "support/test_database.hpp"
+#include "support/test_support.hpp"
+#include "visgrab/database/database.hpp"
+#include "rwsim/trial/grasp_outcome.hpp"
+#include "visgrab/results/results_file.hpp"
+#include "visgrab/runner/benchmark_runner.hpp"
+#include "visgrab/taskio/grasp_list.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+namespace db = visgrab::database;
+using rw::math::Vector3D;
+using visgrab::grasp::GraspKind;
+using visgrab::grasp::GraspRequest;
+
+std::string readFile(const fs::path& f) {
+  std::ifstream in(f, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+void writeFile(const fs::path& f, const std::string& text) {
+  std::ofstream out(f, std::ios::binary);
+  out << text;
+}
+
+// Two grasps on the saltbox scene of the shared test database: one around it, one beside it.
+class EngineRun : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto& database = visgrab::test::testDatabase();
+    const auto scene = db::SceneConditions::single(db::Texture::kPlain, 13, 1);
+    Vector3D base = Vector3D::Zero();
+    for (const auto& pose : database.groundTruth(db::sceneIdOf(scene))) {
+      if (pose.object == 13) base = pose.X_WO.translation();
+    }
+    std::vector<GraspRequest> grasps;
+    for (const auto& [id, offset] : {std::pair{"around", Vector3D(0, 0, 0.07)},
+                                     std::pair{"beside", Vector3D(0.25, 0, 0.07)}}) {
+      GraspRequest r;
+      r.sceneId = db::sceneIdOf(scene);
+      r.id = id;
+      r.method = "known";
+      r.kind = GraspKind::kPreshape;
+      r.preshape = "SDH_CYL";
+      r.X_W_tcp = rw::math::rpyTransform(Vector3D(0.0, std::numbers::pi, 0.0), base + offset);
+      grasps.push_back(r);
+    }
+    visgrab::taskio::writeGraspList(grasps, tmp_.path() / "grasps.txt");
+    options_.database = database.root();
+    options_.grasps = {tmp_.path() / "grasps.txt"};
+    options_.out = tmp_.path() / "results";
+    options_.hand = visgrab::test::sourceDir() / "scenes/hands/sdh/sdh.grasp.xml";
+  }
+
+  visgrab::test::TempDir tmp_;
+  visgrab::runner::RunOptions options_;
+};
+
+TEST_F(EngineRun, RunCsvRecordsTheEngineAndItsSettings) {
+  visgrab::runner::runBenchmark(options_);
+  const auto run = visgrab::results::readResults(options_.out);
+  EXPECT_EQ(run.sources.engine, "ode");
+  // The settings name ODE's version and the step the dwc's PhysicsEngine gives (5 ms).
+  EXPECT_EQ(run.sources.engineSettings.rfind("ODE ", 0), 0u) << run.sources.engineSettings;
+  EXPECT_NE(run.sources.engineSettings.find("step 0.005 s WorldStep"), std::string::npos)
+      << run.sources.engineSettings;
+  const std::string text = readFile(options_.out / "run.csv");
+  EXPECT_NE(text.find("\nengine,ode,,,,,,\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("\nengine_settings,\"ODE "), std::string::npos) << text;
+}
+
+TEST_F(EngineRun, ResumingAnotherEnginesFolderIsRefused) {
+  visgrab::runner::runBenchmark(options_);
+  const fs::path runFile = options_.out / "run.csv";
+  const std::string original = readFile(runFile);
+  std::string other = original;
+  other.replace(other.find("\nengine,ode,"), 12, "\nengine,mujoco,");
+  writeFile(runFile, other);
+  options_.resume = true;
+  try {
+    visgrab::runner::runBenchmark(options_);
+    FAIL() << "a folder of MuJoCo's trials resumed on ODE";
+  } catch (const std::runtime_error& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find(options_.out.string()), std::string::npos) << m;
+    EXPECT_NE(m.find("engine 'mujoco'"), std::string::npos) << m;
+    EXPECT_NE(m.find("engine 'ode'"), std::string::npos) << m;
+  }
+  // Other settings of the same engine (another time step, say) are refused too.
+  std::string settings = original;
+  const auto at = settings.find("step 0.005 s");
+  ASSERT_NE(at, std::string::npos);
+  settings.replace(at, 12, "step 0.002 s");
+  writeFile(runFile, settings);
+  try {
+    visgrab::runner::runBenchmark(options_);
+    FAIL() << "a folder of other ODE settings resumed";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("step 0.002 s"), std::string::npos) << e.what();
+  }
+  // A run.csv older than the engine record is ODE's: it resumes (nothing left to run) and
+  // gains the record.
+  std::string older = original;
+  older.erase(older.find("engine,ode,"), std::string("engine,ode,,,,,,\n").size());
+  older.erase(older.find("engine_settings,"));
+  writeFile(runFile, older);
+  const auto summary = visgrab::runner::runBenchmark(options_);
+  EXPECT_EQ(summary.trials, 0);
+  EXPECT_EQ(summary.resumed, 2);
+  EXPECT_EQ(visgrab::results::readResults(options_.out).sources.engine, "ode");
+}
+
+TEST_F(EngineRun, TheCommandLineRefusesAnUnknownEngine) {
+  const std::string args = "run --db " + visgrab::test::shellQuoted(options_.database) +
+                           " --grasps " + visgrab::test::shellQuoted(options_.grasps[0]) +
+                           " --out " + visgrab::test::shellQuoted(options_.out) + " --quiet";
+  const auto bad = visgrab::test::runProgram(VISGRAB_BINARY, args + " --engine bullet");
+  EXPECT_EQ(bad.exitCode, 2) << bad.output;
+  EXPECT_NE(bad.output.find("--engine: unknown engine 'bullet' (expected one of ode, mujoco)"),
+            std::string::npos)
+      << bad.output;
+  EXPECT_FALSE(fs::exists(options_.out / "trials.csv"));
+  if (!rwsim::engines::isAvailable("mujoco")) {
+    const auto absent = visgrab::test::runProgram(VISGRAB_BINARY, args + " --engine mujoco");
+    EXPECT_EQ(absent.exitCode, 2) << absent.output;
+    EXPECT_NE(absent.output.find("libmujoco-dev"), std::string::npos) << absent.output;
+  }
+}
+
+// `visgrab run --engine mujoco` on every scene of the shared 20-scene test database: over each
+// object (from the ground truth) a top-down SDH_CYL grasp and one 0.25 m beside it. Every trial
+// must end with an outcome of the table, none a simulation failure or a timeout (either would be
+// the MuJoCo adapter's: ODE runs the same grasps without one); the run records its engine; some
+// grasps are held and the ones beside the objects close on nothing.
+TEST(EngineRunMujoco, EveryTestDatabaseSceneRunsToAnOutcome) {
+  if (!rwsim::engines::isAvailable("mujoco")) {
+    GTEST_SKIP() << "this build has no MuJoCo engine (Debian's libmujoco-dev was not found at "
+                    "configure time)";
+  }
+  const auto& database = visgrab::test::testDatabase();
+  std::vector<GraspRequest> grasps;
+  for (const auto& scene : visgrab::test::testDatabaseScenes()) {
+    const std::string id = db::sceneIdOf(scene);
+    for (const auto& pose : database.groundTruth(id)) {
+      const Vector3D at = pose.X_WO.translation();
+      for (const auto& [name, offset] : {std::pair{"over", Vector3D(0, 0, 0.07)},
+                                         std::pair{"beside", Vector3D(0, 0.25, 0.07)}}) {
+        GraspRequest r;
+        r.sceneId = id;
+        r.id = std::string(name) + "-" + std::to_string(pose.object);
+        r.method = "known";
+        r.kind = GraspKind::kPreshape;
+        r.preshape = "SDH_CYL";
+        r.X_W_tcp = rw::math::rpyTransform(Vector3D(0.0, std::numbers::pi, 0.0), at + offset);
+        grasps.push_back(r);
+      }
+    }
+  }
+  visgrab::test::TempDir tmp;
+  visgrab::taskio::writeGraspList(grasps, tmp.path() / "grasps.txt");
+  const fs::path out = tmp.path() / "results";
+  const auto run = visgrab::test::runProgram(
+      VISGRAB_BINARY, "run --db " + visgrab::test::shellQuoted(database.root()) + " --grasps " +
+                          visgrab::test::shellQuoted(tmp.path() / "grasps.txt") + " --out " +
+                          visgrab::test::shellQuoted(out) + " --hand " +
+                          visgrab::test::shellQuoted(visgrab::test::sourceDir() /
+                                                     "scenes/hands/sdh/sdh.grasp.xml") +
+                          " --engine mujoco --threads 2 --quiet");
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  const auto results = visgrab::results::readResults(out);
+  EXPECT_EQ(results.sources.engine, "mujoco");
+  EXPECT_EQ(results.sources.engineSettings.rfind("MuJoCo ", 0), 0u)
+      << results.sources.engineSettings;
+  ASSERT_EQ(results.trials.size(), grasps.size());
+  int simulated = 0;
+  int held = 0;
+  int besideMissed = 0;
+  int beside = 0;
+  for (const auto& t : results.trials) {
+    using rwsim::trial::GraspOutcome;
+    EXPECT_NE(t.outcome, GraspOutcome::kSimulationFailure) << t.sceneId << " " << t.graspId
+                                                           << ": " << t.detail;
+    EXPECT_NE(t.outcome, GraspOutcome::kTimeout) << t.sceneId << " " << t.graspId;
+    if (rwsim::trial::isDecidedBeforeSimulation(t.outcome)) continue;
+    ++simulated;
+    held += rwsim::trial::isHeld(t.outcome) ? 1 : 0;
+    if (t.graspId.starts_with("beside")) {
+      ++beside;
+      besideMissed += t.outcome == GraspOutcome::kMissed ? 1 : 0;
+    }
+  }
+  // 20 scenes, 30 objects: most grasps are simulated (some over lying objects collide).
+  EXPECT_GE(simulated, 30) << "of " << results.trials.size();
+  EXPECT_GE(held, 5);
+  EXPECT_GE(beside, 10);
+  EXPECT_GE(besideMissed * 10, beside * 8) << besideMissed << " of " << beside;
+}
+
+}  // namespace
