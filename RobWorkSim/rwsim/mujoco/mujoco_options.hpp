@@ -28,7 +28,9 @@ struct MujocoOptions {
   std::string integrator = "implicit";
   /// Gain kv of the finger motors' velocity servos, N m s/rad (or N s/m): torque =
   /// kv (target - velocity), clipped to the force limit. About 2 closes the SDH like the project's
-  /// velocity constraint (which gives the full force limit for any speed error).
+  /// velocity constraint (which gives the full force limit for any speed error). MuJoCo 2.2.2's
+  /// implicit integrator applies the feedback's derivative even while the torque is clipped: a
+  /// saturated joint responds as if its inertia were larger by kv * timeStep (0.004 kg m^2).
   double motorGain = 2.0;
   /// Mass of a kinematic body, kg (the dwc gives none; the pose is driven, see kinematicArmature).
   double kinematicMass = 1.0;
