@@ -1,20 +1,21 @@
-// The project's SDH box trial against the same trial in MuJoCo 2.2.2 (docs/performance.md
-// "MuJoCo comparison"): BM_Sim_SdhGraspTrial's scene (tests/rwsim/simulator/data/sdh_box.dwc.xml)
-// and three cylinder grasps, run by rwsim::simulator::GraspTrial with and without Q_GWS, and by
-// visgrab::mujoco::MujocoGraspTrial on the scene exported to MJCF. At the end the program prints
-// the CPU-time ratios project / MuJoCo (medians over repetitions, if any) and fails if a trial on
-// either side did not hold the box (outcome other than stable).
+// The SDH box trial on the ODE engine (the project's default) against the same trial on the
+// optional MuJoCo engine (rwsim_mujoco; docs/performance.md "MuJoCo comparison"): BM_Sim_
+// SdhGraspTrial's scene (tests/rwsim/simulator/data/sdh_box.dwc.xml) and three cylinder grasps,
+// all run by the one protocol, rwsim::simulator::GraspTrial, with and without Q_GWS; only the
+// engine factory differs (odeEngineFactory, the default, or rwsim::mujoco::mujocoEngineFactory).
+// At the end the program prints the CPU-time ratios ODE / MuJoCo (medians over repetitions, if
+// any) and fails if a trial on either engine did not hold the box (outcome other than stable or
+// slipped).
 #include <benchmark/benchmark.h>
-#include <mujoco/mujoco.h>
 
 #include <algorithm>
 #include <cstdio>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
-#include "mujoco/mjcf_export.hpp"
-#include "mujoco/mujoco_grasp_trial.hpp"
+#include "rwsim/mujoco/mujoco_engine.hpp"
 #include "rwsim/simulator/grasp_trial.hpp"
 #include "sdh_box_trial.hpp"
 
@@ -22,9 +23,10 @@ namespace {
 
 namespace sim = rwsim::simulator;
 
-const char* const kProjectWithGws = "BM_Compare_ProjectTrial";
-const char* const kProjectWithoutGws = "BM_Compare_ProjectTrialWithoutGws";
-const char* const kMujoco = "BM_Compare_MujocoTrial";
+const char* const kOdeWithGws = "BM_Compare_OdeTrial";
+const char* const kOdeWithoutGws = "BM_Compare_OdeTrialWithoutGws";
+const char* const kMujocoWithGws = "BM_Compare_MujocoTrial";
+const char* const kMujocoWithoutGws = "BM_Compare_MujocoTrialWithoutGws";
 
 sim::GraspTrialSetup trialSetup(bool computeGws) {
   sim::GraspTrialSetup setup;
@@ -35,6 +37,12 @@ sim::GraspTrialSetup trialSetup(bool computeGws) {
   return setup;
 }
 
+// The MuJoCo engines of the scene (the MJCF exported and compiled once).
+std::shared_ptr<const rwsim::trial::EngineFactory> mujocoEngines() {
+  static const auto factory = rwsim::mujoco::mujocoEngineFactory(visgrab::bench::sdhBoxScene());
+  return factory;
+}
+
 // Trials that did not hold the box, per benchmark ("name: outcome, detail").
 std::vector<std::string>& failures() {
   static std::vector<std::string> list;
@@ -42,63 +50,42 @@ std::vector<std::string>& failures() {
 }
 
 void noteOutcome(const char* name, sim::GraspOutcome outcome, const std::string& detail) {
-  if (outcome == sim::GraspOutcome::kStable) return;
+  if (outcome == sim::GraspOutcome::kStable || outcome == sim::GraspOutcome::kSlipped) return;
   failures().push_back(std::string(name) + ": " + std::string(sim::outcomeName(outcome)) + ", " +
                        detail);
 }
 
-void projectTrials(benchmark::State& state, bool computeGws) {
+void trials(benchmark::State& state, const char* name, bool computeGws,
+            std::shared_ptr<const rwsim::trial::EngineFactory> engine) {
   const auto& dwc = visgrab::bench::sdhBoxScene();
-  const sim::GraspTrial trial(dwc, trialSetup(computeGws));
+  const sim::GraspTrial trial(dwc, trialSetup(computeGws), std::move(engine));
   const auto initial = dwc.workcell().defaultState();
-  std::int64_t trials = 0;
+  std::int64_t count = 0;
   double simulated = 0.0;
   int stable = 0;
   for (auto _ : state) {
     const auto result = trial.run(
-        visgrab::bench::sdhCylinderGrasp(0.002 * static_cast<double>(trials % 3)), initial);
+        visgrab::bench::sdhCylinderGrasp(0.002 * static_cast<double>(count % 3)), initial);
     simulated += result.simulatedTime;
     stable += result.outcome == sim::GraspOutcome::kStable ? 1 : 0;
-    noteOutcome(computeGws ? kProjectWithGws : kProjectWithoutGws, result.outcome, result.detail);
-    ++trials;
+    noteOutcome(name, result.outcome, result.detail);
+    ++count;
   }
   state.counters["trials/s"] =
-      benchmark::Counter(static_cast<double>(trials), benchmark::Counter::kIsRate);
-  state.counters["sim s/trial"] = simulated / static_cast<double>(trials);
-  state.counters["stable"] = static_cast<double>(stable) / static_cast<double>(trials);
+      benchmark::Counter(static_cast<double>(count), benchmark::Counter::kIsRate);
+  state.counters["sim s/trial"] = simulated / static_cast<double>(count);
+  state.counters["stable"] = static_cast<double>(stable) / static_cast<double>(count);
 }
 
-void BM_Compare_ProjectTrial(benchmark::State& state) { projectTrials(state, true); }
-void BM_Compare_ProjectTrialWithoutGws(benchmark::State& state) { projectTrials(state, false); }
-
+void BM_Compare_OdeTrial(benchmark::State& state) { trials(state, kOdeWithGws, true, nullptr); }
+void BM_Compare_OdeTrialWithoutGws(benchmark::State& state) {
+  trials(state, kOdeWithoutGws, false, nullptr);
+}
 void BM_Compare_MujocoTrial(benchmark::State& state) {
-  const auto& dwc = visgrab::bench::sdhBoxScene();
-  static const visgrab::mujoco::MjcfModel model = visgrab::mujoco::exportMjcf(dwc);
-  visgrab::mujoco::MujocoGraspTrial trial(dwc, model, trialSetup(false));
-  const auto initial = dwc.workcell().defaultState();
-  std::int64_t trials = 0;
-  double simulated = 0.0;
-  int stable = 0;
-  long steps = 0;
-  long rows = 0;
-  long iterations = 0;
-  for (auto _ : state) {
-    const auto result = trial.run(
-        visgrab::bench::sdhCylinderGrasp(0.002 * static_cast<double>(trials % 3)), initial);
-    simulated += result.simulatedTime;
-    stable += result.outcome == sim::GraspOutcome::kStable ? 1 : 0;
-    steps += result.steps;
-    rows += result.constraintRows;
-    iterations += result.solverIterations;
-    noteOutcome(kMujoco, result.outcome, result.detail);
-    ++trials;
-  }
-  state.counters["trials/s"] =
-      benchmark::Counter(static_cast<double>(trials), benchmark::Counter::kIsRate);
-  state.counters["sim s/trial"] = simulated / static_cast<double>(trials);
-  state.counters["stable"] = static_cast<double>(stable) / static_cast<double>(trials);
-  state.counters["rows/step"] = static_cast<double>(rows) / static_cast<double>(steps);
-  state.counters["iters/step"] = static_cast<double>(iterations) / static_cast<double>(steps);
+  trials(state, kMujocoWithGws, true, mujocoEngines());
+}
+void BM_Compare_MujocoTrialWithoutGws(benchmark::State& state) {
+  trials(state, kMujocoWithoutGws, false, mujocoEngines());
 }
 
 // The console output plus each benchmark's CPU time per trial: the "median" aggregate when there
@@ -144,37 +131,40 @@ class RatioReporter : public benchmark::ConsoleReporter {
   std::map<std::string, double> simulated_;
 };
 
-void printRatio(const RatioReporter& reporter, const char* label, const char* project) {
-  const double p = reporter.time(project);
-  const double m = reporter.time(kMujoco);
+void printRatio(const RatioReporter& reporter, const char* label, const char* ode,
+                const char* mujoco) {
+  const double p = reporter.time(ode);
+  const double m = reporter.time(mujoco);
   if (p <= 0.0 || m <= 0.0) return;  // filtered out
-  std::printf("ratio %s: %.3f (project %.2f ms / MuJoCo %.2f ms CPU per trial)\n", label, p / m, p,
-              m);
-  const double ps = reporter.simulated(project);
-  const double ms = reporter.simulated(kMujoco);
+  std::printf("ratio %s: %.3f (ODE %.2f ms / MuJoCo %.2f ms CPU per trial)\n", label, p / m, p, m);
+  const double ps = reporter.simulated(ode);
+  const double ms = reporter.simulated(mujoco);
   if (ps > 0.0 && ms > 0.0) {
     std::printf(
-        "  per simulated second %s: %.3f (project %.2f s / MuJoCo %.2f s simulated per trial)\n",
-        label, (p / ps) / (m / ms), ps, ms);
+        "  per simulated second %s: %.3f (ODE %.3f s / MuJoCo %.3f s simulated per trial)\n", label,
+        (p / ps) / (m / ms), ps, ms);
   }
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  benchmark::RegisterBenchmark(kProjectWithGws, BM_Compare_ProjectTrial)
-      ->Unit(benchmark::kMillisecond);
-  benchmark::RegisterBenchmark(kProjectWithoutGws, BM_Compare_ProjectTrialWithoutGws)
-      ->Unit(benchmark::kMillisecond);
-  benchmark::RegisterBenchmark(kMujoco, BM_Compare_MujocoTrial)->Unit(benchmark::kMillisecond);
+  for (const char* name : {kOdeWithGws, kOdeWithoutGws, kMujocoWithGws, kMujocoWithoutGws}) {
+    const auto function = name == kOdeWithGws      ? BM_Compare_OdeTrial
+                          : name == kOdeWithoutGws ? BM_Compare_OdeTrialWithoutGws
+                          : name == kMujocoWithGws ? BM_Compare_MujocoTrial
+                                                   : BM_Compare_MujocoTrialWithoutGws;
+    benchmark::RegisterBenchmark(name, function)->Unit(benchmark::kMillisecond);
+  }
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 2;
+  std::printf("MuJoCo engine: %s\n", mujocoEngines()->settings().c_str());
   RatioReporter reporter;
   benchmark::RunSpecifiedBenchmarks(&reporter);
   benchmark::Shutdown();
   std::fflush(stdout);
-  printRatio(reporter, "with Q_GWS", kProjectWithGws);
-  printRatio(reporter, "without Q_GWS", kProjectWithoutGws);
+  printRatio(reporter, "with Q_GWS", kOdeWithGws, kMujocoWithGws);
+  printRatio(reporter, "without Q_GWS", kOdeWithoutGws, kMujocoWithoutGws);
   if (!failures().empty()) {
     std::printf("%zu trial(s) did not hold the box:\n", failures().size());
     for (const auto& f : failures()) std::printf("  %s\n", f.c_str());

@@ -43,7 +43,7 @@ packages=(build-essential cmake ninja-build pkg-config
   slurm-wlm munge  # the Slurm cluster test starts its own one-node cluster (docs/cluster.md)
   xvfb xauth clang-format python3
   clang libclang-rt-14-dev  # the fuzz stage: clang 14 with libFuzzer and the sanitizer runtimes
-  libmujoco-dev)  # MuJoCo 2.2.2, only for the MuJoCo comparison benchmark; no library or app uses it
+  libmujoco-dev)  # MuJoCo 2.2.2: the optional second physics engine (rwsim_mujoco, its tests, dwc2mjcf, the MuJoCo comparison benchmark); built only when installed
 
 install_packages() {
   local missing=()

@@ -1,6 +1,6 @@
-# Smoke test of mujoco_comparison_benchmark (cmake -DPROGRAM=... -P smoke_test.cmake): a few
-# trials per benchmark; passes when the program exits 0 (both sides held the box in every trial)
-# and printed both ratio lines. No timing is checked.
+# Smoke test of mujoco_comparison_benchmark (cmake -DPROGRAM=... -P mujoco_smoke_test.cmake): a
+# few trials per benchmark; passes when the program exits 0 (GraspTrial held the box, stable or
+# slipped, in every trial on both engines) and printed both ratio lines. No timing is checked.
 execute_process(COMMAND ${PROGRAM} --benchmark_min_time=0.15
   RESULT_VARIABLE result OUTPUT_VARIABLE out ERROR_VARIABLE err)
 message("${out}${err}")

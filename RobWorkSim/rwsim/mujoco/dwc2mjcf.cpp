@@ -1,12 +1,13 @@
-// dwc2mjcf IN.dwc.xml OUT.xml: writes a dynamic workcell as MJCF for the MuJoCo comparison
-// benchmark (benchmarks/mujoco/mjcf_export.hpp says what is exported and how).
+// dwc2mjcf IN.dwc.xml OUT.xml: writes a dynamic workcell as MJCF with the MuJoCo engine's default
+// options (rwsim/mujoco/mjcf_export.hpp says what is exported and how), e.g. to inspect it in
+// MuJoCo's viewer.
 #include <exception>
 #include <fstream>
 #include <iostream>
 
-#include "mujoco/mjcf_export.hpp"
 #include "rw/common/diagnostic.hpp"
 #include "rwsim/loaders/dynamic_workcell_loader.hpp"
+#include "rwsim/mujoco/mjcf_export.hpp"
 
 int main(int argc, char** argv) {
   if (argc != 3) {
@@ -15,7 +16,7 @@ int main(int argc, char** argv) {
   }
   try {
     const auto dwc = rwsim::loaders::loadDynamicWorkCell(argv[1]);
-    const auto model = visgrab::mujoco::exportMjcf(*dwc);
+    const auto model = rwsim::mujoco::exportMjcf(*dwc);
     for (const auto& frame : model.skippedFrames) {
       std::cerr << argv[1] << ": warning: frame '" << frame
                 << "' has collision geometry but belongs to no body; not exported\n";

@@ -1,20 +1,26 @@
-// The MJCF exporter of the MuJoCo comparison benchmark: the exported SDH box scene compiles in
-// MuJoCo, its bodies sit where the project's forward kinematics puts them, its masses, inertias,
-// friction pairs, motors and coupling are the dwc's, and what it cannot export is named.
+// The MJCF export of the MuJoCo engine: the exported SDH box scene compiles in MuJoCo, its bodies
+// sit where the project's forward kinematics puts them, its masses, inertias, friction pairs,
+// servos and coupling are the dwc's; convex meshes, cones and frusta become geoms whose vertices
+// lie where the dwc's do; and what MuJoCo cannot represent is refused, naming the frame.
 #include <gtest/gtest.h>
 #include <mujoco/mujoco.h>
 
+#include <algorithm>
+#include <array>
+#include <cstdint>
 #include <cstring>
 #include <memory>
 #include <numbers>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
-#include "mujoco/mjcf_export.hpp"
-#include "mujoco/mujoco_grasp_trial.hpp"
+#include "rw/geometry/geometry.hpp"
 #include "rw/kinematics/frame_tree.hpp"
 #include "rw/math/rpy.hpp"
 #include "rwsim/loaders/dynamic_workcell_loader.hpp"
+#include "rwsim/mujoco/mjcf_export.hpp"
+#include "rwsim/simulator/sim_test_scenes.hpp"
 #include "support/test_support.hpp"
 
 namespace {
@@ -22,7 +28,8 @@ namespace {
 using rw::math::Q;
 using rw::math::Transform3D;
 using rw::math::Vector3D;
-using visgrab::mujoco::exportMjcf;
+using rwsim::mujoco::exportMjcf;
+using visgrab::test::sim::SceneBuilder;
 
 const rwsim::dynamics::DynamicWorkCell& sdhBox() {
   static const auto dwc = rwsim::loaders::loadDynamicWorkCell(
@@ -162,12 +169,14 @@ TEST(MjcfExport, ContactPairsCarryTheMaterialMapsFriction) {
   }
 }
 
-TEST(MjcfExport, MotorsCouplingAndBaseSlidesAreExported) {
+TEST(MjcfExport, ServosCouplingAndBaseJointsAreExported) {
   const auto& dwc = sdhBox();
-  const auto model = exportMjcf(dwc);
+  rwsim::mujoco::MujocoOptions options;
+  options.motorGain = 3.5;
+  const auto model = exportMjcf(dwc, options);
   const ModelPtr m = load(model.xml);
   ASSERT_NE(m, nullptr);
-  EXPECT_EQ(m->nu, 7 + 3);  // one servo per active joint, three for the base's slides
+  EXPECT_EQ(m->nu, 7);  // one velocity servo per active joint; the base is driven directly
   const auto& rd = dwc.device(dwc.findDevice("SchunkHand"));
   const auto& tree = dwc.workcell().frames();
   for (std::size_t k = 0; k < rd.device->joints().size(); ++k) {
@@ -180,6 +189,9 @@ TEST(MjcfExport, MotorsCouplingAndBaseSlidesAreExported) {
     ASSERT_GE(a, 0) << f.name();
     EXPECT_EQ(m->actuator_forcerange[2 * a + 1], rd.forceLimits[k]) << f.name();
     EXPECT_EQ(m->actuator_forcerange[2 * a], -rd.forceLimits[k]) << f.name();
+    // A velocity servo: force = kv ctrl - kv qdot.
+    EXPECT_EQ(m->actuator_gainprm[mjNGAIN * a], 3.5) << f.name();
+    EXPECT_EQ(m->actuator_biasprm[mjNBIAS * a + 2], -3.5) << f.name();
     const int j = mj_name2id(m.get(), mjOBJ_JOINT, f.name().c_str());
     EXPECT_NEAR(m->jnt_range[2 * j], f.limits().lower, 1e-12);
     EXPECT_NEAR(m->jnt_range[2 * j + 1], f.limits().upper, 1e-12);
@@ -190,29 +202,38 @@ TEST(MjcfExport, MotorsCouplingAndBaseSlidesAreExported) {
   EXPECT_EQ(m->eq_obj2id[0], mj_name2id(m.get(), mjOBJ_JOINT, "SchunkHand.F2Joint1"));
   EXPECT_EQ(m->eq_data[0], 0.0);
   EXPECT_EQ(m->eq_data[1], -1.0);
-  ASSERT_EQ(model.slideJoints[dwc.findBody("SchunkHand.Base").index()].size(), 3u);
+  // The kinematic base: three slides, three hinges, heavy armature.
+  const auto& base = model.kinematicJoints[dwc.findBody("SchunkHand.Base").index()];
+  ASSERT_EQ(base.size(), 6u);
+  for (std::size_t k = 0; k < 6; ++k) {
+    const int j = mj_name2id(m.get(), mjOBJ_JOINT, base[k].c_str());
+    ASSERT_GE(j, 0) << base[k];
+    EXPECT_EQ(m->jnt_type[j], k < 3 ? mjJNT_SLIDE : mjJNT_HINGE) << base[k];
+    EXPECT_EQ(m->dof_armature[m->jnt_dofadr[j]], options.kinematicArmature) << base[k];
+  }
 }
 
-TEST(MjcfExport, UnsupportedGeometryIsNamedWithItsFrame) {
-  const std::string wc = R"(<WorkCell name="ConeScene">
-  <Frame name="Funnel" refframe="WORLD" type="Movable">
+TEST(MjcfExport, ATubeIsRefusedNamingItsFrame) {
+  const std::string wc = R"(<WorkCell name="TubeScene">
+  <Frame name="Pipe" refframe="WORLD" type="Movable">
     <RPY>0 0 0</RPY><Pos>0 0 0.1</Pos>
-    <Drawable name="FunnelGeo"><RPY>0 0 0</RPY><Pos>0 0 0</Pos><Cone radius="0.03" z="0.08"/></Drawable>
+    <Drawable name="PipeGeo"><RPY>0 0 0</RPY><Pos>0 0 0</Pos><Tube radius="0.03" thickness="0.005" z="0.08"/></Drawable>
   </Frame>
 </WorkCell>)";
-  const std::string dwcXml = R"(<DynamicWorkcell workcell="cone.wc.xml">
+  const std::string dwcXml = R"(<DynamicWorkcell workcell="tube.wc.xml">
   <Include file="materials.xml"/>
-  <RigidBody frame="Funnel"><Mass>0.1</Mass><EstimateInertia/></RigidBody>
+  <RigidBody frame="Pipe"><Mass>0.1</Mass><COG>0 0 0</COG><Inertia>1e-4 0 0 0 1e-4 0 0 0 1e-4</Inertia></RigidBody>
 </DynamicWorkcell>)";
   const auto dwc = rwsim::loaders::loadDynamicWorkCellFromStrings(
-      dwcXml, wc, visgrab::test::sourceDir() / "scenes/cone.dwc.xml");
+      dwcXml, wc, visgrab::test::sourceDir() / "scenes/tube.dwc.xml");
   try {
     exportMjcf(*dwc);
-    FAIL() << "a cone was exported";
+    FAIL() << "a tube was exported";
   } catch (const std::invalid_argument& e) {
     const std::string what = e.what();
-    EXPECT_NE(what.find("frame 'Funnel'"), std::string::npos) << what;
-    EXPECT_NE(what.find("Cone 'FunnelGeo'"), std::string::npos) << what;
+    EXPECT_NE(what.find("frame 'Pipe'"), std::string::npos) << what;
+    EXPECT_NE(what.find("Tube 'PipeGeo'"), std::string::npos) << what;
+    EXPECT_NE(what.find("not convex"), std::string::npos) << what;
   }
 }
 
@@ -241,31 +262,159 @@ TEST(MjcfExport, APlaneOnAMovingBodyIsRefused) {
   }
 }
 
-TEST(MjcfExport, TheMujocoTrialHoldsTheBox) {
-  const auto& dwc = sdhBox();
-  const auto model = exportMjcf(dwc);
-  rwsim::simulator::GraspTrialSetup setup;
-  setup.hand = "SchunkHand";
-  setup.tcpFrame = "SchunkHand.SDHTCP";
-  setup.computeGws = false;
-  visgrab::mujoco::MujocoGraspTrial trial(dwc, model, setup);
-  rwsim::simulator::GraspParameters g;
-  g.X_W_tcp = rw::math::rpyTransform(Vector3D(0, std::numbers::pi, 0), Vector3D(0, 0, 0.05));
-  g.qOpen = Q(7);
-  g.qOpen << -1.048, 0.174, 0.0, -1.048, 0.174, -1.048, 0.174;
-  g.qClosed = Q(7);
-  g.qClosed << 0.0, 0.349, 0.0, 0.0, 0.349, 0.0, 0.349;
-  g.tauMax = Q(7);
-  g.tauMax << 2.1, 1.4, 2.1, 1.05, 0.7, 1.05, 0.7;
-  const auto result = trial.run(g, dwc.workcell().defaultState());
-  EXPECT_EQ(result.outcome, rwsim::simulator::GraspOutcome::kStable) << result.detail;
-  EXPECT_LT(result.drift, 0.01);
-  // Closing takes at least minCloseTime, the lift 0.1 m at 0.5 m/s and 1 m/s^2 0.45 s, then
-  // 0.2 s of settling.
-  EXPECT_GT(result.simulatedTime, 0.2 + 0.45 + 0.2 - 1e-6);
-  // The same trial placed with the hand turned about z: the base's slides cannot turn it.
-  g.X_W_tcp = rw::math::rpyTransform(Vector3D(0.3, std::numbers::pi, 0), Vector3D(0, 0, 0.05));
-  EXPECT_THROW(trial.run(g, dwc.workcell().defaultState()), std::invalid_argument);
+// A triangle mesh geometry from vertices and outward triangles.
+std::shared_ptr<const rw::geometry::Geometry> meshOf(
+    std::vector<Vector3D> vertices, std::vector<std::array<std::uint32_t, 3>> tri) {
+  auto mesh = std::make_shared<rw::geometry::TriMesh>();
+  mesh->vertices = std::move(vertices);
+  mesh->triangles = std::move(tri);
+  return rw::geometry::Geometry::mesh(mesh, "test.stl");
+}
+
+// A unit cube's corners scaled by `size` and centred at 0, with its 12 outward triangles.
+std::shared_ptr<const rw::geometry::Geometry> cuboid(const Vector3D& size, const Transform3D& X) {
+  std::vector<Vector3D> v;
+  for (int i = 0; i < 8; ++i) {
+    v.push_back(X * Vector3D(((i & 1) ? 0.5 : -0.5) * size.x(), ((i & 2) ? 0.5 : -0.5) * size.y(),
+                             ((i & 4) ? 0.5 : -0.5) * size.z()));
+  }
+  return meshOf(v, {{0, 2, 1},
+                    {1, 2, 3},
+                    {4, 5, 6},
+                    {5, 7, 6},
+                    {0, 1, 4},
+                    {1, 5, 4},
+                    {2, 6, 3},
+                    {3, 6, 7},
+                    {0, 4, 2},
+                    {2, 4, 6},
+                    {1, 3, 5},
+                    {3, 7, 5}});
+}
+
+// One rigid body "Piece" carrying `geometry` at X_W, exported and compiled.
+struct PieceModel {
+  std::unique_ptr<rwsim::dynamics::DynamicWorkCell> dwc;
+  ModelPtr m;
+  DataPtr d;
+};
+
+PieceModel exportPiece(std::shared_ptr<const rw::geometry::Geometry> geometry,
+                       const Transform3D& X_W) {
+  SceneBuilder scene("piece");
+  scene.addBody("Piece", X_W, std::move(geometry), 0.1, Eigen::Matrix3d::Identity() * 1e-4);
+  PieceModel out;
+  out.dwc = scene.build();
+  out.m = load(exportMjcf(*out.dwc).xml);
+  if (out.m) {
+    out.d.reset(mj_makeData(out.m.get()));
+    mj_forward(out.m.get(), out.d.get());
+  }
+  return out;
+}
+
+// The world positions of a mesh geom's vertices (MuJoCo stores them about the mesh's centroid).
+std::vector<Vector3D> meshVerticesInWorld(const mjModel* m, const mjData* d, int geom) {
+  const int mesh = m->geom_dataid[geom];
+  const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> R(d->geom_xmat + 9 * geom);
+  const Vector3D p(d->geom_xpos[3 * geom], d->geom_xpos[3 * geom + 1], d->geom_xpos[3 * geom + 2]);
+  std::vector<Vector3D> out;
+  for (int i = 0; i < m->mesh_vertnum[mesh]; ++i) {
+    const float* v = m->mesh_vert + 3 * (m->mesh_vertadr[mesh] + i);
+    out.push_back(p + R * Vector3D(v[0], v[1], v[2]));
+  }
+  return out;
+}
+
+double distanceToNearest(const Vector3D& p, const std::vector<Vector3D>& points) {
+  double best = 1e9;
+  for (const Vector3D& q : points) best = std::min(best, (p - q).norm());
+  return best;
+}
+
+const Transform3D kTilted =
+    rw::math::rpyTransform(Vector3D(0.3, -0.4, 1.1), Vector3D(0.1, 0.2, 0.3));
+
+TEST(MjcfExport, AConvexMeshIsAMeshGeomWithItsVerticesInPlace) {
+  const std::vector<Vector3D> corners = {Vector3D(0, 0, 0), Vector3D(0.05, 0, 0),
+                                         Vector3D(0, 0.04, 0), Vector3D(0.01, 0.01, 0.03)};
+  const auto tetra = meshOf(corners, {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}});
+  ASSERT_TRUE(tetra->isConvex());
+  const PieceModel p = exportPiece(tetra, kTilted);
+  ASSERT_NE(p.m, nullptr);
+  ASSERT_EQ(p.m->ngeom, 1);
+  EXPECT_EQ(p.m->geom_type[0], mjGEOM_MESH);
+  const auto world = meshVerticesInWorld(p.m.get(), p.d.get(), 0);
+  ASSERT_EQ(world.size(), 4u);
+  for (const Vector3D& c : corners) {
+    EXPECT_LT(distanceToNearest(kTilted * c, world), 1e-6);  // MuJoCo keeps floats
+  }
+}
+
+TEST(MjcfExport, ACuboidMeshIsABox) {
+  const Transform3D X_frame_mesh =
+      rw::math::rpyTransform(Vector3D(0.2, 0.0, 0.5), Vector3D(0.01, -0.02, 0.03));
+  const PieceModel p = exportPiece(cuboid(Vector3D(0.06, 0.1, 0.2), X_frame_mesh), kTilted);
+  ASSERT_NE(p.m, nullptr);
+  ASSERT_EQ(p.m->ngeom, 1);
+  ASSERT_EQ(p.m->geom_type[0], mjGEOM_BOX);
+  std::vector<double> half(p.m->geom_size, p.m->geom_size + 3);
+  std::sort(half.begin(), half.end());
+  EXPECT_NEAR(half[0], 0.03, 1e-12);
+  EXPECT_NEAR(half[1], 0.05, 1e-12);
+  EXPECT_NEAR(half[2], 0.1, 1e-12);
+  const Vector3D centre(p.d->geom_xpos[0], p.d->geom_xpos[1], p.d->geom_xpos[2]);
+  EXPECT_LT((centre - (kTilted * X_frame_mesh).translation()).norm(), 1e-9);
+}
+
+TEST(MjcfExport, ConesAndFrustaAreHullsOfManySidedPolygons) {
+  const PieceModel cone = exportPiece(rw::geometry::Geometry::cone(0.03, 0.08), kTilted);
+  ASSERT_NE(cone.m, nullptr);
+  ASSERT_EQ(cone.m->geom_type[0], mjGEOM_MESH);
+  // The apex (z = -h/2) and 64 points on the base circle (z = +h/2, r = 0.03).
+  const auto v = meshVerticesInWorld(cone.m.get(), cone.d.get(), 0);
+  ASSERT_EQ(v.size(), 65u);
+  EXPECT_LT(distanceToNearest(kTilted * Vector3D(0, 0, -0.04), v), 1e-6);
+  const Transform3D X_W_cone = kTilted.inverse();
+  for (const Vector3D& w : v) {
+    const Vector3D local = X_W_cone * w;
+    if (local.z() < 0.0) continue;
+    EXPECT_NEAR(local.z(), 0.04, 1e-6);
+    EXPECT_NEAR(local.head<2>().norm(), 0.03, 1e-6);
+  }
+  const PieceModel frustum =
+      exportPiece(rw::geometry::Geometry::frustum(0.03, 0.02, 0.05), Transform3D::Identity());
+  ASSERT_NE(frustum.m, nullptr);
+  ASSERT_EQ(frustum.m->geom_type[0], mjGEOM_MESH);
+  const auto f = meshVerticesInWorld(frustum.m.get(), frustum.d.get(), 0);
+  ASSERT_EQ(f.size(), 128u);
+  for (const Vector3D& w : f) {
+    EXPECT_NEAR(std::abs(w.z()), 0.025, 1e-6);
+    EXPECT_NEAR(w.head<2>().norm(), w.z() < 0.0 ? 0.03 : 0.02, 1e-6);
+  }
+}
+
+TEST(MjcfExport, ANonConvexMeshIsRefusedNamingItsFrame) {
+  // A cube with one corner pushed in towards its centre: a dent.
+  auto g = cuboid(Vector3D(0.1, 0.1, 0.1), Transform3D::Identity());
+  auto mesh = std::make_shared<rw::geometry::TriMesh>(g->triangles());
+  for (auto& v : mesh->vertices) {
+    if (v.x() > 0 && v.y() > 0 && v.z() > 0) v = Vector3D(0.01, 0.01, 0.01);
+  }
+  const auto dented = rw::geometry::Geometry::mesh(mesh, "dented.stl");
+  ASSERT_FALSE(dented->isConvex());
+  SceneBuilder scene("dented");
+  scene.addBody("Dented", Transform3D::Identity(), dented, 0.1, Eigen::Matrix3d::Identity() * 1e-4);
+  const auto dwc = scene.build();
+  try {
+    exportMjcf(*dwc);
+    FAIL() << "a non-convex mesh was exported";
+  } catch (const std::invalid_argument& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("frame 'Dented'"), std::string::npos) << what;
+    EXPECT_NE(what.find("dented.stl"), std::string::npos) << what;
+    EXPECT_NE(what.find("not convex"), std::string::npos) << what;
+  }
 }
 
 }  // namespace

@@ -1,0 +1,50 @@
+#pragma once
+
+#include <string>
+
+namespace rwsim::mujoco {
+
+/// MuJoCo's settings for a dynamic workcell's trials (the dwc gives none of these). The defaults
+/// are the values that hold the SDH box in MuJoCo 2.2.2 (docs/performance.md "MuJoCo
+/// comparison"); every field changes results and is written into the factory's settings().
+struct MujocoOptions {
+  /// Integration step, s. MuJoCo's contact time constant cannot go below two steps; at the
+  /// project's 5 ms the contacts are so soft that the fingers sink into the box edges and squeeze
+  /// it out, at 2 ms with solrefTimeConstant 0.004 the box is held.
+  double timeStep = 0.002;
+  /// Contact (and coupling) stiffness: solref's time constant, s (>= 2 time steps, see timeStep).
+  double solrefTimeConstant = 0.004;
+  /// solref's damping ratio (1: critically damped, no bounce off the fingers).
+  double solrefDampingRatio = 1.0;
+  /// Friction cone: "elliptic" (a pyramidal cone let the box slip out of the SDH).
+  std::string cone = "elliptic";
+  /// Ratio of frictional to normal constraint impedance; 10 makes sticking friction stiff, so a
+  /// held box does not creep down between the fingers.
+  double impratio = 10.0;
+  /// Constraint solver: "Newton" was fastest on the SDH box (CG 1.4x, PGS 3.5x slower per trial).
+  std::string solver = "Newton";
+  /// Integrator: "implicit" integrates the servos' velocity feedback implicitly, so the stiff
+  /// finger and base servos stay stable (an explicit one-step torque law oscillated).
+  std::string integrator = "implicit";
+  /// Gain kv of the finger motors' velocity servos, N m s/rad (or N s/m): torque =
+  /// kv (target - velocity), clipped to the force limit. About 2 closes the SDH like the project's
+  /// velocity constraint (which gives the full force limit for any speed error). MuJoCo 2.2.2's
+  /// implicit integrator applies the feedback's derivative even while the torque is clipped: a
+  /// saturated joint responds as if its inertia were larger by kv * timeStep (0.004 kg m^2).
+  double motorGain = 2.0;
+  /// Mass of a kinematic body, kg (the dwc gives none; the pose is driven, see kinematicArmature).
+  double kinematicMass = 1.0;
+  /// Armature of a kinematic body's six joints (kg, kg m^2). The engine writes the commanded
+  /// velocity into them before every step; with this inertia a load of 1 N (1 N m) changes it by
+  /// only 1e-5 m/s^2 (rad/s^2), so the body moves as commanded, as a kinematic body should.
+  double kinematicArmature = 1e5;
+  /// Segments of the convex polygon that stands for the circle of a cone or frustum (their
+  /// mesh hull; a cylinder stays a true cylinder).
+  int roundSegments = 64;
+  /// A rigid body faster than this (m/s) is a runaway (as the ODE engine's maxSpeed).
+  double maxSpeed = 50.0;
+  /// A rigid body farther than this from its place at reset (m) is a runaway (escapeDistance).
+  double escapeDistance = 50.0;
+};
+
+}  // namespace rwsim::mujoco

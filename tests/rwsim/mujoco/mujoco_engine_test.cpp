@@ -1,0 +1,330 @@
+// The MuJoCo engine against analytic physics and the physics seam's contract (free fall, a box at
+// rest, reset, a torque-limited velocity servo, a kinematic base at any pose), and the SDH box
+// trial through the one protocol, GraspTrial, on both engines.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "rw/kinematics/frame_tree.hpp"
+#include "rw/math/rpy.hpp"
+#include "rwsim/loaders/dynamic_workcell_loader.hpp"
+#include "rwsim/mujoco/mujoco_engine.hpp"
+#include "rwsim/simulator/grasp_trial.hpp"
+#include "rwsim/simulator/sim_test_scenes.hpp"
+#include "support/test_support.hpp"
+
+namespace {
+
+using rw::math::Q;
+using rw::math::Transform3D;
+using rw::math::Vector3D;
+using rwsim::dynamics::BodyId;
+using rwsim::trial::PhysicsEngine;
+using rwsim::trial::StepStatus;
+using visgrab::test::sim::kG;
+using visgrab::test::sim::SceneBuilder;
+
+Transform3D at(double x, double y, double z) {
+  return rw::math::makeTranslation(Vector3D(x, y, z));
+}
+
+void runUntil(PhysicsEngine& engine, double t) {
+  while (engine.time() < t - 1e-9) {
+    const StepStatus s = engine.step();
+    ASSERT_EQ(s, StepStatus::kOk) << engine.failureDetail();
+  }
+}
+
+// Sum of the contact forces on body `b` in the last step.
+Vector3D forceOn(const PhysicsEngine& engine, BodyId b) {
+  Vector3D f = Vector3D::Zero();
+  for (const auto& bc : engine.contacts()) {
+    for (const auto& p : bc.points) {
+      if (bc.bodyB == b) f += p.force;
+      if (bc.bodyA == b) f -= p.force;
+    }
+  }
+  return f;
+}
+
+TEST(MujocoEngine, FactoryNamesItselfAndItsSettings) {
+  SceneBuilder scene("names");
+  scene.addBox("Box", at(0, 0, 1), Vector3D(0.1, 0.1, 0.1), 1.0);
+  const auto dwc = scene.build();
+  const auto factory = rwsim::mujoco::mujocoEngineFactory(*dwc);
+  EXPECT_EQ(factory->name(), "mujoco");
+  const std::string settings = factory->settings();
+  for (const char* part : {"MuJoCo 2.2.2", "step 0.002 s", "Newton", "implicit",
+                           "elliptic cone impratio 10", "solref 0.004 1", "motor kv 2"}) {
+    EXPECT_NE(settings.find(part), std::string::npos) << part << " in " << settings;
+  }
+}
+
+TEST(MujocoEngine, FreeFallFollowsGravity) {
+  SceneBuilder scene("fall");
+  scene.addBox("Box", at(0.1, 0.2, 1.0), Vector3D(0.1, 0.1, 0.1), 1.0);
+  const auto dwc = scene.build();
+  const auto engine = rwsim::mujoco::mujocoEngineFactory(*dwc)->create();
+  const BodyId box = dwc->findBody("Box");
+  const double dt = engine->timeStep();
+  EXPECT_DOUBLE_EQ(dt, 0.002);
+  runUntil(*engine, 0.5);
+  const double t = engine->time();
+  const auto n = static_cast<double>(std::lround(t / dt));
+  const double z = engine->bodyPose(box).translation().z();
+  // Semi-implicit Euler: v_n = -g n dt, z_n = z0 - g dt^2 n (n + 1) / 2 exactly ...
+  EXPECT_NEAR(z, 1.0 - kG * dt * dt * n * (n + 1) / 2, 1e-9);
+  // ... which is z0 - g t^2 / 2 up to g dt t / 2.
+  EXPECT_NEAR(z, 1.0 - kG * t * t / 2, kG * dt * t / 2 + 1e-9);
+  EXPECT_NEAR(engine->bodyLinearVelocity(box).z(), -kG * t, 1e-9);
+  EXPECT_NEAR(engine->bodyPose(box).translation().x(), 0.1, 1e-12);
+  EXPECT_TRUE(engine->contacts().empty());
+}
+
+TEST(MujocoEngine, BoxRestsOnTableWithItsWeightAsContactForce) {
+  SceneBuilder scene("rest");
+  scene.addTable("Table", at(0, 0, -0.05), Vector3D(1, 1, 0.1));
+  scene.addBox("Box", at(0, 0, 0.05), Vector3D(0.1, 0.1, 0.1), 1.0);
+  const auto dwc = scene.build();
+  const auto engine = rwsim::mujoco::mujocoEngineFactory(*dwc)->create();
+  const BodyId box = dwc->findBody("Box");
+  runUntil(*engine, 1.0);
+  EXPECT_NEAR(engine->bodyPose(box).translation().z(), 0.05, 1e-3);  // soft contact: sub-mm
+  EXPECT_NEAR(engine->bodyPose(box).translation().head<2>().norm(), 0.0, 1e-6);
+  EXPECT_LT(engine->bodyLinearVelocity(box).norm(), 1e-3);
+  // The table pushes the box up with its weight; each point's normal points from A to B.
+  const Vector3D f = forceOn(*engine, box);
+  EXPECT_NEAR(f.z(), 1.0 * kG, 0.01 * kG);
+  EXPECT_NEAR(f.head<2>().norm(), 0.0, 1e-3);
+  ASSERT_EQ(engine->contacts().size(), 1u);
+  const auto& pair = engine->contacts().front();
+  const double up = pair.bodyB == box ? 1.0 : -1.0;
+  for (const auto& p : pair.points) {
+    EXPECT_NEAR(p.point.normal.z(), up, 1e-9);
+    EXPECT_GT(up * p.force.z(), 0.0);
+    EXPECT_NEAR(p.point.position.z(), 0.0, 1e-3);
+  }
+  // The state follows the bodies.
+  const auto& frame = dwc->workcell().frames().frame(dwc->body(box).frame);
+  EXPECT_TRANSFORM_NEAR(frame.movableTransform(engine->state()), engine->bodyPose(box), 1e-12);
+}
+
+// A one-joint finger (hinge about world +y, positive q turns the tip down; 0.1 kg link of length
+// `lever` with its COG at lever / 2) above nothing.
+struct FingerScene {
+  std::unique_ptr<rwsim::dynamics::DynamicWorkCell> dwc;
+  rwsim::dynamics::DeviceId finger;
+};
+
+FingerScene fingerScene(double lever, double torque) {
+  SceneBuilder scene("finger");
+  scene.addFinger(at(0, 0, 0.5), lever, torque);
+  FingerScene out;
+  out.dwc = scene.build();
+  out.finger = out.dwc->findDevice("Finger");
+  return out;
+}
+
+TEST(MujocoEngine, ServoHoldsItsTargetVelocityUpToTheLoadOverItsGain) {
+  const double lever = 0.1;
+  const FingerScene s = fingerScene(lever, 1.0);  // generous limit: gravity needs 0.049 N m
+  const auto engine = rwsim::mujoco::mujocoEngineFactory(*s.dwc)->create();
+  engine->setMotorVelocityTargets(s.finger, Q::Constant(1, -0.5));  // lift the tip
+  runUntil(*engine, 0.3);
+  // Steady state of torque = kv (target - v) against gravity's m g (l / 2) cos q.
+  const double q = engine->jointPositions(s.finger)[0];
+  const double gravity = 0.1 * kG * lever / 2 * std::cos(q);
+  EXPECT_NEAR(engine->jointVelocities(s.finger)[0], -0.5 + gravity / 2.0, 1e-3);
+  EXPECT_LT(q, -0.1);
+}
+
+TEST(MujocoEngine, ASmallForceLimitStallsTheServoAgainstGravity) {
+  const double lever = 0.1;
+  const double limit = 0.02;  // below gravity's 0.1 kg * g * 0.05 m = 0.049 N m
+  const FingerScene s = fingerScene(lever, limit);
+  const auto engine = rwsim::mujoco::mujocoEngineFactory(*s.dwc)->create();
+  engine->setMotorVelocityTargets(s.finger, Q::Constant(1, -1.0));
+  runUntil(*engine, 0.02);
+  // The servo pushes up with its limit but the tip falls: q'' = (m g l / 2 - limit) / I', I of a
+  // 0.1 x 0.01 x 0.01 box about its end. The implicit integrator keeps the servo's velocity
+  // feedback (-kv) in the step even while the force is clipped, so the joint responds as if its
+  // inertia were I + kv dt (MujocoEngine's documented model difference).
+  const double dt = engine->timeStep();
+  const double inertia = 0.1 * (lever * lever + 0.01 * 0.01) / 12 + 0.1 * (lever / 2) * (lever / 2);
+  const double accel = (0.1 * kG * lever / 2 - limit) / (inertia + 2.0 * dt);
+  const auto n = static_cast<double>(std::lround(engine->time() / dt));
+  const double expected = accel * dt * dt * n * (n + 1) / 2;  // semi-implicit Euler
+  EXPECT_NEAR(engine->jointPositions(s.finger)[0], expected, 0.02 * expected);
+  EXPECT_GT(engine->jointVelocities(s.finger)[0], 0.0);
+  // Raising the limit per engine lifts it.
+  engine->setMotorForceLimits(s.finger, Q::Constant(1, 1.0));
+  runUntil(*engine, 0.5);
+  EXPECT_LT(engine->jointVelocities(s.finger)[0], -0.9);
+}
+
+TEST(MujocoEngine, ResetClearsVelocitiesTargetsLimitsAndKinematicCommands) {
+  SceneBuilder scene("reset");
+  scene.addTable("Table", at(0, 0, -0.05), Vector3D(1, 1, 0.1));
+  scene.addBox("Box", at(0, 0, 0.2), Vector3D(0.1, 0.1, 0.1), 1.0);
+  scene.addFinger(at(0.5, 0, 0.5), 0.1, 0.5);
+  scene.addGripper(at(-0.5, 0, 0.3), 0.05, 10.0);
+  const auto dwc = scene.build();
+  const auto factory = rwsim::mujoco::mujocoEngineFactory(*dwc);
+  const auto fresh = factory->create();
+  const auto used = factory->create();
+  const auto finger = dwc->findDevice("Finger");
+  const auto gripper = dwc->findBody("Gripper.Base");
+  used->setMotorVelocityTargets(finger, Q::Constant(1, 2.0));
+  used->setMotorForceLimits(finger, Q::Constant(1, 0.01));
+  used->setKinematicVelocity(gripper, Vector3D(0, 0, 1), Vector3D(0, 0, 1));
+  runUntil(*used, 0.3);
+  const auto initial = dwc->workcell().defaultState();
+  used->reset(initial);
+  fresh->reset(initial);
+  EXPECT_EQ(used->time(), 0.0);
+  for (std::size_t b = 0; b < dwc->bodies().size(); ++b) {
+    EXPECT_EQ(used->bodyLinearVelocity(BodyId(b)).norm(), 0.0);
+    EXPECT_EQ(used->bodyAngularVelocity(BodyId(b)).norm(), 0.0);
+  }
+  runUntil(*used, 0.2);
+  runUntil(*fresh, 0.2);
+  for (std::size_t b = 0; b < dwc->bodies().size(); ++b) {
+    EXPECT_TRANSFORM_NEAR(used->bodyPose(BodyId(b)), fresh->bodyPose(BodyId(b)), 1e-12)
+        << dwc->bodies()[b].name;
+  }
+  EXPECT_EQ(used->jointVelocities(finger)[0], fresh->jointVelocities(finger)[0]);
+}
+
+TEST(MujocoEngine, AKinematicBaseIsPlacedAtAnyPoseAndMovesAsCommanded) {
+  SceneBuilder scene("base");
+  scene.addGripper(Transform3D::Identity(), 0.05, 10.0);
+  const auto dwc = scene.build();
+  const auto engine = rwsim::mujoco::mujocoEngineFactory(*dwc)->create();
+  const auto base = dwc->findBody("Gripper.Base");
+  const Transform3D X0 =
+      rw::math::rpyTransform(Vector3D(0.7, std::numbers::pi * 0.9, -0.4), Vector3D(0.2, -0.1, 0.4));
+  auto state = dwc->workcell().defaultState();
+  dwc->workcell().frames().frame(dwc->body(base).frame).setMovableTransform(state, X0);
+  engine->reset(state);
+  EXPECT_TRANSFORM_NEAR(engine->bodyPose(base), X0, 1e-12);
+  const Vector3D v(0.1, -0.05, 0.2);
+  engine->setKinematicVelocity(base, v, Vector3D::Zero());
+  runUntil(*engine, 0.5);
+  const double t = engine->time();
+  EXPECT_LT((engine->bodyPose(base).translation() - (X0.translation() + v * t)).norm(), 1e-5);
+  EXPECT_LT((engine->bodyPose(base).linear() - X0.linear()).norm(), 1e-5);
+  EXPECT_LT((engine->bodyLinearVelocity(base) - v).norm(), 1e-4);
+  // Turning about the world z axis through the frame origin.
+  const Transform3D X1 = engine->bodyPose(base);
+  const Vector3D w(0, 0, 0.8);
+  engine->setKinematicVelocity(base, Vector3D::Zero(), w);
+  runUntil(*engine, t + 0.5);
+  const Eigen::Matrix3d turned =
+      Eigen::AngleAxisd(0.8 * (engine->time() - t), Vector3D::UnitZ()).toRotationMatrix() *
+      X1.linear();
+  // The hinges' speeds are solved from their axes at the start of each step: exact to first
+  // order in the step, the turn's axis then wanders by about |w| dt per step.
+  EXPECT_LT((engine->bodyPose(base).translation() - X1.translation()).norm(), 1e-5);
+  EXPECT_LT((engine->bodyPose(base).linear() - turned).norm(), 1e-3);
+  EXPECT_LT((engine->bodyAngularVelocity(base) - w).norm(), w.norm() * w.norm() * 0.002);
+  // The state carries the base's pose.
+  const auto& frame = dwc->workcell().frames().frame(dwc->body(base).frame);
+  EXPECT_TRANSFORM_NEAR(frame.movableTransform(engine->state()), engine->bodyPose(base), 1e-12);
+  EXPECT_THROW(engine->setKinematicVelocity(dwc->findBody("Gripper.Left"), v, w),
+               std::invalid_argument);
+}
+
+TEST(MujocoEngine, ANonFiniteCommandIsANumericalFailureUntilReset) {
+  const FingerScene s = fingerScene(0.1, 1.0);
+  const auto engine = rwsim::mujoco::mujocoEngineFactory(*s.dwc)->create();
+  engine->setMotorVelocityTargets(s.finger, Q::Constant(1, std::nan("")));
+  EXPECT_EQ(engine->step(), StepStatus::kNumericalFailure);
+  EXPECT_NE(engine->failureDetail().find("Finger.Joint"), std::string::npos)
+      << engine->failureDetail();
+  EXPECT_EQ(engine->step(), StepStatus::kNumericalFailure);
+  engine->reset(s.dwc->workcell().defaultState());
+  EXPECT_EQ(engine->step(), StepStatus::kOk);
+  EXPECT_TRUE(engine->failureDetail().empty());
+}
+
+// The comparison benchmark's scene and grasp (benchmarks/sdh_box_trial.hpp).
+const rwsim::dynamics::DynamicWorkCell& sdhBox() {
+  static const auto dwc = rwsim::loaders::loadDynamicWorkCell(
+      visgrab::test::sourceDir() / "tests/rwsim/simulator/data/sdh_box.dwc.xml");
+  return *dwc;
+}
+
+rwsim::simulator::GraspParameters sdhCylinderGrasp() {
+  rwsim::simulator::GraspParameters g;
+  g.X_W_tcp = rw::math::rpyTransform(Vector3D(0, std::numbers::pi, 0), Vector3D(0, 0, 0.05));
+  g.qOpen = Q(7);
+  g.qOpen << -1.048, 0.174, 0.0, -1.048, 0.174, -1.048, 0.174;
+  g.qClosed = Q(7);
+  g.qClosed << 0.0, 0.349, 0.0, 0.0, 0.349, 0.0, 0.349;
+  g.tauMax = Q(7);
+  g.tauMax << 2.1, 1.4, 2.1, 1.05, 0.7, 1.05, 0.7;
+  return g;
+}
+
+void expectHeld(const std::shared_ptr<const rwsim::trial::EngineFactory>& engine,
+                const std::string& expectedName) {
+  const auto& dwc = sdhBox();
+  rwsim::simulator::GraspTrialSetup setup;
+  setup.hand = "SchunkHand";
+  setup.tcpFrame = "SchunkHand.SDHTCP";
+  setup.simulator = rwsim::simulator::optionsFromEngineProperties(dwc);
+  const rwsim::simulator::GraspTrial trial(dwc, setup, engine);
+  EXPECT_EQ(trial.engine().name(), expectedName);
+  const auto result = trial.run(sdhCylinderGrasp(), dwc.workcell().defaultState());
+  EXPECT_TRUE(result.outcome == rwsim::simulator::GraspOutcome::kStable ||
+              result.outcome == rwsim::simulator::GraspOutcome::kSlipped)
+      << expectedName << ": " << rwsim::simulator::outcomeName(result.outcome) << ", "
+      << result.detail;
+  EXPECT_EQ(result.object, dwc.findBody("Box"));
+  // Lifted 10 cm with the hand: the object rose with it.
+  EXPECT_NEAR(result.handLift.z(), 0.10, 0.005) << expectedName;
+  EXPECT_GT(result.objectLift.z(), 0.08) << expectedName;
+  EXPECT_GT(result.qLift, 0.8) << expectedName;
+  EXPECT_FALSE(result.contacts.empty()) << expectedName;
+  // Closing takes at least minCloseTime, the lift 0.1 m at 0.5 m/s and 1 m/s^2 0.45 s, then
+  // 0.2 s of settling.
+  EXPECT_GT(result.simulatedTime, 0.2 + 0.45 + 0.2 - 1e-6) << expectedName;
+}
+
+TEST(MujocoEngine, AModelMujocoCannotCompileIsReportedWithTheDwcAndMujocosMessage) {
+  rwsim::mujoco::MujocoOptions options;
+  options.solver = "Bogus";
+  try {
+    rwsim::mujoco::mujocoEngineFactory(sdhBox(), options);
+    FAIL() << "a bad solver compiled";
+  } catch (const std::runtime_error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("sdh_box.dwc.xml"), std::string::npos) << what;
+    EXPECT_NE(what.find("Bogus"), std::string::npos) << what;
+  }
+}
+
+TEST(MujocoEngine, TheSdhHoldsTheBoxThroughGraspTrialOnBothEngines) {
+  expectHeld(nullptr, "ode");
+  expectHeld(rwsim::mujoco::mujocoEngineFactory(sdhBox()), "mujoco");
+}
+
+TEST(MujocoEngine, TheSdhTrialHoldsTheBoxWithTheHandTurned) {
+  // The old comparison's slides could not turn the base; the engine's hinges can.
+  const auto& dwc = sdhBox();
+  rwsim::simulator::GraspTrialSetup setup;
+  setup.hand = "SchunkHand";
+  setup.tcpFrame = "SchunkHand.SDHTCP";
+  const rwsim::simulator::GraspTrial trial(dwc, setup, rwsim::mujoco::mujocoEngineFactory(dwc));
+  auto g = sdhCylinderGrasp();
+  g.X_W_tcp = rw::math::rpyTransform(Vector3D(0.3, std::numbers::pi, 0), Vector3D(0, 0, 0.05));
+  const auto result = trial.run(g, dwc.workcell().defaultState());
+  EXPECT_TRUE(result.outcome == rwsim::simulator::GraspOutcome::kStable ||
+              result.outcome == rwsim::simulator::GraspOutcome::kSlipped)
+      << rwsim::simulator::outcomeName(result.outcome) << ", " << result.detail;
+}
+
+}  // namespace
