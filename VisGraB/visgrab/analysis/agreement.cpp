@@ -95,9 +95,9 @@ std::optional<std::tuple<int, std::string, std::string, std::string>> subjectGro
   if (!pair) return std::nullopt;
   const std::string letter(1, pair->letter);
   // Pairs after the single objects, in letter order.
-  return std::make_tuple(1000 + pair->letter, std::string("pair"), "pair-" + letter,
-                         "pair " + letter + " (" + objectLabel(pair->first) + ", " +
-                             objectLabel(pair->second) + ")");
+  return std::make_tuple(
+      1000 + pair->letter, std::string("pair"), "pair-" + letter,
+      "pair " + letter + " (" + objectLabel(pair->first) + ", " + objectLabel(pair->second) + ")");
 }
 
 /// Shell word: as it is when it holds only safe characters, else in single quotes.
@@ -130,8 +130,8 @@ std::string fileWord(const std::string& text) {
 
 /// The picture name of a disagreement drawn on run `which` ("a" or "b").
 std::string pictureName(const Disagreement& d, const std::string& which) {
-  return fileWord(d.sceneId) + "-" + fileWord(d.method) + "-" + fileWord(d.graspId) + "-" +
-         which + ".png";
+  return fileWord(d.sceneId) + "-" + fileWord(d.method) + "-" + fileWord(d.graspId) + "-" + which +
+         ".png";
 }
 
 /// A fraction for CSV: shortest exact text, empty when undefined.
@@ -187,8 +187,7 @@ HeldAgreement heldAgreement(int bothHeld, int onlyAHeld, int onlyBHeld, int neit
   h.observedAgreement = (bothHeld + neitherHeld) / n;
   h.heldShareA = (bothHeld + onlyAHeld) / n;
   h.heldShareB = (bothHeld + onlyBHeld) / n;
-  h.expectedAgreement =
-      h.heldShareA * h.heldShareB + (1.0 - h.heldShareA) * (1.0 - h.heldShareB);
+  h.expectedAgreement = h.heldShareA * h.heldShareB + (1.0 - h.heldShareA) * (1.0 - h.heldShareB);
   const double chance = 1.0 - h.expectedAgreement;
   // p_e = 1: both runs gave every trial the same verdict, kappa is 0/0.
   if (chance <= 1e-12) {
@@ -239,10 +238,10 @@ Agreement compareRuns(const AgreementRun& a, const AgreementRun& b) {
   const auto& ra = a.results;
   const auto& rb = b.results;
   if (!sameDatabase(ra.sources.database, rb.sources.database)) {
-    throw std::invalid_argument(
-        a.dir.string() + " and " + b.dir.string() + " ran on different databases (" +
-        ra.sources.database.string() + " and " + rb.sources.database.string() +
-        ": neither the same path nor index files with the same content)");
+    throw std::invalid_argument(a.dir.string() + " and " + b.dir.string() +
+                                " ran on different databases (" + ra.sources.database.string() +
+                                " and " + rb.sources.database.string() +
+                                ": neither the same path nor index files with the same content)");
   }
   Agreement out;
   out.dirA = a.dir;
@@ -328,8 +327,8 @@ std::string agreementSummary(const Agreement& g) {
   const HeldAgreement& all = g.groups.front();
   s << "agreement of " << g.dirA.string() << " (A, " << g.engineA << ") and " << g.dirB.string()
     << " (B, " << g.engineB << ")\n";
-  s << "  trials: " << g.trialsA << " in A, " << g.trialsB << " in B, " << g.shared
-    << " shared (" << g.onlyInA << " only in A, " << g.onlyInB << " only in B: ignored)\n";
+  s << "  trials: " << g.trialsA << " in A, " << g.trialsB << " in B, " << g.shared << " shared ("
+    << g.onlyInA << " only in A, " << g.onlyInB << " only in B: ignored)\n";
   s << "  decided before simulation (in collision, invalid contacts) in either run: "
     << all.decidedBeforeSimulation << " (" << all.decidedSame
     << " with the same outcome in both; counted apart)\n";
@@ -364,10 +363,11 @@ std::string agreementCsv(const Agreement& g) {
     text += results::csvRecord(
         {h.kind, h.key, h.name, std::to_string(h.trials), std::to_string(h.bothHeld),
          std::to_string(h.onlyAHeld), std::to_string(h.onlyBHeld), std::to_string(h.neitherHeld),
-         fractionField(h.observedAgreement), fractionField(h.expectedAgreement), fractionField(h.kappa),
-         fractionField(h.kappaStandardError), fractionField(h.kappaLow), fractionField(h.kappaHigh),
-         fractionField(h.heldShareA), fractionField(h.heldShareB), std::to_string(h.sameOutcome),
-         std::to_string(h.decidedBeforeSimulation), std::to_string(h.decidedSame)});
+         fractionField(h.observedAgreement), fractionField(h.expectedAgreement),
+         fractionField(h.kappa), fractionField(h.kappaStandardError), fractionField(h.kappaLow),
+         fractionField(h.kappaHigh), fractionField(h.heldShareA), fractionField(h.heldShareB),
+         std::to_string(h.sameOutcome), std::to_string(h.decidedBeforeSimulation),
+         std::to_string(h.decidedSame)});
   }
   return text;
 }
@@ -391,12 +391,12 @@ std::string disagreementsCsv(const Agreement& g) {
       results::csvRecord({"scene", "method", "grasp", "rank", "outcome_a", "outcome_b",
                           "disagreement", "simulated_in_both", "render_a", "render_b"});
   for (const Disagreement& d : g.disagreements) {
-    text += results::csvRecord(
-        {d.sceneId, d.method, d.graspId, std::to_string(d.rank),
-         std::string(rwsim::trial::outcomeName(d.outcomeA)),
-         std::string(rwsim::trial::outcomeName(d.outcomeB)), kindName(d),
-         d.simulatedInBoth ? "true" : "false", renderCommand(g.dirA, d, pictureName(d, "a")),
-         renderCommand(g.dirB, d, pictureName(d, "b"))});
+    text += results::csvRecord({d.sceneId, d.method, d.graspId, std::to_string(d.rank),
+                                std::string(rwsim::trial::outcomeName(d.outcomeA)),
+                                std::string(rwsim::trial::outcomeName(d.outcomeB)), kindName(d),
+                                d.simulatedInBoth ? "true" : "false",
+                                renderCommand(g.dirA, d, pictureName(d, "a")),
+                                renderCommand(g.dirB, d, pictureName(d, "b"))});
   }
   return text;
 }
@@ -408,9 +408,8 @@ std::string agreementMarkdown(const Agreement& g) {
   s << "- A: `" << g.dirA.string() << "` (engine " << g.engineA << ")\n";
   s << "- B: `" << g.dirB.string() << "` (engine " << g.engineB << ")\n";
   s << "- database: `" << (g.database.empty() ? "unknown" : g.database.string()) << "`\n";
-  s << "- trials: " << g.trialsA << " in A, " << g.trialsB << " in B, " << g.shared
-    << " shared; " << g.onlyInA << " only in A and " << g.onlyInB
-    << " only in B are ignored\n";
+  s << "- trials: " << g.trialsA << " in A, " << g.trialsB << " in B, " << g.shared << " shared; "
+    << g.onlyInA << " only in A and " << g.onlyInB << " only in B are ignored\n";
   s << "- decided before simulation (in collision, invalid contacts) in either run: "
     << all.decidedBeforeSimulation << ", " << all.decidedSame
     << " of them with the same outcome in both (the same placement decides them alike); not in "
@@ -427,15 +426,15 @@ std::string agreementMarkdown(const Agreement& g) {
        "95 % interval | held A | held B | same outcome | decided before simulation |\n";
   s << "|---|--:|--:|--:|--:|--:|--:|--:|--:|---|--:|--:|--:|--:|\n";
   for (const HeldAgreement& h : g.groups) {
-    const std::string interval =
-        std::isnan(h.kappaLow) ? std::string("–")
-                               : detail::fixed(h.kappaLow, 3) + " to " + detail::fixed(h.kappaHigh, 3);
-    s << "| " << mdCell(h.name) << " | " << h.trials << " | " << h.bothHeld << " | "
-      << h.onlyAHeld << " | " << h.onlyBHeld << " | " << h.neitherHeld << " | "
-      << percentText(h.observedAgreement) << " | " << percentText(h.expectedAgreement) << " | "
-      << (std::isnan(h.kappa) ? std::string("–") : detail::fixed(h.kappa, 3)) << " | "
-      << interval << " | " << percentText(h.heldShareA) << " | " << percentText(h.heldShareB)
-      << " | " << h.sameOutcome << " | " << h.decidedBeforeSimulation << " |\n";
+    const std::string interval = std::isnan(h.kappaLow) ? std::string("–")
+                                                        : detail::fixed(h.kappaLow, 3) + " to " +
+                                                              detail::fixed(h.kappaHigh, 3);
+    s << "| " << mdCell(h.name) << " | " << h.trials << " | " << h.bothHeld << " | " << h.onlyAHeld
+      << " | " << h.onlyBHeld << " | " << h.neitherHeld << " | " << percentText(h.observedAgreement)
+      << " | " << percentText(h.expectedAgreement) << " | "
+      << (std::isnan(h.kappa) ? std::string("–") : detail::fixed(h.kappa, 3)) << " | " << interval
+      << " | " << percentText(h.heldShareA) << " | " << percentText(h.heldShareB) << " | "
+      << h.sameOutcome << " | " << h.decidedBeforeSimulation << " |\n";
   }
 
   s << "\n## Outcomes (rows: A, columns: B)\n\n| A \\ B |";
@@ -460,8 +459,9 @@ std::string agreementMarkdown(const Agreement& g) {
     s << "| " << mdCell(d.sceneId) << " | " << mdCell(d.method) << " | " << mdCell(d.graspId)
       << " | " << rwsim::trial::outcomeName(d.outcomeA) << " | "
       << rwsim::trial::outcomeName(d.outcomeB) << " | "
-      << (d.heldDiffers ? "held vs not held" : "outcome") << (d.simulatedInBoth ? "" : " (decided before simulation)")
-      << " | `" << mdCell(renderCommand(g.dirA, d, pictureName(d, "a"))) << "` | `"
+      << (d.heldDiffers ? "held vs not held" : "outcome")
+      << (d.simulatedInBoth ? "" : " (decided before simulation)") << " | `"
+      << mdCell(renderCommand(g.dirA, d, pictureName(d, "a"))) << "` | `"
       << mdCell(renderCommand(g.dirB, d, pictureName(d, "b"))) << "` |\n";
   }
   return s.str();

@@ -43,8 +43,8 @@ std::string runCsv(const std::string& database, const std::string& engine) {
 std::string trial(const std::string& scene, int rank, const std::string& outcome, int code) {
   const bool held = outcome == "stable" || outcome == "slipped";
   return scene + ",top,g" + std::to_string(rank) + "," + std::to_string(rank) + "," + outcome +
-         "," + std::to_string(code) + "," + (held ? "0.5" : "0") + ",0,0," +
-         (held ? "5" : "0") + ",1.5,\"\"\n";
+         "," + std::to_string(code) + "," + (held ? "0.5" : "0") + ",0,0," + (held ? "5" : "0") +
+         ",1.5,\"\"\n";
 }
 
 const std::string kTrialsColumns =
@@ -97,9 +97,9 @@ std::string trialsB() {
   // In another order than A's: matching goes by key, not by line.
   return kTrialsColumns + trial(kD1, 3, "stable", 1) + trial(kD1, 2, "stable", 1) +
          trial(kD1, 1, "missed", 3) + trial(kD1, 0, "stable", 1) + trial(kT1, 0, "stable", 1) +
-         trial(kT1, 1, "slipped", 5) + trial(kT1, 2, "dropped", 4) +
-         trial(kT1, 3, "dropped", 4) + trial(kT1, 4, "in_collision", 2) +
-         trial(kP1, 0, "stable", 1) + trial(kP1, 1, "stable", 1) + trial(kP1, 2, "stable", 1) +
+         trial(kT1, 1, "slipped", 5) + trial(kT1, 2, "dropped", 4) + trial(kT1, 3, "dropped", 4) +
+         trial(kT1, 4, "in_collision", 2) + trial(kP1, 0, "stable", 1) +
+         trial(kP1, 1, "stable", 1) + trial(kP1, 2, "stable", 1) +
          trial(kP1, 3, "invalid_contacts", 8) + trial(kP1, 5, "dropped", 4);
 }
 
@@ -116,7 +116,9 @@ class AgreementTest : public ::testing::Test {
     visgrab::test::writeFile(dirB_ / "trials.csv", trialsB());
   }
 
-  Agreement compare() const { return compareRuns(readAgreementRun(dirA_), readAgreementRun(dirB_)); }
+  Agreement compare() const {
+    return compareRuns(readAgreementRun(dirA_), readAgreementRun(dirB_));
+  }
 
   static const HeldAgreement& group(const Agreement& a, const std::string& key) {
     for (const auto& g : a.groups) {
@@ -192,14 +194,14 @@ TEST_F(AgreementTest, ConfusionMatrixHasAsOutcomesInRowsAndBsInColumns) {
   std::array<std::array<int, visgrab::analysis::kAgreementOutcomeCount>,
              visgrab::analysis::kAgreementOutcomeCount>
       expected{};
-  expected[index(Outcome::kStable)][index(Outcome::kStable)] = 4;            // 1, 5, 7, 8
-  expected[index(Outcome::kStable)][index(Outcome::kSlipped)] = 1;           // 2
-  expected[index(Outcome::kSlipped)][index(Outcome::kDropped)] = 1;          // 3
-  expected[index(Outcome::kDropped)][index(Outcome::kDropped)] = 1;          // 4
-  expected[index(Outcome::kDropped)][index(Outcome::kMissed)] = 1;           // 9
-  expected[index(Outcome::kMissed)][index(Outcome::kStable)] = 1;            // 6
-  expected[index(Outcome::kTimeout)][index(Outcome::kStable)] = 1;           // 10
-  expected[index(Outcome::kInCollision)][index(Outcome::kInCollision)] = 1;  // 11
+  expected[index(Outcome::kStable)][index(Outcome::kStable)] = 4;                    // 1, 5, 7, 8
+  expected[index(Outcome::kStable)][index(Outcome::kSlipped)] = 1;                   // 2
+  expected[index(Outcome::kSlipped)][index(Outcome::kDropped)] = 1;                  // 3
+  expected[index(Outcome::kDropped)][index(Outcome::kDropped)] = 1;                  // 4
+  expected[index(Outcome::kDropped)][index(Outcome::kMissed)] = 1;                   // 9
+  expected[index(Outcome::kMissed)][index(Outcome::kStable)] = 1;                    // 6
+  expected[index(Outcome::kTimeout)][index(Outcome::kStable)] = 1;                   // 10
+  expected[index(Outcome::kInCollision)][index(Outcome::kInCollision)] = 1;          // 11
   expected[index(Outcome::kInvalidContacts)][index(Outcome::kInvalidContacts)] = 1;  // 12
   expected[index(Outcome::kInCollision)][index(Outcome::kStable)] = 1;               // 13
   EXPECT_EQ(a.confusion, expected);
@@ -229,9 +231,8 @@ TEST_F(AgreementTest, PerConditionAndPerObjectFigures) {
   std::vector<std::string> keys;
   for (const auto& g : a.groups) keys.push_back(g.key);
   // No plain double scene: that group is left out. Objects by id, then pairs.
-  EXPECT_EQ(keys, (std::vector<std::string>{"overall", "textured-single-all",
-                                            "textured-double-all", "plain-single-all", "amicelli",
-                                            "cocacola", "pair-e"}));
+  EXPECT_EQ(keys, (std::vector<std::string>{"overall", "textured-single-all", "textured-double-all",
+                                            "plain-single-all", "amicelli", "cocacola", "pair-e"}));
   const HeldAgreement& ts = group(a, "textured-single-all");
   EXPECT_EQ(ts.kind, "condition");
   EXPECT_EQ(ts.trials, 4);
@@ -270,8 +271,8 @@ TEST_F(AgreementTest, ListsHeldAndOutcomeDisagreementsWithRenderCommands) {
   EXPECT_TRUE(d[1].heldDiffers);
   EXPECT_EQ(d[2].sceneId, kP1);  // 6
   EXPECT_TRUE(d[2].heldDiffers);
-  EXPECT_FALSE(d[3].heldDiffers);  // 9: dropped vs missed
-  EXPECT_EQ(d[4].outcomeA, Outcome::kTimeout);  // 10
+  EXPECT_FALSE(d[3].heldDiffers);                   // 9: dropped vs missed
+  EXPECT_EQ(d[4].outcomeA, Outcome::kTimeout);      // 10
   EXPECT_EQ(d[5].outcomeA, Outcome::kInCollision);  // 13
   EXPECT_TRUE(d[5].heldDiffers);
   EXPECT_FALSE(d[5].simulatedInBoth);
@@ -305,8 +306,7 @@ TEST_F(AgreementTest, TablesForPandasAndMarkdown) {
   EXPECT_NE(md.find("Cohen's kappa 0.348"), std::string::npos) << md;
   EXPECT_NE(md.find("## Disagreements (6)"), std::string::npos) << md;
   const std::string text = visgrab::analysis::agreementSummary(a);
-  EXPECT_NE(text.find("13 shared (1 only in A, 1 only in B: ignored)"), std::string::npos)
-      << text;
+  EXPECT_NE(text.find("13 shared (1 only in A, 1 only in B: ignored)"), std::string::npos) << text;
   EXPECT_NE(text.find("agreement 70.0 %, kappa 0.348"), std::string::npos) << text;
 }
 
@@ -314,8 +314,9 @@ TEST_F(AgreementTest, AFolderThatIsNotARunIsNamed) {
   const fs::path empty = dir_.path() / "not-a-run";
   fs::create_directories(empty);
   expectInvalidArgument([&] { readAgreementRun(empty); },
-                        empty.string() + ": not a result folder of `visgrab run` (no run.csv and "
-                                         "trials.csv)");
+                        empty.string() +
+                            ": not a result folder of `visgrab run` (no run.csv and "
+                            "trials.csv)");
   visgrab::test::writeFile(empty / "trials.csv", kTrialsColumns);
   expectInvalidArgument([&] { readAgreementRun(empty); }, empty.string() + ": not a result folder");
   expectInvalidArgument([&] { readAgreementRun(dir_.path() / "missing"); },
@@ -326,9 +327,8 @@ TEST_F(AgreementTest, RunsWithoutSharedTrialsAreAnError) {
   const fs::path other = dir_.path() / "other-run";
   visgrab::test::writeFile(other / "run.csv", runCsv(database_.string(), "ode"));
   visgrab::test::writeFile(other / "trials.csv", kTrialsColumns + trial(kT1, 9, "stable", 1));
-  expectInvalidArgument(
-      [&] { compareRuns(readAgreementRun(dirA_), readAgreementRun(other)); },
-      dirA_.string() + " and " + other.string() + " share no trial");
+  expectInvalidArgument([&] { compareRuns(readAgreementRun(dirA_), readAgreementRun(other)); },
+                        dirA_.string() + " and " + other.string() + " share no trial");
 }
 
 TEST_F(AgreementTest, RunsOnDifferentDatabasesAreAnError) {
