@@ -7,6 +7,7 @@
 #include <limits>
 #include <map>
 #include <optional>
+#include <ostream>
 #include <sstream>
 #include <stdexcept>
 #include <tuple>
@@ -61,6 +62,8 @@ struct GroupTally {
   int decided = 0;
   int decidedSame = 0;
 
+  int total() const { return cells[0][0] + cells[0][1] + cells[1][0] + cells[1][1] + decided; }
+
   void add(GraspOutcome a, GraspOutcome b) {
     if (isDecidedBeforeSimulation(a) || isDecidedBeforeSimulation(b)) {
       ++decided;
@@ -98,6 +101,63 @@ std::optional<std::tuple<int, std::string, std::string, std::string>> subjectGro
   return std::make_tuple(
       1000 + pair->letter, std::string("pair"), "pair-" + letter,
       "pair " + letter + " (" + objectLabel(pair->first) + ", " + objectLabel(pair->second) + ")");
+}
+
+/// The tallies of every group: overall, the four conditions, the objects and the pairs.
+class GroupTallies {
+ public:
+  GroupTallies() : overall_{"overall", "overall", "overall"} {
+    for (const ConditionGroup& g : conditionGroups()) {
+      if (g.texture && g.kind && !g.arrangement) {
+        conditions_.emplace_back(g, GroupTally{"condition", g.key, g.name});
+      }
+    }
+  }
+
+  /// Counts the shared trial `a` (run A's record) whose outcome in run B is `b`.
+  void add(const results::TrialRecord& a, GraspOutcome b) {
+    overall_.add(a.outcome, b);
+    for (auto& [group, tally] : conditions_) {
+      if (a.conditions && group.contains(a.conditions)) tally.add(a.outcome, b);
+    }
+    if (const auto subject = subjectGroup(a.conditions)) {
+      const auto& [order, kind, key, name] = *subject;
+      subjects_.try_emplace(order, GroupTally{kind, key, name}).first->second.add(a.outcome, b);
+    }
+  }
+
+  /// Overall, the conditions with trials, the objects and pairs (Agreement::groups).
+  std::vector<HeldAgreement> finish() const {
+    std::vector<HeldAgreement> groups{overall_.finish()};
+    for (const auto& [group, tally] : conditions_) {
+      if (tally.total() > 0) groups.push_back(tally.finish());
+    }
+    for (const auto& [order, tally] : subjects_) groups.push_back(tally.finish());
+    return groups;
+  }
+
+ private:
+  GroupTally overall_;
+  std::vector<std::pair<ConditionGroup, GroupTally>> conditions_;
+  // By object id, pairs after the objects (subjectGroup).
+  std::map<int, GroupTally> subjects_;
+};
+
+/// The disagreement of a shared trial (run A's record `a`, run B's `b`), if the outcomes differ.
+std::optional<Disagreement> disagreementOf(const results::TrialRecord& a,
+                                           const results::TrialRecord& b) {
+  if (a.outcome == b.outcome) return std::nullopt;
+  Disagreement d;
+  d.sceneId = a.sceneId;
+  d.method = a.method;
+  d.graspId = a.graspId;
+  d.rank = a.rank;
+  d.outcomeA = a.outcome;
+  d.outcomeB = b.outcome;
+  d.heldDiffers = isHeld(a.outcome) != isHeld(b.outcome);
+  d.simulatedInBoth =
+      !isDecidedBeforeSimulation(a.outcome) && !isDecidedBeforeSimulation(b.outcome);
+  return d;
 }
 
 /// Shell word: as it is when it holds only safe characters, else in single quotes.
@@ -163,6 +223,59 @@ std::string mdCell(const std::string& text) {
     out += ch;
   }
   return out;
+}
+
+/// agreement.md's table of the groups.
+void markdownGroups(std::ostream& s, const Agreement& g) {
+  s << "## Held vs not held, per group\n\n";
+  s << "| group | n | both held | only A | only B | neither | agreement | chance | kappa | "
+       "95 % interval | held A | held B | same outcome | decided before simulation |\n";
+  s << "|---|--:|--:|--:|--:|--:|--:|--:|--:|---|--:|--:|--:|--:|\n";
+  for (const HeldAgreement& h : g.groups) {
+    const std::string interval = std::isnan(h.kappaLow) ? std::string("–")
+                                                        : detail::fixed(h.kappaLow, 3) + " to " +
+                                                              detail::fixed(h.kappaHigh, 3);
+    s << "| " << mdCell(h.name) << " | " << h.trials << " | " << h.bothHeld << " | " << h.onlyAHeld
+      << " | " << h.onlyBHeld << " | " << h.neitherHeld << " | " << percentText(h.observedAgreement)
+      << " | " << percentText(h.expectedAgreement) << " | "
+      << (std::isnan(h.kappa) ? std::string("–") : detail::fixed(h.kappa, 3)) << " | " << interval
+      << " | " << percentText(h.heldShareA) << " | " << percentText(h.heldShareB) << " | "
+      << h.sameOutcome << " | " << h.decidedBeforeSimulation << " |\n";
+  }
+}
+
+/// agreement.md's confusion matrix.
+void markdownConfusion(std::ostream& s, const Agreement& g) {
+  s << "\n## Outcomes (rows: A, columns: B)\n\n| A \\ B |";
+  for (const auto& info : rwsim::trial::kOutcomeTable) s << " " << info.name << " |";
+  s << "\n|---|";
+  for (std::size_t j = 0; j < kAgreementOutcomeCount; ++j) s << "--:|";
+  s << "\n";
+  for (std::size_t i = 0; i < kAgreementOutcomeCount; ++i) {
+    s << "| " << rwsim::trial::kOutcomeTable[i].name << " |";
+    for (std::size_t j = 0; j < kAgreementOutcomeCount; ++j) s << " " << g.confusion[i][j] << " |";
+    s << "\n";
+  }
+}
+
+/// agreement.md's list of disagreements.
+void markdownDisagreements(std::ostream& s, const Agreement& g) {
+  s << "\n## Disagreements (" << g.disagreements.size() << ")\n\n";
+  if (g.disagreements.empty()) {
+    s << "None: every shared trial has the same outcome in both runs.\n";
+    return;
+  }
+  s << "| scene | method | grasp | A | B | differs in | render A | render B |\n";
+  s << "|---|---|---|---|---|---|---|---|\n";
+  for (const Disagreement& d : g.disagreements) {
+    s << "| " << mdCell(d.sceneId) << " | " << mdCell(d.method) << " | " << mdCell(d.graspId)
+      << " | " << rwsim::trial::outcomeName(d.outcomeA) << " | "
+      << rwsim::trial::outcomeName(d.outcomeB) << " | "
+      << (d.heldDiffers ? "held vs not held" : "outcome")
+      << (d.simulatedInBoth ? "" : " (decided before simulation)") << " | `"
+      << mdCell(renderCommand(g.dirA, d, pictureName(d, "a"))) << "` | `"
+      << mdCell(renderCommand(g.dirB, d, pictureName(d, "b"))) << "` |\n";
+  }
 }
 
 }  // namespace
@@ -256,47 +369,15 @@ Agreement compareRuns(const AgreementRun& a, const AgreementRun& b) {
   std::map<Key, const results::TrialRecord*> inB;
   for (const auto& t : rb.trials) inB.emplace(Key{t.sceneId, t.method, t.graspId}, &t);
 
-  GroupTally overall{"overall", "overall", "overall"};
-  std::vector<std::pair<ConditionGroup, GroupTally>> conditions;
-  for (const ConditionGroup& g : conditionGroups()) {
-    if (g.texture && g.kind && !g.arrangement) {
-      conditions.emplace_back(g, GroupTally{"condition", g.key, g.name});
-    }
-  }
-  std::map<int, GroupTally> subjects;
-  std::vector<int> conditionTrials(conditions.size(), 0);
-
+  GroupTallies tallies;
   for (const auto& ta : ra.trials) {
     const auto it = inB.find(Key{ta.sceneId, ta.method, ta.graspId});
     if (it == inB.end()) continue;
     const results::TrialRecord& tb = *it->second;
     ++out.shared;
     ++out.confusion[outcomeIndex(ta.outcome)][outcomeIndex(tb.outcome)];
-    overall.add(ta.outcome, tb.outcome);
-    for (std::size_t i = 0; i < conditions.size(); ++i) {
-      if (ta.conditions && conditions[i].first.contains(ta.conditions)) {
-        conditions[i].second.add(ta.outcome, tb.outcome);
-        ++conditionTrials[i];
-      }
-    }
-    if (const auto subject = subjectGroup(ta.conditions)) {
-      const auto& [order, kind, key, name] = *subject;
-      const auto entry = subjects.try_emplace(order, GroupTally{kind, key, name}).first;
-      entry->second.add(ta.outcome, tb.outcome);
-    }
-    if (ta.outcome != tb.outcome) {
-      Disagreement d;
-      d.sceneId = ta.sceneId;
-      d.method = ta.method;
-      d.graspId = ta.graspId;
-      d.rank = ta.rank;
-      d.outcomeA = ta.outcome;
-      d.outcomeB = tb.outcome;
-      d.heldDiffers = isHeld(ta.outcome) != isHeld(tb.outcome);
-      d.simulatedInBoth =
-          !isDecidedBeforeSimulation(ta.outcome) && !isDecidedBeforeSimulation(tb.outcome);
-      out.disagreements.push_back(std::move(d));
-    }
+    tallies.add(ta, tb.outcome);
+    if (auto d = disagreementOf(ta, tb)) out.disagreements.push_back(std::move(*d));
   }
   if (out.shared == 0) {
     throw std::invalid_argument(a.dir.string() + " and " + b.dir.string() +
@@ -306,11 +387,7 @@ Agreement compareRuns(const AgreementRun& a, const AgreementRun& b) {
   }
   out.onlyInA = out.trialsA - out.shared;
   out.onlyInB = out.trialsB - out.shared;
-  out.groups.push_back(overall.finish());
-  for (std::size_t i = 0; i < conditions.size(); ++i) {
-    if (conditionTrials[i] > 0) out.groups.push_back(conditions[i].second.finish());
-  }
-  for (const auto& [order, tally] : subjects) out.groups.push_back(tally.finish());
+  out.groups = tallies.finish();
   return out;
 }
 
@@ -421,49 +498,9 @@ std::string agreementMarkdown(const Agreement& g) {
   s << "Kappa discounts the agreement two runs would reach by chance with their held shares "
        "(docs/validation.md).\n\n";
 
-  s << "## Held vs not held, per group\n\n";
-  s << "| group | n | both held | only A | only B | neither | agreement | chance | kappa | "
-       "95 % interval | held A | held B | same outcome | decided before simulation |\n";
-  s << "|---|--:|--:|--:|--:|--:|--:|--:|--:|---|--:|--:|--:|--:|\n";
-  for (const HeldAgreement& h : g.groups) {
-    const std::string interval = std::isnan(h.kappaLow) ? std::string("–")
-                                                        : detail::fixed(h.kappaLow, 3) + " to " +
-                                                              detail::fixed(h.kappaHigh, 3);
-    s << "| " << mdCell(h.name) << " | " << h.trials << " | " << h.bothHeld << " | " << h.onlyAHeld
-      << " | " << h.onlyBHeld << " | " << h.neitherHeld << " | " << percentText(h.observedAgreement)
-      << " | " << percentText(h.expectedAgreement) << " | "
-      << (std::isnan(h.kappa) ? std::string("–") : detail::fixed(h.kappa, 3)) << " | " << interval
-      << " | " << percentText(h.heldShareA) << " | " << percentText(h.heldShareB) << " | "
-      << h.sameOutcome << " | " << h.decidedBeforeSimulation << " |\n";
-  }
-
-  s << "\n## Outcomes (rows: A, columns: B)\n\n| A \\ B |";
-  for (const auto& info : rwsim::trial::kOutcomeTable) s << " " << info.name << " |";
-  s << "\n|---|";
-  for (std::size_t j = 0; j < kAgreementOutcomeCount; ++j) s << "--:|";
-  s << "\n";
-  for (std::size_t i = 0; i < kAgreementOutcomeCount; ++i) {
-    s << "| " << rwsim::trial::kOutcomeTable[i].name << " |";
-    for (std::size_t j = 0; j < kAgreementOutcomeCount; ++j) s << " " << g.confusion[i][j] << " |";
-    s << "\n";
-  }
-
-  s << "\n## Disagreements (" << g.disagreements.size() << ")\n\n";
-  if (g.disagreements.empty()) {
-    s << "None: every shared trial has the same outcome in both runs.\n";
-    return s.str();
-  }
-  s << "| scene | method | grasp | A | B | differs in | render A | render B |\n";
-  s << "|---|---|---|---|---|---|---|---|\n";
-  for (const Disagreement& d : g.disagreements) {
-    s << "| " << mdCell(d.sceneId) << " | " << mdCell(d.method) << " | " << mdCell(d.graspId)
-      << " | " << rwsim::trial::outcomeName(d.outcomeA) << " | "
-      << rwsim::trial::outcomeName(d.outcomeB) << " | "
-      << (d.heldDiffers ? "held vs not held" : "outcome")
-      << (d.simulatedInBoth ? "" : " (decided before simulation)") << " | `"
-      << mdCell(renderCommand(g.dirA, d, pictureName(d, "a"))) << "` | `"
-      << mdCell(renderCommand(g.dirB, d, pictureName(d, "b"))) << "` |\n";
-  }
+  markdownGroups(s, g);
+  markdownConfusion(s, g);
+  markdownDisagreements(s, g);
   return s.str();
 }
 

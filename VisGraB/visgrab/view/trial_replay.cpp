@@ -23,7 +23,7 @@ TrialReplay replayTrial(const rwsim::simulator::GraspTrial& trial,
       latestKept = true;
     }
   };
-  auto contactsOf = [&](const rwsim::simulator::Simulator& sim) {
+  auto contactsOf = [&](const rwsim::trial::PhysicsEngine& sim) {
     std::vector<ContactForce> out;
     for (const auto& pair : sim.contacts()) {
       const bool handA = trial.isHandBody(pair.bodyA);
@@ -39,7 +39,7 @@ TrialReplay replayTrial(const rwsim::simulator::GraspTrial& trial,
     return out;
   };
 
-  const rwsim::simulator::Observer observer = [&](const rwsim::simulator::Simulator& sim,
+  const rwsim::simulator::Observer observer = [&](const rwsim::trial::PhysicsEngine& sim,
                                                   std::string_view phase) {
     const bool phaseChanged = latest && latest->phase != phase;
     if (phaseChanged && latest->phase == "close") {
