@@ -1,3 +1,4 @@
+#include "agreement_commands.hpp"
 #include "baseline_commands.hpp"
 #include "command_line.hpp"
 #include "db_commands.hpp"
@@ -20,6 +21,7 @@ std::unique_ptr<CommandLine> makeCommandLine() {
   addSlurmCommands(*cli);
   addBaselineCommands(*cli);
   addRenderCommands(*cli);
+  addAgreementCommands(*cli);
   return cli;
 }
 

@@ -82,7 +82,8 @@ class CommandLine {
   RunFunction run_;
 };
 
-/// Every visgrab command (wc, sim, grasp, db, run, benchmark, analyze, baseline, render).
+/// Every visgrab command (wc, sim, grasp, db, run, benchmark, analyze, merge, slurm, baseline,
+/// render, agreement).
 std::unique_ptr<CommandLine> makeCommandLine();
 
 /// The name of `cmd` as typed: "visgrab db list".

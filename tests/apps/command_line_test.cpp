@@ -73,7 +73,7 @@ TEST(CommandLineHelp, EveryVisgrabCommandListsEveryOptionInItsHelp) {
   EXPECT_EQ(leaves, (std::vector<std::string>{"wc info", "wc check", "sim", "grasp", "db generate",
                                               "db list", "db show", "db stereo-accuracy", "run",
                                               "benchmark", "analyze", "merge", "slurm", "baseline",
-                                              "render"}));
+                                              "render", "agreement"}));
   for (const CLI::App* cmd : commands) {
     const std::string words = wordsAfterProgram(*cmd);
     const RunResult help = visgrab::test::runProgram(VISGRAB_BINARY, words + " --help");
