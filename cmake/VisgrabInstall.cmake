@@ -44,9 +44,7 @@ function(visgrab_install_package)
 
   foreach(layer_dir RobWork/rw RobWorkSim/rwsim VisGraB/visgrab)
     install(DIRECTORY ${PROJECT_SOURCE_DIR}/${layer_dir}
-      DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/visgrab FILES_MATCHING PATTERN "*.hpp"
-      # The optional MuJoCo engine is not installed (NOT_EXPORTED in its CMakeLists.txt).
-      PATTERN "mujoco" EXCLUDE)
+      DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/visgrab FILES_MATCHING PATTERN "*.hpp")
   endforeach()
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/scenes/
     DESTINATION ${CMAKE_INSTALL_DATADIR}/visgrab/scenes)

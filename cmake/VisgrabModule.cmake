@@ -18,18 +18,13 @@ function(visgrab_set_unity_build target)
   endif()
 endfunction()
 
-# visgrab_add_module(<name> [NOT_EXPORTED] SOURCES ... [PUBLIC_DEPS ...] [PRIVATE_DEPS ...]
-#                    INCLUDE_ROOT <dir>)
+# visgrab_add_module(<name> SOURCES ... [PUBLIC_DEPS ...] [PRIVATE_DEPS ...] INCLUDE_ROOT <dir>)
 #
 # One library target per module. Sources are listed explicitly (no GLOB). A module without
 # sources becomes an INTERFACE library. INCLUDE_ROOT is the layer folder (RobWork/, RobWorkSim/,
 # VisGraB/) so that headers are included as "rw/math/rpy.hpp", in the build tree and installed.
-# NOT_EXPORTED: an optional module whose dependency the installed package must not require
-# (rwsim_mujoco): built and used in the tree, but neither installed, exported nor part of its
-# layer's umbrella target.
 function(visgrab_add_module name)
-  cmake_parse_arguments(ARG "NOT_EXPORTED" "INCLUDE_ROOT" "SOURCES;PUBLIC_DEPS;PRIVATE_DEPS"
-    ${ARGN})
+  cmake_parse_arguments(ARG "" "INCLUDE_ROOT" "SOURCES;PUBLIC_DEPS;PRIVATE_DEPS" ${ARGN})
   if(NOT ARG_INCLUDE_ROOT)
     message(FATAL_ERROR "visgrab_add_module(${name}): INCLUDE_ROOT is required")
   endif()
@@ -47,11 +42,8 @@ function(visgrab_add_module name)
     target_include_directories(${name} INTERFACE ${_include})
     target_link_libraries(${name} INTERFACE ${ARG_PUBLIC_DEPS})
   endif()
-  # Every other module is installed and exported (VisGraB::<name>); the layers' umbrella targets
-  # are made from this list once all modules exist (visgrab_install_package).
-  if(ARG_NOT_EXPORTED)
-    return()
-  endif()
+  # Every module is installed and exported (VisGraB::<name>); the layers' umbrella targets are
+  # made from this list once all modules exist (visgrab_install_package).
   install(TARGETS ${name} EXPORT VisGraBTargets ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
   set_property(GLOBAL APPEND PROPERTY VISGRAB_MODULES ${name})
 endfunction()

@@ -28,8 +28,7 @@ std::string nonEmpty(const std::string& field, const char* what) {
 
 // Each column's three functions, as captureless lambdas (the table holds function pointers).
 constexpr std::array<TrialColumn, 13> kColumns = {{
-    {"scene", "scene", "The scene id.",
-     [](const TrialRecord& t) { return csvField(t.sceneId); },
+    {"scene", "scene", "The scene id.", [](const TrialRecord& t) { return csvField(t.sceneId); },
      [](const std::string& f, TrialRecord& t) { t.sceneId = nonEmpty(f, "scene id"); },
      [](const TrialRecord& t) { return TrialValue(t.sceneId); }},
     {"method", "method", "The method (grasp list field 2).",
@@ -106,7 +105,8 @@ constexpr std::array<TrialColumn, 13> kColumns = {{
      "grasp was judged as it stood).",
      [](const TrialRecord& t) { return std::string(t.closingCapped ? "1" : "0"); },
      [](const std::string& f, TrialRecord& t) {
-       if (f != "0" && f != "1") throw std::invalid_argument("closing_capped '" + f + "' is not 0 or 1");
+       if (f != "0" && f != "1")
+         throw std::invalid_argument("closing_capped '" + f + "' is not 0 or 1");
        t.closingCapped = f == "1";
      },
      [](const TrialRecord& t) { return TrialValue(t.closingCapped); }},
@@ -129,8 +129,7 @@ std::string trialColumnLine() {
   return line;
 }
 
-void recordResult(const rwsim::trial::GraspTrialResult& result, int objectId,
-                  TrialRecord& record) {
+void recordResult(const rwsim::trial::GraspTrialResult& result, int objectId, TrialRecord& record) {
   record.outcome = result.outcome;
   record.qLift = result.qLift;
   record.qGws = result.qGws;

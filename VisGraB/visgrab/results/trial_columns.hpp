@@ -45,7 +45,6 @@ std::string trialColumnLine();
 /// Q_GWS, ..., closing_capped, detail) from `result`; `objectId` is the database id (1..18, 0 for
 /// none) of the object the trial grasped. The identity fields (scene, method, grasp, rank,
 /// conditions) are the caller's.
-void recordResult(const rwsim::trial::GraspTrialResult& result, int objectId,
-                  TrialRecord& record);
+void recordResult(const rwsim::trial::GraspTrialResult& result, int objectId, TrialRecord& record);
 
 }  // namespace visgrab::results

@@ -12,10 +12,10 @@
 
 #include "rw/math/rpy.hpp"
 #include "rwsim/engines/engine_registry.hpp"
+#include "rwsim/trial/grasp_outcome.hpp"
 #include "support/test_database.hpp"
 #include "support/test_support.hpp"
 #include "visgrab/database/database.hpp"
-#include "rwsim/trial/grasp_outcome.hpp"
 #include "visgrab/results/results_file.hpp"
 #include "visgrab/runner/benchmark_runner.hpp"
 #include "visgrab/taskio/grasp_list.hpp"
@@ -193,8 +193,8 @@ TEST(EngineRunMujoco, EveryTestDatabaseSceneRunsToAnOutcome) {
   int beside = 0;
   for (const auto& t : results.trials) {
     using rwsim::trial::GraspOutcome;
-    EXPECT_NE(t.outcome, GraspOutcome::kSimulationFailure) << t.sceneId << " " << t.graspId
-                                                           << ": " << t.detail;
+    EXPECT_NE(t.outcome, GraspOutcome::kSimulationFailure)
+        << t.sceneId << " " << t.graspId << ": " << t.detail;
     EXPECT_NE(t.outcome, GraspOutcome::kTimeout) << t.sceneId << " " << t.graspId;
     if (rwsim::trial::isDecidedBeforeSimulation(t.outcome)) continue;
     ++simulated;
