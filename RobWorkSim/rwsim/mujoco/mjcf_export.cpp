@@ -337,7 +337,8 @@ void Exporter::writeBody(std::size_t b, int depth) {
       const bool limited = std::isfinite(lim.lower) && std::isfinite(lim.upper);
       out_ += in + "<joint name=\"" + attr(body.name) + "\" type=\"" +
               (frame.type() == rw::kinematics::FrameType::kRevolute ? "hinge" : "slide") +
-              "\" axis=\"0 0 1\" limited=\"" + (limited ? "true" : "false") + "\"" +
+              "\" axis=\"0 0 1\" armature=\"" + num(options_.motorArmature) + "\" limited=\"" +
+              (limited ? "true" : "false") + "\"" +
               (limited ? " range=\"" + num(lim.lower) + " " + num(lim.upper) + "\"" : "") + "/>\n";
     } else {
       out_ += in + "<freejoint name=\"" + attr(body.name) + "\"/>\n";

@@ -3,6 +3,7 @@
 // trial through the one protocol, GraspTrial, on both engines.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -149,12 +150,15 @@ TEST(MujocoEngine, ASmallForceLimitStallsTheServoAgainstGravity) {
   engine->setMotorVelocityTargets(s.finger, Q::Constant(1, -1.0));
   runUntil(*engine, 0.02);
   // The servo pushes up with its limit but the tip falls: q'' = (m g l / 2 - limit) / I', I of a
-  // 0.1 x 0.01 x 0.01 box about its end. The implicit integrator keeps the servo's velocity
-  // feedback (-kv) in the step even while the force is clipped, so the joint responds as if its
-  // inertia were I + kv dt (MujocoEngine's documented model difference).
+  // 0.1 x 0.01 x 0.01 box about its end, plus the joint's armature. The implicit integrator keeps
+  // the servo's velocity feedback (-kv) in the step even while the force is clipped, so the joint
+  // responds as if its inertia were I + armature + kv dt (MujocoEngine's documented model
+  // difference).
+  const rwsim::mujoco::MujocoOptions options;
   const double dt = engine->timeStep();
-  const double inertia = 0.1 * (lever * lever + 0.01 * 0.01) / 12 + 0.1 * (lever / 2) * (lever / 2);
-  const double accel = (0.1 * kG * lever / 2 - limit) / (inertia + 2.0 * dt);
+  const double inertia = 0.1 * (lever * lever + 0.01 * 0.01) / 12 +
+                         0.1 * (lever / 2) * (lever / 2) + options.motorArmature;
+  const double accel = (0.1 * kG * lever / 2 - limit) / (inertia + options.motorGain * dt);
   const auto n = static_cast<double>(std::lround(engine->time() / dt));
   const double expected = accel * dt * dt * n * (n + 1) / 2;  // semi-implicit Euler
   EXPECT_NEAR(engine->jointPositions(s.finger)[0], expected, 0.02 * expected);
@@ -163,6 +167,36 @@ TEST(MujocoEngine, ASmallForceLimitStallsTheServoAgainstGravity) {
   engine->setMotorForceLimits(s.finger, Q::Constant(1, 1.0));
   runUntil(*engine, 0.5);
   EXPECT_LT(engine->jointVelocities(s.finger)[0], -0.9);
+}
+
+// A servo that pushes a finger into a fixed block with its full force comes to rest, as the
+// project's velocity motor does: the trial's closing ends on that rest (0.01 rad/s for 0.1 s).
+// Without the joint's armature (MujocoOptions::motorArmature) the contact forces were computed
+// for the bare link while the implicit step moved it as a heavier one, and the tip kept bouncing.
+TEST(MujocoEngine, AFingerPressedOnABlockComesToRest) {
+  SceneBuilder scene("press");
+  const double lever = 0.1;
+  scene.addFinger(at(0, 0, 0.5), lever, 2.1);
+  // A fixed block whose top the tip meets at q of about 0.58 rad. (The exporter gives a fixed box
+  // with a face straight up that face's plane, unbounded, for its pairs with boxes: it must lie
+  // below the rod, which hangs 5 mm below the tip's lowest point at q = 0.)
+  scene.addTable("Block", at(0.085, 0, 0.445 - 0.01), Vector3D(0.03, 0.04, 0.02));
+  const auto dwc = scene.build();
+  const auto finger = dwc->findDevice("Finger");
+  const auto engine = rwsim::mujoco::mujocoEngineFactory(*dwc)->create();
+  engine->setMotorVelocityTargets(finger, Q::Constant(1, 1.0));  // down, saturating at 2.1 N m
+  runUntil(*engine, 1.0);
+  double fastest = 0.0;
+  while (engine->time() < 1.1) {
+    runUntil(*engine, engine->time() + engine->timeStep());
+    fastest = std::max(fastest, std::abs(engine->jointVelocities(finger)[0]));
+  }
+  EXPECT_LT(fastest, 0.01);
+  // Resting on the block, pressing on it.
+  const double q = engine->jointPositions(finger)[0];
+  EXPECT_GT(q, 0.5);
+  EXPECT_LT(q, 0.7);
+  EXPECT_LT(forceOn(*engine, dwc->findBody("Block")).z(), -10.0);
 }
 
 TEST(MujocoEngine, ResetClearsVelocitiesTargetsLimitsAndKinematicCommands) {
@@ -289,6 +323,7 @@ void expectHeld(const std::shared_ptr<const rwsim::trial::EngineFactory>& engine
   EXPECT_GT(result.objectLift.z(), 0.08) << expectedName;
   EXPECT_GT(result.qLift, 0.8) << expectedName;
   EXPECT_FALSE(result.contacts.empty()) << expectedName;
+  EXPECT_FALSE(result.closingCapped) << expectedName << ": " << result.detail;
   // Closing takes at least minCloseTime, the lift 0.1 m at 0.5 m/s and 1 m/s^2 0.45 s, then
   // 0.2 s of settling.
   EXPECT_GT(result.simulatedTime, 0.2 + 0.45 + 0.2 - 1e-6) << expectedName;
