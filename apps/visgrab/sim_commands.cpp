@@ -21,6 +21,7 @@
 #include "rwsim/simulator/grasp_trial.hpp"
 #include "rwsim/simulator/simulator.hpp"
 #include "visgrab/database/database.hpp"
+#include "visgrab/grasp/grasp_resolver.hpp"
 #include "visgrab/grasp/hand_grasp_setup.hpp"
 #include "visgrab/results/csv.hpp"
 #include "visgrab/session/scene_loader.hpp"
@@ -372,43 +373,75 @@ rwsim::simulator::GraspTrialSetup graspTrialSetup(const GraspCommand& command,
   return setup;
 }
 
-/// The grasp: the pose, then the pre-shape's q and tau (with --preshape), then --qopen,
-/// --qclose and --taumax for a hand of `dof` joints.
-rwsim::simulator::GraspParameters graspParameters(const GraspCommand& command,
-                                                  const grasp::HandGraspSetup* description, int dof,
-                                                  const std::string& hand) {
+/// The TCP pose of --pose (position in m, RobWork RPY in degrees).
+rw::math::Transform3D posePosition(const GraspCommand& command) {
+  const auto& v = command.lists.at("pose");
+  return rw::math::rpyTransform(rw::math::Vector3D(v[3], v[4], v[5]) * rw::math::kDeg2Rad,
+                                rw::math::Vector3D(v[0], v[1], v[2]));
+}
+
+/// --qopen, --qclose and --taumax over `grasp`'s values (all three lists are required when
+/// `required`; an absent one keeps its value).
+void applyJointLists(const GraspCommand& command, int dof, const std::string& hand, bool required,
+                     rw::math::Q& qOpen, rw::math::Q& qClosed, rw::math::Q& tauMax) {
   const auto& lists = command.lists;
-  const auto& v = lists.at("pose");
-  rwsim::simulator::GraspParameters grasp;
-  grasp.X_W_tcp = rw::math::rpyTransform(rw::math::Vector3D(v[3], v[4], v[5]) * rw::math::kDeg2Rad,
-                                         rw::math::Vector3D(v[0], v[1], v[2]));
-  const auto& preshapeName = command.preshape;
-  if (preshapeName) {
-    const grasp::PreShape* shape = description->findPreshape(*preshapeName);
-    if (shape == nullptr) {
-      std::string names;
-      for (const auto& p : description->preshapes()) names += (names.empty() ? "" : ", ") + p.name;
-      throw UsageError("--preshape: the hand has no pre-shape '" + *preshapeName + "' (" + names +
-                       ")");
-    }
-    // The pose is the pre-shape's TCP frame (as in grasp files).
-    grasp.X_W_tcp = grasp.X_W_tcp * shape->X_shapeTcp_tcp;
-    grasp.qOpen = shape->qOpen;
-    grasp.qClosed = shape->qClosed;
-    grasp.tauMax = shape->tauMax;
+  if (required || lists.count("qopen") > 0) qOpen = dofVector(lists, "qopen", dof, hand, required);
+  if (required || lists.count("qclose") > 0) {
+    qClosed = dofVector(lists, "qclose", dof, hand, required);
   }
-  if (!preshapeName || lists.count("qopen") > 0) {
-    grasp.qOpen = dofVector(lists, "qopen", dof, hand, !preshapeName);
-  }
-  if (!preshapeName || lists.count("qclose") > 0) {
-    grasp.qClosed = dofVector(lists, "qclose", dof, hand, !preshapeName);
-  }
-  if (!preshapeName || lists.count("taumax") > 0) {
-    grasp.tauMax = dofVector(lists, "taumax", dof, hand, false);
-  }
-  if (grasp.tauMax.size() > 0 && grasp.tauMax.minCoeff() < 0.0) {
+  if (required || lists.count("taumax") > 0) tauMax = dofVector(lists, "taumax", dof, hand, false);
+  if (tauMax.size() > 0 && tauMax.minCoeff() < 0.0) {
     throw UsageError("--taumax values must be >= 0");
   }
+}
+
+/// The grasp as the benchmark reads one from a grasp file, for a hand with a grasp description:
+/// a pre-shape grasp for --preshape alone; else a raw grasp (the pre-shape's values, at its TCP,
+/// under --qopen, --qclose and --taumax), whose tau_max, when none is given, comes from the
+/// hand's torque rule as in a grasp file.
+grasp::GraspRequest graspRequest(const GraspCommand& command,
+                                 const grasp::HandGraspSetup& description, int dof,
+                                 const std::string& hand) {
+  grasp::GraspRequest request;
+  request.sceneId = command.scene.value_or("");
+  request.id = "of the command line";
+  request.method = "grasp";
+  request.X_W_tcp = posePosition(command);
+  request.kind = grasp::GraspKind::kRaw;
+  const auto& lists = command.lists;
+  const bool overridden =
+      lists.count("qopen") > 0 || lists.count("qclose") > 0 || lists.count("taumax") > 0;
+  if (command.preshape) {
+    const grasp::PreShape* shape = description.findPreshape(*command.preshape);
+    if (shape == nullptr) {
+      std::string names;
+      for (const auto& p : description.preshapes()) names += (names.empty() ? "" : ", ") + p.name;
+      throw UsageError("--preshape: the hand has no pre-shape '" + *command.preshape + "' (" +
+                       names + ")");
+    }
+    if (!overridden) {
+      request.kind = grasp::GraspKind::kPreshape;
+      request.preshape = *command.preshape;
+      return request;
+    }
+    // The pose is the pre-shape's TCP frame (as in grasp files).
+    request.X_W_tcp = request.X_W_tcp * shape->X_shapeTcp_tcp;
+    request.qOpen = shape->qOpen;
+    request.qClosed = shape->qClosed;
+    request.tauMax = shape->tauMax;
+  }
+  applyJointLists(command, dof, hand, !command.preshape, request.qOpen, request.qClosed,
+                  request.tauMax);
+  return request;
+}
+
+/// A raw grasp for a device without a grasp description: --pose, --qopen, --qclose, --taumax
+/// (no tau_max: the controller's limits).
+rwsim::simulator::GraspParameters rawGrasp(const GraspCommand& command, int dof,
+                                           const std::string& hand) {
+  rwsim::simulator::GraspParameters grasp;
+  grasp.X_W_tcp = posePosition(command);
+  applyJointLists(command, dof, hand, true, grasp.qOpen, grasp.qClosed, grasp.tauMax);
   return grasp;
 }
 
@@ -430,15 +463,29 @@ int runGrasp(const Arguments& a) {
   }
   const DynamicWorkCell& dwc = *scene.dwc;
   const int dof = dwc.device(trial->handDevice()).device->dof();
-  const auto grasp = graspParameters(command, scene.description.get(), dof, setup.hand);
+  const rw::kinematics::State initial = dwc.workcell().defaultState();
+  rwsim::simulator::GraspParameters grasp;
+  if (scene.description) {
+    // Through the benchmark's door: grasp::resolve, with placements tested in this scene as
+    // session::SceneSession::resolve does.
+    const grasp::ResolvedGrasp resolved =
+        grasp::resolve(graspRequest(command, *scene.description, dof, setup.hand),
+                       *scene.description, [&](const rwsim::simulator::GraspParameters& g) {
+                         return trial->checkPlacement(g, initial);
+                       });
+    if (!resolved.ok()) throw UsageError(resolved.message);
+    grasp = resolved.parameters;
+  } else {
+    grasp = rawGrasp(command, dof, setup.hand);
+  }
   if (command.json) {
     return printResultJson(setup.hand, dwc.workcell().frames().frame(trial->tcpFrame()).name(),
-                           setup.controller, trial->run(grasp, dwc.workcell().defaultState()), dwc);
+                           setup.controller, trial->run(grasp, initial), dwc);
   }
   std::cout << "hand " << setup.hand << ", TCP "
             << dwc.workcell().frames().frame(trial->tcpFrame()).name() << ", controller "
             << setup.controller << ", engine " << trial->engine().name() << "\n";
-  printResult(trial->run(grasp, dwc.workcell().defaultState()), dwc);
+  printResult(trial->run(grasp, initial), dwc);
   return 0;
 }
 
@@ -482,7 +529,9 @@ void addSimulationCommands(CommandLine& cli) {
   addNumberList(grasp, "--qopen", "Q", "Open joint values, one per DOF (rad or m)");
   addNumberList(grasp, "--qclose", "Q", "Closed joint values, one per DOF (rad or m)");
   addNumberList(grasp, "--taumax", "T",
-                "Joint force limits, one per DOF (N m or N; default: the controller's)");
+                "Joint force limits, one per DOF (N m or N; default: the pre-shape's, else the "
+                "hand description's torque rule at --qopen as for a raw grasp in a grasp file, "
+                "else the controller's)");
   grasp
       .add_option("--preshape",
                   "A pre-shape of the hand description: its qopen, qclose, taumax and TCP offset")

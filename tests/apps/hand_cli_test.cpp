@@ -4,12 +4,15 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <string>
 
+#include "rwsim/trial/grasp_outcome.hpp"
 #include "support/test_database.hpp"
 #include "support/test_support.hpp"
 #include "visgrab/render/png_io.hpp"
+#include "visgrab/results/results_file.hpp"
 
 namespace {
 
@@ -46,6 +49,45 @@ TEST(HandCli, GraspRunsEachHandInADatabaseScene) {
   }
   const RunResult r = visgrab(graspArgs("robotiq2f85"));
   EXPECT_NE(r.output.find("hand Robotiq2F85, TCP Robotiq2F85.TCP"), std::string::npos) << r.output;
+}
+
+// `visgrab grasp` resolves its grasp as the benchmark does (grasp::resolve, the hand's
+// pre-shape at the given TCP pose): the same grasp given to `visgrab run` in a grasp file ends
+// with the same outcome and the same Q_lift and Q_GWS.
+TEST(HandCli, GraspAndRunTakeTheSameDoor) {
+  const RunResult single = visgrab(graspArgs("pg70") + " --json");
+  ASSERT_EQ(single.exitCode, 0) << single.output;
+  const auto number = [&](const std::string& key) {
+    const auto at = single.output.find("\"" + key + "\":");
+    EXPECT_NE(at, std::string::npos) << single.output;
+    return std::strtod(single.output.c_str() + at + key.size() + 3, nullptr);
+  };
+  const auto text = [&](const std::string& key) {
+    const auto at = single.output.find("\"" + key + "\": \"");
+    EXPECT_NE(at, std::string::npos) << single.output;
+    const auto from = at + key.size() + 5;
+    return single.output.substr(from, single.output.find('"', from) - from);
+  };
+  visgrab::test::TempDir dir;
+  const auto base = visgrab::test::testDatabase().groundTruth(kScene).front().X_WO.translation();
+  char line[256];
+  std::snprintf(line, sizeof line, "%s, plan, 1, preshape, %.6f,%.6f,%.6f, 0,0,1,0, wide\n", kScene,
+                base.x(), base.y(), base.z() + 0.09);
+  visgrab::test::writeFile(dir.path() / "plan.csv", line);
+  const RunResult run = visgrab("run --db " + shellQuoted(visgrab::test::testDatabasePath()) +
+                                " --grasps " + shellQuoted(dir.path() / "plan.csv") + " --out " +
+                                shellQuoted(dir.path() / "out") + " --hand pg70 --quiet");
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  const auto results = visgrab::results::readResults(dir.path() / "out");
+  ASSERT_EQ(results.trials.size(), 1u);
+  const auto& t = results.trials.front();
+  EXPECT_EQ(std::string(rwsim::trial::outcomeName(t.outcome)), text("outcome"));
+  // The file's quaternion (0, 0, 1, 0) is the exact half turn about y; --pose's RPY 0 180 0
+  // leaves sin(pi) = 1.2e-16 in the rotation, which the lift carries into the last digits.
+  EXPECT_NEAR(t.qLift, number("q_lift"), 1e-6);
+  EXPECT_NEAR(t.qGws, number("q_gws"), 1e-6);
+  std::printf("q_lift %.17g and %.17g, q_gws %.17g and %.17g\n", t.qLift, number("q_lift"), t.qGws,
+              number("q_gws"));
 }
 
 TEST(HandCli, RenderDrawsTheGivenHand) {
