@@ -6,6 +6,7 @@
 #include "cli_common/cli_errors.hpp"
 #include "cli_common/data_folder.hpp"
 #include "rw/common/diagnostic.hpp"
+#include "visgrab/database/database.hpp"
 #include "visgrab/results/results_file.hpp"
 
 namespace visgrab::viewer {
@@ -153,6 +154,13 @@ ViewerData loadViewerData(const ViewerOptions& options) {
   if (!fs::exists(data.databasePath)) {
     throw std::runtime_error("no scene database at '" + data.databasePath.string() +
                              "' (give --db DIR or MANIFEST)");
+  }
+  if (!sources.databaseHash.empty()) {
+    if (const std::string problem =
+            database::recordedDatabaseProblem(data.databasePath, sources.databaseHash);
+        !problem.empty()) {
+      throw std::runtime_error(problem);
+    }
   }
   data.database =
       std::make_unique<database::Database>(database::Database::openAny(data.databasePath));

@@ -110,6 +110,14 @@ RenderRequest parseRenderArguments(const Arguments& a) {
   } else {
     throw UsageError("--db DIR is required (or --results of a run that recorded its database)");
   }
+  if (run && !run->sources.databaseHash.empty()) {
+    // The trials replay in the database the run used, or not at all.
+    if (const std::string problem =
+            database::recordedDatabaseProblem(dbPath, run->sources.databaseHash);
+        !problem.empty()) {
+      throw std::runtime_error(problem);
+    }
+  }
   std::vector<fs::path> graspFiles;
   for (const auto& g : a.values("grasps")) graspFiles.emplace_back(g);
   if (graspFiles.empty() && run) {

@@ -197,6 +197,7 @@ input files. Iterating or indexing goes over the trials.
           [](const results::RunResults& r) {
             py::dict d;
             d["database"] = r.sources.database.string();
+            d["database_hash"] = r.sources.databaseHash;
             std::vector<std::string> grasps;
             for (const auto& g : r.sources.grasps) grasps.push_back(g.string());
             d["grasps"] = grasps;
@@ -205,8 +206,9 @@ input files. Iterating or indexing goes over the trials.
             d["engine_settings"] = r.sources.engineSettings;
             return d;
           },
-          "The run's inputs (run.csv): database, grasps, hand, engine (\"ode\" for runs older "
-          "than the record) and engine_settings.")
+          "The run's inputs (run.csv): database, database_hash (its index's hash; empty for "
+          "runs older than the record), grasps, hand, engine (\"ode\" for runs older than the "
+          "record) and engine_settings.")
       .def_readonly("label", &results::RunResults::label, "The folder's name.")
       .def("__len__", [](const results::RunResults& r) { return r.trials.size(); })
       .def(

@@ -337,6 +337,14 @@ AgreementRun readAgreementRun(const fs::path& dir, std::vector<rw::common::Diagn
   return run;
 }
 
+bool sameDatabase(const results::RunSources& a, const results::RunSources& b) {
+  // Both runs recorded their database's index hash: it decides, wherever the databases are.
+  if (!a.databaseHash.empty() && !b.databaseHash.empty()) {
+    return a.databaseHash == b.databaseHash;
+  }
+  return sameDatabase(a.database, b.database);
+}
+
 bool sameDatabase(const fs::path& a, const fs::path& b) {
   if (a.empty() || b.empty()) return true;
   if (a.lexically_normal() == b.lexically_normal()) return true;
@@ -350,11 +358,14 @@ bool sameDatabase(const fs::path& a, const fs::path& b) {
 Agreement compareRuns(const AgreementRun& a, const AgreementRun& b) {
   const auto& ra = a.results;
   const auto& rb = b.results;
-  if (!sameDatabase(ra.sources.database, rb.sources.database)) {
-    throw std::invalid_argument(a.dir.string() + " and " + b.dir.string() +
-                                " ran on different databases (" + ra.sources.database.string() +
-                                " and " + rb.sources.database.string() +
-                                ": neither the same path nor index files with the same content)");
+  if (!sameDatabase(ra.sources, rb.sources)) {
+    const bool hashed = !ra.sources.databaseHash.empty() && !rb.sources.databaseHash.empty();
+    throw std::invalid_argument(
+        a.dir.string() + " and " + b.dir.string() + " ran on different databases (" +
+        ra.sources.database.string() + " and " + rb.sources.database.string() +
+        (hashed ? ": their recorded index hashes differ, " + ra.sources.databaseHash + " and " +
+                      rb.sources.databaseHash + ")"
+                : ": neither the same path nor index files with the same content)"));
   }
   Agreement out;
   out.dirA = a.dir;

@@ -148,6 +148,11 @@ Agreement compareRuns(const AgreementRun& a, const AgreementRun& b);
 /// same bytes. A record whose index cannot be read only matches the same path.
 bool sameDatabase(const std::filesystem::path& a, const std::filesystem::path& b);
 
+/// Whether two runs ran on the same database: when both recorded the database's index hash
+/// (run.csv's database_hash), whether the hashes are equal, wherever the databases are now;
+/// else sameDatabase of the recorded paths.
+bool sameDatabase(const results::RunSources& a, const results::RunSources& b);
+
 /// The `visgrab render` command line that draws trial `d` as run `dir` simulated it (its
 /// recorded database, grasps, hand and engine), writing the picture `out`.
 std::string renderCommand(const std::filesystem::path& dir, const Disagreement& d,

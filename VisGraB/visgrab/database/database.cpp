@@ -347,4 +347,33 @@ std::string Database::details(const SceneEntry& s, const ObjectCatalog& catalog)
   return out;
 }
 
+std::string indexHash(const fs::path& database) {
+  std::error_code ec;
+  const fs::path index = fs::is_directory(database, ec) ? database / "index.xml" : database;
+  std::uint64_t v = rw::common::fnv1a(rw::common::readTextFileOrThrow(index));
+  static constexpr char kDigits[] = "0123456789abcdef";
+  std::string out(16, '0');
+  for (int i = 15; i >= 0; --i) {
+    out[static_cast<std::size_t>(i)] = kDigits[v & 0xf];
+    v >>= 4;
+  }
+  return out;
+}
+
+std::string recordedDatabaseProblem(const fs::path& database, const std::string& recordedHash) {
+  std::string hash;
+  try {
+    hash = indexHash(database);
+  } catch (const std::exception& e) {
+    return "the database " + database.string() +
+           " cannot be read (moved or deleted since the run?): " + e.what();
+  }
+  if (!recordedHash.empty() && hash != recordedHash) {
+    return "the database at " + database.string() +
+           " is not the one the run used: its index hash is " + hash + ", the run recorded " +
+           recordedHash + " (generated again or replaced since the run?)";
+  }
+  return {};
+}
+
 }  // namespace visgrab::database

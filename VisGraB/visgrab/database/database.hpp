@@ -181,4 +181,16 @@ class Database {
   std::vector<rw::common::Diagnostic> warnings_;
 };
 
+/// 64-bit FNV-1a of the database's index file, as 16 lower-case hex digits: DIR/index.xml of a
+/// generated folder (or the index.xml given), or the original manifest file. The index holds the
+/// generator's seed and every object's pose, so a database generated again differently, or
+/// replaced, has another hash. @throws rw::common::LoadError naming the file it cannot read.
+std::string indexHash(const std::filesystem::path& database);
+
+/// Whether `database` is still the database a run recorded (its path and, when recorded,
+/// `recordedHash` of indexHash): empty if so, else why not, naming the path (it cannot be read:
+/// moved or deleted; or its index changed: generated again or replaced).
+std::string recordedDatabaseProblem(const std::filesystem::path& database,
+                                    const std::string& recordedHash);
+
 }  // namespace visgrab::database

@@ -305,6 +305,9 @@ std::string formatRunFile(const RunResults& run) {
   if (!run.sources.database.empty()) {
     text += "database," + csvField(run.sources.database.string()) + ",,,,,,\n";
   }
+  if (!run.sources.databaseHash.empty()) {
+    text += "database_hash," + csvField(run.sources.databaseHash) + ",,,,,,\n";
+  }
   for (const auto& file : run.sources.grasps) {
     text += "grasps," + csvField(file.string()) + ",,,,,,\n";
   }
@@ -425,6 +428,8 @@ RunResults parseRunFile(std::string_view text, const std::string& file) {
       run.rejected.emplace_back(f[1], count);
     } else if (f[0] == "database") {
       run.sources.database = f[1];
+    } else if (f[0] == "database_hash") {
+      run.sources.databaseHash = f[1];
     } else if (f[0] == "grasps") {
       run.sources.grasps.emplace_back(f[1]);
     } else if (f[0] == "hand") {
@@ -436,8 +441,8 @@ RunResults parseRunFile(std::string_view text, const std::string& file) {
     } else {
       fail(file, lineNo,
            "unknown record '" + f[0] +
-               "' (expected scene, method, rejected, database, grasps, hand, engine or "
-               "engine_settings)");
+               "' (expected scene, method, rejected, database, database_hash, grasps, hand, "
+               "engine or engine_settings)");
     }
   }
   return run;

@@ -64,6 +64,10 @@ struct RunScene {
 struct RunSources {
   /// The scene database (folder or original manifest); empty if unknown.
   std::filesystem::path database;
+  /// database::indexHash of the database when the run started (16 hex digits); empty if
+  /// unknown (runs before the record). Replays check it: a database generated again or replaced
+  /// at the same path is an error, not a wrong picture.
+  std::string databaseHash;
   /// The grasp files or folders.
   std::vector<std::filesystem::path> grasps;
   /// The hand's grasp description; empty if unknown.

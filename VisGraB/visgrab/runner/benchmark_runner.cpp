@@ -151,6 +151,7 @@ RunPlan planRun(const RunOptions& options, const RunInputs& in) {
   }
   results::RunResults& run = plan.run;
   run.sources.database = fs::absolute(options.database).lexically_normal();
+  run.sources.databaseHash = database::indexHash(options.database);
   for (const auto& g : options.grasps) {
     run.sources.grasps.push_back(fs::absolute(g).lexically_normal());
   }
@@ -244,6 +245,12 @@ std::optional<results::RunSources> previousSources(const RunOptions& options) {
 void checkSameEngine(const RunOptions& options, const std::optional<results::RunSources>& previous,
                      results::RunSources& current) {
   if (!previous) return;
+  if (!previous->databaseHash.empty() && previous->databaseHash != current.databaseHash) {
+    throw std::runtime_error(
+        options.out.string() + " holds trials on a database whose index hash was " +
+        previous->databaseHash + "; " + options.database.string() + " now has " +
+        current.databaseHash + " (generated again or replaced): choose another folder");
+  }
   const std::string before = previous->engine.empty() ? "ode" : previous->engine;
   if (before != options.engine) {
     throw std::runtime_error(options.out.string() + " holds trials of engine '" + before +

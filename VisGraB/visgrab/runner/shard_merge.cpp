@@ -145,6 +145,7 @@ MergeSummary mergeShards(const std::vector<fs::path>& shardDirs, const fs::path&
           " ran on different engines: " + engineOf(merged.sources) + " and " +
           engineOf(part.sources) + "; a run's shards must all run on one engine with one setting");
     } else if (part.sources.database != merged.sources.database ||
+               part.sources.databaseHash != merged.sources.databaseHash ||
                part.sources.grasps != merged.sources.grasps ||
                part.sources.hand != merged.sources.hand) {
       throw std::runtime_error("shard folders " + shards.front().dir.string() + " and " +

@@ -10,6 +10,7 @@
 #include "rw/common/strings.hpp"
 #include "rw/common/text_file.hpp"
 #include "visgrab/database/atomic_file.hpp"
+#include "visgrab/database/database.hpp"
 
 namespace visgrab::runner {
 
@@ -80,10 +81,7 @@ std::string contentHash(std::string_view bytes) {
 RunFingerprint fingerprintRun(const fs::path& database, const std::vector<fs::path>& grasps,
                               const fs::path& hand, const std::string& scenes) {
   RunFingerprint out;
-  {
-    const fs::path index = fs::is_directory(database) ? database / "index.xml" : database;
-    out.database = contentHash(rw::common::readTextFileOrThrow(index));
-  }
+  out.database = database::indexHash(database);
   {
     Fnv1a hash;
     for (const fs::path& source : grasps) {

@@ -45,6 +45,11 @@ RunInputs openInputs(const results::RunResults& run) {
     in.problem = "the run does not record its database, grasps and hand (run.csv of an older run)";
     return in;
   }
+  if (std::string problem = database::recordedDatabaseProblem(s.database, s.databaseHash);
+      !problem.empty()) {
+    in.problem = std::move(problem);
+    return in;
+  }
   try {
     in.db = database::Database::openAny(s.database);
     in.grasps = taskio::readGraspSources(s.grasps);

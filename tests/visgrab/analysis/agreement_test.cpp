@@ -351,4 +351,37 @@ TEST_F(AgreementTest, ACopiedDatabaseIsTheSameDatabase) {
   EXPECT_TRUE(visgrab::analysis::sameDatabase(dir_.path() / "gone", dir_.path() / "gone"));
 }
 
+// Runs that recorded their database's index hash (run.csv's database_hash) are compared by it:
+// the same path with different hashes (the database generated again between the runs) is two
+// databases; different paths with one hash (a moved database) is one.
+TEST_F(AgreementTest, RecordedIndexHashesDecideWherePathsCannot) {
+  visgrab::results::RunSources a;
+  a.database = database_;
+  a.databaseHash = "0123456789abcdef";
+  visgrab::results::RunSources b = a;
+  b.databaseHash = "fedcba9876543210";
+  EXPECT_FALSE(visgrab::analysis::sameDatabase(a, b));
+  b.databaseHash = a.databaseHash;
+  b.database = dir_.path() / "moved-away";
+  EXPECT_TRUE(visgrab::analysis::sameDatabase(a, b));
+  // One run without the record: the paths decide, as for older runs.
+  b.databaseHash.clear();
+  EXPECT_FALSE(visgrab::analysis::sameDatabase(a, b));
+  b.database = database_;
+  EXPECT_TRUE(visgrab::analysis::sameDatabase(a, b));
+
+  // Through compareRuns: the same recorded path, other hashes, is refused naming both hashes.
+  const fs::path other = dir_.path() / "regenerated-run";
+  std::string text = runCsv(database_.string(), "mujoco");
+  text += "database_hash,fedcba9876543210,,,,,,\n";
+  visgrab::test::writeFile(other / "run.csv", text);
+  visgrab::test::writeFile(other / "trials.csv", trialsB());
+  std::string textA = runCsv(database_.string(), "ode");
+  textA += "database_hash,0123456789abcdef,,,,,,\n";
+  visgrab::test::writeFile(dirA_ / "run.csv", textA);
+  expectInvalidArgument([&] { compareRuns(readAgreementRun(dirA_), readAgreementRun(other)); },
+                        "their recorded index hashes differ, 0123456789abcdef and "
+                        "fedcba9876543210");
+}
+
 }  // namespace

@@ -3,6 +3,7 @@
 // (or this build lacks) as a command-line error.
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -124,6 +125,77 @@ TEST_F(EngineRun, ResumingAnotherEnginesFolderIsRefused) {
   EXPECT_EQ(summary.trials, 0);
   EXPECT_EQ(summary.resumed, 2);
   EXPECT_EQ(visgrab::results::readResults(options_.out).sources.engine, "ode");
+}
+
+// 64-bit FNV-1a of a file's bytes, worked out here from the published constants (offset basis
+// 14695981039346656037, prime 1099511628211), as 16 hex digits.
+std::string fnv1aOfFile(const fs::path& f) {
+  std::uint64_t h = 14695981039346656037ULL;
+  for (const char c : readFile(f)) {
+    h ^= static_cast<unsigned char>(c);
+    h *= 1099511628211ULL;
+  }
+  char text[17];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(h));
+  return text;
+}
+
+// run.csv records the database's index hash; a resume, `render --results` and the report's
+// pictures refuse a database that is not the run's any more (moved, generated again, replaced)
+// with an error naming the path, instead of drawing another scene.
+TEST_F(EngineRun, TheDatabasesIndexHashIsRecordedAndReplaysCheckIt) {
+  visgrab::runner::runBenchmark(options_);
+  const fs::path runFile = options_.out / "run.csv";
+  const std::string original = readFile(runFile);
+  const std::string hash = fnv1aOfFile(options_.database / "index.xml");
+  EXPECT_EQ(visgrab::results::readResults(options_.out).sources.databaseHash, hash);
+  EXPECT_NE(original.find("\ndatabase_hash," + hash + ",,,,,,\n"), std::string::npos) << original;
+
+  const auto render = [&] {
+    return visgrab::test::runProgram(
+        VISGRAB_BINARY, "render --results " + visgrab::test::shellQuoted(options_.out) +
+                            " --scene " +
+                            db::sceneIdOf(db::SceneConditions::single(db::Texture::kPlain, 13, 1)) +
+                            " --method known --grasp around --size 64x48 --out " +
+                            visgrab::test::shellQuoted(tmp_.path() / "r.png"));
+  };
+  // Another database at the recorded path (here: another recorded hash).
+  std::string replaced = original;
+  replaced.replace(replaced.find(hash), hash.size(), "0123456789abcdef");
+  writeFile(runFile, replaced);
+  auto r = render();
+  EXPECT_EQ(r.exitCode, 1) << r.output;
+  EXPECT_NE(r.output.find("the database at " + options_.database.string() +
+                          " is not the one the run used: its index hash is " + hash +
+                          ", the run recorded 0123456789abcdef"),
+            std::string::npos)
+      << r.output;
+  EXPECT_FALSE(fs::exists(tmp_.path() / "r.png"));
+  options_.resume = true;
+  try {
+    visgrab::runner::runBenchmark(options_);
+    FAIL() << "a folder of another database's trials resumed";
+  } catch (const std::runtime_error& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find(options_.out.string()), std::string::npos) << m;
+    EXPECT_NE(m.find("0123456789abcdef"), std::string::npos) << m;
+    EXPECT_NE(m.find("generated again or replaced"), std::string::npos) << m;
+  }
+  // The database moved away from the recorded path.
+  std::string moved = original;
+  const std::string gone = (tmp_.path() / "moved-away").string();
+  moved.replace(moved.find("\ndatabase,") + 10, options_.database.string().size(), gone);
+  writeFile(runFile, moved);
+  r = render();
+  EXPECT_EQ(r.exitCode, 1) << r.output;
+  EXPECT_NE(r.output.find("the database " + gone + " cannot be read (moved or deleted"),
+            std::string::npos)
+      << r.output;
+  // The run's own database, unchanged: the picture is drawn.
+  writeFile(runFile, original);
+  r = render();
+  EXPECT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_TRUE(fs::exists(tmp_.path() / "r.png"));
 }
 
 TEST_F(EngineRun, TheCommandLineRefusesAnUnknownEngine) {
