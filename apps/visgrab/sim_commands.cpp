@@ -374,7 +374,7 @@ rwsim::simulator::GraspTrialSetup graspTrialSetup(const GraspCommand& command,
 }
 
 /// The TCP pose of --pose (position in m, RobWork RPY in degrees).
-rw::math::Transform3D posePosition(const GraspCommand& command) {
+rw::math::Transform3D tcpPose(const GraspCommand& command) {
   const auto& v = command.lists.at("pose");
   return rw::math::rpyTransform(rw::math::Vector3D(v[3], v[4], v[5]) * rw::math::kDeg2Rad,
                                 rw::math::Vector3D(v[0], v[1], v[2]));
@@ -406,7 +406,7 @@ grasp::GraspRequest graspRequest(const GraspCommand& command,
   request.sceneId = command.scene.value_or("");
   request.id = "of the command line";
   request.method = "grasp";
-  request.X_W_tcp = posePosition(command);
+  request.X_W_tcp = tcpPose(command);
   request.kind = grasp::GraspKind::kRaw;
   const auto& lists = command.lists;
   const bool overridden =
@@ -440,7 +440,7 @@ grasp::GraspRequest graspRequest(const GraspCommand& command,
 rwsim::simulator::GraspParameters rawGrasp(const GraspCommand& command, int dof,
                                            const std::string& hand) {
   rwsim::simulator::GraspParameters grasp;
-  grasp.X_W_tcp = posePosition(command);
+  grasp.X_W_tcp = tcpPose(command);
   applyJointLists(command, dof, hand, true, grasp.qOpen, grasp.qClosed, grasp.tauMax);
   return grasp;
 }
