@@ -155,13 +155,7 @@ ViewerData loadViewerData(const ViewerOptions& options) {
     throw std::runtime_error("no scene database at '" + data.databasePath.string() +
                              "' (give --db DIR or MANIFEST)");
   }
-  if (!sources.databaseHash.empty()) {
-    if (const std::string problem =
-            database::recordedDatabaseProblem(data.databasePath, sources.databaseHash);
-        !problem.empty()) {
-      throw std::runtime_error(problem);
-    }
-  }
+  database::requireRecordedDatabase(data.databasePath, sources.databaseHash);
   data.database =
       std::make_unique<database::Database>(database::Database::openAny(data.databasePath));
   for (const auto& w : data.database->warnings()) data.warnings.push_back(w.format());

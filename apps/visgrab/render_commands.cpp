@@ -110,14 +110,8 @@ RenderRequest parseRenderArguments(const Arguments& a) {
   } else {
     throw UsageError("--db DIR is required (or --results of a run that recorded its database)");
   }
-  if (run && !run->sources.databaseHash.empty()) {
-    // The trials replay in the database the run used, or not at all.
-    if (const std::string problem =
-            database::recordedDatabaseProblem(dbPath, run->sources.databaseHash);
-        !problem.empty()) {
-      throw std::runtime_error(problem);
-    }
-  }
+  // The trials replay in the database the run used, or not at all.
+  if (run) database::requireRecordedDatabase(dbPath, run->sources.databaseHash);
   std::vector<fs::path> graspFiles;
   for (const auto& g : a.values("grasps")) graspFiles.emplace_back(g);
   if (graspFiles.empty() && run) {

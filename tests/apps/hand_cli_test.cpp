@@ -39,6 +39,16 @@ std::string graspArgs(const char* handName, const std::string& preshape = "wide"
          " --hand " + hand(handName) + " --pose " + pose + " --preshape " + preshape;
 }
 
+// A grasp file with graspArgs' grasp: grasp 1 of method "plan", the pre-shape "wide" with the
+// hand pointing down (quaternion 0 0 1 0) 9 cm above the can's base.
+void writePlan(const std::filesystem::path& file) {
+  const auto base = visgrab::test::testDatabase().groundTruth(kScene).front().X_WO.translation();
+  char line[256];
+  std::snprintf(line, sizeof line, "%s, plan, 1, preshape, %.6f,%.6f,%.6f, 0,0,1,0, wide\n", kScene,
+                base.x(), base.y(), base.z() + 0.09);
+  visgrab::test::writeFile(file, line);
+}
+
 TEST(HandCli, GraspRunsEachHandInADatabaseScene) {
   for (const char* name : {"pg70", "robotiq2f85", "sdh"}) {
     const RunResult r = visgrab(graspArgs(name));
@@ -69,11 +79,7 @@ TEST(HandCli, GraspAndRunTakeTheSameDoor) {
     return single.output.substr(from, single.output.find('"', from) - from);
   };
   visgrab::test::TempDir dir;
-  const auto base = visgrab::test::testDatabase().groundTruth(kScene).front().X_WO.translation();
-  char line[256];
-  std::snprintf(line, sizeof line, "%s, plan, 1, preshape, %.6f,%.6f,%.6f, 0,0,1,0, wide\n", kScene,
-                base.x(), base.y(), base.z() + 0.09);
-  visgrab::test::writeFile(dir.path() / "plan.csv", line);
+  writePlan(dir.path() / "plan.csv");
   const RunResult run = visgrab("run --db " + shellQuoted(visgrab::test::testDatabasePath()) +
                                 " --grasps " + shellQuoted(dir.path() / "plan.csv") + " --out " +
                                 shellQuoted(dir.path() / "out") + " --hand pg70 --quiet");
@@ -86,17 +92,11 @@ TEST(HandCli, GraspAndRunTakeTheSameDoor) {
   // leaves sin(pi) = 1.2e-16 in the rotation, which the lift carries into the last digits.
   EXPECT_NEAR(t.qLift, number("q_lift"), 1e-6);
   EXPECT_NEAR(t.qGws, number("q_gws"), 1e-6);
-  std::printf("q_lift %.17g and %.17g, q_gws %.17g and %.17g\n", t.qLift, number("q_lift"), t.qGws,
-              number("q_gws"));
 }
 
 TEST(HandCli, RenderDrawsTheGivenHand) {
   visgrab::test::TempDir dir;
-  const auto base = visgrab::test::testDatabase().groundTruth(kScene).front().X_WO.translation();
-  char line[256];
-  std::snprintf(line, sizeof line, "%s, plan, 1, preshape, %.6f,%.6f,%.6f, 0,0,1,0, wide\n", kScene,
-                base.x(), base.y(), base.z() + 0.09);
-  visgrab::test::writeFile(dir.path() / "plan.csv", line);
+  writePlan(dir.path() / "plan.csv");
   const RunResult r = visgrab(
       "render --db " + shellQuoted(visgrab::test::testDatabasePath()) + " --scene " + kScene +
       " --hand " + hand("robotiq2f85") + " --grasps " + shellQuoted(dir.path() / "plan.csv") +

@@ -44,6 +44,16 @@ std::size_t editDistance(std::string_view a, std::string_view b) {
   return row[b.size()];
 }
 
+std::string hex64(std::uint64_t value) {
+  static constexpr char kDigits[] = "0123456789abcdef";
+  std::string out(16, '0');
+  for (int i = 15; i >= 0; --i) {
+    out[static_cast<std::size_t>(i)] = kDigits[value & 0xf];
+    value >>= 4;
+  }
+  return out;
+}
+
 std::uint64_t fnv1a(std::string_view bytes, std::uint64_t state) {
   for (const char c : bytes) {
     state ^= static_cast<unsigned char>(c);

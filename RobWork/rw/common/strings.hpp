@@ -25,6 +25,9 @@ inline constexpr std::uint64_t kFnv1aBasis = 0xcbf29ce484222325ULL;
 /// hash for seeds and file fingerprints (the same on every platform and run).
 std::uint64_t fnv1a(std::string_view bytes, std::uint64_t state = kFnv1aBasis);
 
+/// `value` as 16 lower-case hex digits (how file fingerprints are written).
+std::string hex64(std::uint64_t value);
+
 /// The parts of `text` between the `separator`s (n separators give n + 1 parts, empty ones too).
 std::vector<std::string_view> split(std::string_view text, char separator);
 

@@ -8,6 +8,7 @@
 #include <iomanip>
 #include <iterator>
 #include <sstream>
+#include <stdexcept>
 #include <system_error>
 #include <utility>
 
@@ -350,14 +351,7 @@ std::string Database::details(const SceneEntry& s, const ObjectCatalog& catalog)
 std::string indexHash(const fs::path& database) {
   std::error_code ec;
   const fs::path index = fs::is_directory(database, ec) ? database / "index.xml" : database;
-  std::uint64_t v = rw::common::fnv1a(rw::common::readTextFileOrThrow(index));
-  static constexpr char kDigits[] = "0123456789abcdef";
-  std::string out(16, '0');
-  for (int i = 15; i >= 0; --i) {
-    out[static_cast<std::size_t>(i)] = kDigits[v & 0xf];
-    v >>= 4;
-  }
-  return out;
+  return rw::common::hex64(rw::common::fnv1a(rw::common::readTextFileOrThrow(index)));
 }
 
 std::string recordedDatabaseProblem(const fs::path& database, const std::string& recordedHash) {
@@ -374,6 +368,13 @@ std::string recordedDatabaseProblem(const fs::path& database, const std::string&
            recordedHash + " (generated again or replaced since the run?)";
   }
   return {};
+}
+
+void requireRecordedDatabase(const fs::path& database, const std::string& recordedHash) {
+  if (recordedHash.empty()) return;
+  if (std::string problem = recordedDatabaseProblem(database, recordedHash); !problem.empty()) {
+    throw std::runtime_error(problem);
+  }
 }
 
 }  // namespace visgrab::database

@@ -193,4 +193,10 @@ std::string indexHash(const std::filesystem::path& database);
 std::string recordedDatabaseProblem(const std::filesystem::path& database,
                                     const std::string& recordedHash);
 
+/// recordedDatabaseProblem as an exception, for a run that recorded a hash (nothing is checked
+/// when `recordedHash` is empty: the opening of the database reports a missing one).
+/// @throws std::runtime_error with recordedDatabaseProblem's text.
+void requireRecordedDatabase(const std::filesystem::path& database,
+                             const std::string& recordedHash);
+
 }  // namespace visgrab::database

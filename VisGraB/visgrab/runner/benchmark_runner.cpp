@@ -239,18 +239,27 @@ std::optional<results::RunSources> previousSources(const RunOptions& options) {
   return results::parseRunFile(rw::common::readTextFileOrThrow(file), file.string()).sources;
 }
 
+/// A resumed folder's trials must come from the same database (run.csv's index hash; a run.csv
+/// without one is not checked).
+void checkSameDatabase(const RunOptions& options,
+                       const std::optional<results::RunSources>& previous,
+                       const results::RunSources& current) {
+  if (!previous || previous->databaseHash.empty() ||
+      previous->databaseHash == current.databaseHash) {
+    return;
+  }
+  throw std::runtime_error(
+      options.out.string() + " holds trials on a database whose index hash was " +
+      previous->databaseHash + "; " + options.database.string() + " now has " +
+      current.databaseHash + " (generated again or replaced): choose another folder");
+}
+
 /// A resumed folder's trials must come from the same engine with the same settings (a run.csv
 /// without an engine record is ODE's). `current` gets the previous settings when this run
 /// simulates nothing (it could not ask the engine).
 void checkSameEngine(const RunOptions& options, const std::optional<results::RunSources>& previous,
                      results::RunSources& current) {
   if (!previous) return;
-  if (!previous->databaseHash.empty() && previous->databaseHash != current.databaseHash) {
-    throw std::runtime_error(
-        options.out.string() + " holds trials on a database whose index hash was " +
-        previous->databaseHash + "; " + options.database.string() + " now has " +
-        current.databaseHash + " (generated again or replaced): choose another folder");
-  }
   const std::string before = previous->engine.empty() ? "ode" : previous->engine;
   if (before != options.engine) {
     throw std::runtime_error(options.out.string() + " holds trials of engine '" + before +
@@ -424,6 +433,7 @@ RunSummary runBenchmark(const RunOptions& options,
   results::ResultsWriter writer(options.out);
   PendingWork pending = pendingScenes(plan.order.scenes, writer);
   plan.run.sources.engineSettings = checkHandFits(pending, plan, loader, options.hand);
+  checkSameDatabase(options, previous, plan.run.sources);
   checkSameEngine(options, previous, plan.run.sources);
   writeRunFile(plan, writer);
   runScenes(options, loader, pending, plan, writer, [&] {

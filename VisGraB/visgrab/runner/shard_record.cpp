@@ -30,16 +30,7 @@ class Fnv1a {
     add(":");
     add(bytes);
   }
-  std::string hex() const {
-    static constexpr char kDigits[] = "0123456789abcdef";
-    std::string out(16, '0');
-    std::uint64_t v = state_;
-    for (int i = 15; i >= 0; --i) {
-      out[static_cast<std::size_t>(i)] = kDigits[v & 0xf];
-      v >>= 4;
-    }
-    return out;
-  }
+  std::string hex() const { return rw::common::hex64(state_); }
 
  private:
   std::uint64_t state_ = rw::common::kFnv1aBasis;

@@ -284,8 +284,9 @@ TEST(EngineRunMujoco, EveryTestDatabaseSceneRunsToAnOutcome) {
   EXPECT_GE(held, 5);
   EXPECT_GE(beside, 10);
   EXPECT_GE(besideMissed * 10, beside * 8) << besideMissed << " of " << beside;
-  // The fingers come to rest on what they grasp: without the motors' armature (MujocoOptions::
-  // motorArmature) the closing hit the time cap in most trials over an object.
+  // The fingers come to rest on what they grasp. (These hand-made grasps did not hit the cap
+  // without the motors' armature either; MujocoEngine.AFingerPressedOnABlockComesToRest is the
+  // test that fails without it.)
   EXPECT_LE(capped * 10, simulated) << capped << " capped closings of " << simulated;
   std::printf("%d of %d simulated trials held, %d closings capped\n", held, simulated, capped);
 }
