@@ -156,6 +156,7 @@ struct MujocoEngine::Impl {
     status = s;
     failureDetail = std::move(detail);
   }
+  void vary(const trial::PhysicsVariation& variation);
   bool commandsFinite();
   void driveKinematicBodies();
   bool readWarnings();
@@ -163,6 +164,28 @@ struct MujocoEngine::Impl {
   void collectContacts();
   void updateState();
 };
+
+void MujocoEngine::Impl::vary(const trial::PhysicsVariation& variation) {
+  if (variation.frictionScale != 1.0) {
+    for (int p = 0; p < m->npair; ++p) {
+      m->pair_friction[5 * p] *= variation.frictionScale;
+      m->pair_friction[5 * p + 1] *= variation.frictionScale;
+    }
+  }
+  if (variation.objectMassScale != 1.0) {
+    const auto& bodies = dwc->bodies();
+    for (std::size_t b = 0; b < bodies.size(); ++b) {
+      if (!trial::isVariedObject(bodies[b])) continue;
+      const int id = compiled->body[b];
+      m->body_mass[id] *= variation.objectMassScale;
+      // The principal moments: a scaled tensor keeps its principal axes (body_iquat).
+      for (int k = 0; k < 3; ++k) m->body_inertia[3 * id + k] *= variation.objectMassScale;
+    }
+  }
+  // The compiler's constants at qpos0 from the scaled values (kinematic bodies are not yet
+  // moved: this model copy is as compiled).
+  mj_setConst(m.get(), d.get());
+}
 
 bool MujocoEngine::Impl::commandsFinite() {
   for (std::size_t b = 0; b < commandLinear.size(); ++b) {
@@ -316,14 +339,17 @@ void MujocoEngine::Impl::updateState() {
 }
 
 MujocoEngine::MujocoEngine(const dynamics::DynamicWorkCell& dwc,
-                           std::shared_ptr<const CompiledModel> model)
+                           std::shared_ptr<const CompiledModel> model,
+                           const trial::PhysicsVariation& variation)
     : impl_(std::make_unique<Impl>()) {
   if (!model) throw std::invalid_argument("MujocoEngine: the compiled model is null");
+  variation.check();
   impl_->dwc = &dwc;
   impl_->compiled = std::move(model);
   impl_->m.reset(mj_copyModel(nullptr, impl_->compiled->model.get()));
   impl_->d.reset(mj_makeData(impl_->m.get()));
   if (!impl_->m || !impl_->d) throw std::runtime_error("MujocoEngine: out of memory");
+  if (!variation.isIdentity()) impl_->vary(variation);
   const auto& tree = dwc.workcell().frames();
   const auto& bodies = dwc.bodies();
   for (std::size_t b = 0; b < bodies.size(); ++b) {
@@ -550,8 +576,10 @@ class MujocoEngineFactory final : public trial::EngineFactory {
     return text;
   }
 
-  std::unique_ptr<trial::PhysicsEngine> create() const override {
-    return std::make_unique<MujocoEngine>(dwc_, model_);
+  using trial::EngineFactory::create;
+  std::unique_ptr<trial::PhysicsEngine> create(
+      const trial::PhysicsVariation& variation) const override {
+    return std::make_unique<MujocoEngine>(dwc_, model_, variation);
   }
 
  private:

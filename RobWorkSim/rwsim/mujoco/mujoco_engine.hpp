@@ -38,10 +38,21 @@ struct CompiledModel;
 /// makes the step unreliable (bad qpos/qvel/qacc/ctrl, contact or constraint buffer full; the
 /// detail names it), and is a runaway (kRunaway) as in the ODE engine (maxSpeed,
 /// escapeDistance). Other warnings (near-singular inertia) go to engineMessages().
+///
+/// A PhysicsVariation other than the identity scales this engine's model copy: the sliding
+/// friction of every contact pair (the export makes every contact an explicit pair with the
+/// material table's mu; torsional and rolling values are unused at condim 3), and the mass and
+/// principal inertia of each object's body (trial::isVariedObject()); MuJoCo's constants
+/// derived from them (mj_setConst: the inverse weights behind the constraints' softness, the
+/// mean inertia, subtree masses) are then recomputed, as compiling the scaled MJCF would. The
+/// identity leaves the copy as compiled.
 class MujocoEngine final : public trial::PhysicsEngine {
  public:
-  /// An engine on `model` (compiled from `dwc`), at the dwc's default state.
-  MujocoEngine(const dynamics::DynamicWorkCell& dwc, std::shared_ptr<const CompiledModel> model);
+  /// An engine on `model` (compiled from `dwc`), at the dwc's default state, with friction and
+  /// object masses scaled by `variation`.
+  /// @throws std::invalid_argument for an invalid variation (trial::PhysicsVariation::check()).
+  MujocoEngine(const dynamics::DynamicWorkCell& dwc, std::shared_ptr<const CompiledModel> model,
+               const trial::PhysicsVariation& variation = {});
   ~MujocoEngine() override;
 
   /// Puts every body where `state` says, at rest; time restarts at 0. Motor targets, force
@@ -94,8 +105,9 @@ class MujocoEngine final : public trial::PhysicsEngine {
 
 /// The factory of MuJoCo engines for `dwc`'s trials: name "mujoco", settings the MuJoCo version
 /// and every option that changes results. Exports and compiles the MJCF once; each create()
-/// gives an engine with its own model copy and data. The first call sets MuJoCo's global warning
-/// handler to one that only lets mjData count them (the engines read the counts).
+/// gives an engine with its own model copy and data (varied as create(variation) asks). The first
+/// call sets MuJoCo's global warning handler to one that only lets mjData count them (the engines
+/// read the counts).
 /// @throws std::invalid_argument if the dwc cannot be exported (exportMjcf()), or
 /// std::runtime_error with MuJoCo's message, naming the dwc, if the model does not compile.
 std::shared_ptr<const trial::EngineFactory> mujocoEngineFactory(

@@ -213,13 +213,15 @@ PlacementCheck checkPlacement(const dynamics::DynamicWorkCell& dwc, const detail
 class TrialRun {
  public:
   TrialRun(const dynamics::DynamicWorkCell& dwc, const GraspTrialSetup& setup,
-           const detail::TrialData& data, const GraspParameters& grasp, const Observer& observer)
+           const detail::TrialData& data, const GraspParameters& grasp,
+           const trial::PhysicsVariation& variation, const Observer& observer)
       : dwc_(dwc),
         setup_(setup),
         data_(data),
         grasp_(grasp),
         observer_(observer),
-        engine_(data.engine->create()),
+        frictionScale_(variation.frictionScale),
+        engine_(data.engine->create(variation)),
         sim_(*engine_),
         pd_(data.controller->p, data.controller->d),
         dt_(sim_.timeStep()) {}
@@ -248,6 +250,7 @@ class TrialRun {
   const detail::TrialData& data_;
   const GraspParameters& grasp_;
   const Observer& observer_;
+  double frictionScale_;
   std::unique_ptr<trial::PhysicsEngine> engine_;
   trial::PhysicsEngine& sim_;
   control::PDController pd_;
@@ -372,7 +375,7 @@ void TrialRun::evaluate(const Transform3D& X_h0, const Transform3D& X_o0) {
   const double h = result_.handLift.norm();
   result_.qLift = h > 0.0 ? std::max(0.0, 1.0 - drift / h) : 0.0;
   result_.contacts = detail::objectContacts(dwc_, sim_.contacts(), data_.isHandBody, object, X_o1,
-                                            setup_.contactForceThreshold);
+                                            setup_.contactForceThreshold, frictionScale_);
   const auto& body = dwc_.body(object);
   if (setup_.computeGws) {
     GwsQualityOptions options;
@@ -482,9 +485,21 @@ GraspTrialResult GraspTrial::run(const GraspParameters& grasp,
 
 GraspTrialResult GraspTrial::run(const GraspParameters& grasp, const rw::kinematics::State& initial,
                                  const Observer& observer) const {
+  return run(grasp, initial, PhysicsVariation{}, observer);
+}
+
+GraspTrialResult GraspTrial::run(const GraspParameters& grasp, const rw::kinematics::State& initial,
+                                 const PhysicsVariation& variation) const {
+  return run(grasp, initial, variation, setup_.observer);
+}
+
+GraspTrialResult GraspTrial::run(const GraspParameters& grasp, const rw::kinematics::State& initial,
+                                 const PhysicsVariation& variation,
+                                 const Observer& observer) const {
   const auto& device = *dwc_->device(data_->hand).device;
   checkGrasp(grasp, device.dof());
-  TrialRun trial(*dwc_, setup_, *data_, grasp, observer);
+  variation.check();
+  TrialRun trial(*dwc_, setup_, *data_, grasp, variation, observer);
   return trial.run(initial);
 }
 

@@ -33,6 +33,7 @@ using trial::Observer;
 using trial::outcomeFromName;
 using trial::OutcomeInfo;
 using trial::outcomeName;
+using trial::PhysicsVariation;
 using trial::PlacementCheck;
 using trial::robworkCode;
 using trial::TrialContact;
@@ -75,6 +76,17 @@ class GraspTrial {
   /// Same, calling `observer` instead of the setup's (e.g. to record one trial's trajectory).
   GraspTrialResult run(const GraspParameters& grasp, const rw::kinematics::State& initial,
                        const Observer& observer) const;
+  /// Same as run(grasp, initial), on an engine made with `variation`
+  /// (EngineFactory::create(variation)): the friction coefficients and object masses the trial
+  /// simulates are the dwc's scaled by it, and TrialContact::mu, hence Q_GWS, uses the scaled
+  /// friction. The identity gives run(grasp, initial)'s result bit for bit.
+  /// @throws std::invalid_argument like run(), or for an invalid variation
+  /// (PhysicsVariation::check()) or one the engine cannot honour.
+  GraspTrialResult run(const GraspParameters& grasp, const rw::kinematics::State& initial,
+                       const trial::PhysicsVariation& variation) const;
+  /// Same, calling `observer` instead of the setup's.
+  GraspTrialResult run(const GraspParameters& grasp, const rw::kinematics::State& initial,
+                       const trial::PhysicsVariation& variation, const Observer& observer) const;
   /// The setup in use.
   const GraspTrialSetup& setup() const { return setup_; }
   /// The engine the trials run on.

@@ -51,6 +51,7 @@ Vector3D pointVelocity(dBodyID id, const Vector3D& p) {
 struct Simulator::Impl {
   const dynamics::DynamicWorkCell* dwc = nullptr;
   SimulatorOptions options;
+  trial::PhysicsVariation variation;
   std::shared_ptr<const contacts::ContactDetector> detector;
   std::unique_ptr<detail::OdeWorld> ode;
   rw::kinematics::State state;
@@ -110,6 +111,8 @@ void Simulator::Impl::init(const dynamics::DynamicWorkCell& cell) {
   for (std::size_t a = 0; a < n; ++a) {
     for (std::size_t b = 0; b < n; ++b) {
       mu[a * n + b] = cell.materials().mu(bodies[a].material, bodies[b].material);
+      // Only a real scale touches the value: the identity keeps the dwc's mu bit for bit.
+      if (variation.frictionScale != 1.0) mu[a * n + b] *= variation.frictionScale;
       restitution[a * n + b] =
           cell.materials().restitution(bodies[a].objectType, bodies[b].objectType);
     }
@@ -372,17 +375,20 @@ void Simulator::Impl::updateState() {
   }
 }
 
-Simulator::Simulator(const dynamics::DynamicWorkCell& dwc, SimulatorOptions options)
+Simulator::Simulator(const dynamics::DynamicWorkCell& dwc, SimulatorOptions options,
+                     const trial::PhysicsVariation& variation)
     : Simulator(dwc,
                 std::make_shared<contacts::ContactDetector>(dwc, options.contacts,
                                                             dynamics::jointConnectedBodyPairs(dwc)),
-                options) {}
+                options, variation) {}
 
 Simulator::Simulator(const dynamics::DynamicWorkCell& dwc,
                      std::shared_ptr<const contacts::ContactDetector> detector,
-                     SimulatorOptions options)
+                     SimulatorOptions options, const trial::PhysicsVariation& variation)
     : impl_(std::make_unique<Impl>()) {
   if (!detector) throw std::invalid_argument("Simulator: the contact detector is null");
+  variation.check();
+  impl_->variation = variation;
   if (!(options.timeStep > 0.0) || !std::isfinite(options.timeStep)) {
     throw std::invalid_argument("Simulator: the time step must be > 0");
   }
@@ -408,7 +414,8 @@ Simulator::~Simulator() = default;
 void Simulator::reset(const rw::kinematics::State& state) {
   detail::prepareOdeForThisThread();
   impl_->ode.reset();
-  impl_->ode = std::make_unique<detail::OdeWorld>(*impl_->dwc, state, impl_->options);
+  impl_->ode = std::make_unique<detail::OdeWorld>(*impl_->dwc, state, impl_->options,
+                                                  impl_->variation.objectMassScale);
   impl_->state = state;
   impl_->time = 0.0;
   impl_->status = StepStatus::kOk;
@@ -532,6 +539,8 @@ std::size_t Simulator::lastStepRows() const { return impl_->rows; }
 
 const SimulatorOptions& Simulator::options() const { return impl_->options; }
 
+const trial::PhysicsVariation& Simulator::variation() const { return impl_->variation; }
+
 namespace {
 
 class OdeEngineFactory final : public trial::EngineFactory {
@@ -555,9 +564,11 @@ class OdeEngineFactory final : public trial::EngineFactory {
     return text;
   }
 
-  std::unique_ptr<trial::PhysicsEngine> create() const override {
-    if (detector_) return std::make_unique<Simulator>(dwc_, detector_, options_);
-    return std::make_unique<Simulator>(dwc_, options_);
+  using trial::EngineFactory::create;
+  std::unique_ptr<trial::PhysicsEngine> create(
+      const trial::PhysicsVariation& variation) const override {
+    if (detector_) return std::make_unique<Simulator>(dwc_, detector_, options_, variation);
+    return std::make_unique<Simulator>(dwc_, options_, variation);
   }
 
  private:

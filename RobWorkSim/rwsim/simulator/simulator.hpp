@@ -38,17 +38,23 @@ using trial::StepStatus;
 /// further. ODE's fatal errors become kNumericalFailure, never an exit or abort. The same
 /// input gives bitwise the same result in any thread (WorldStep; WorldQuickStep uses ODE's
 /// global random generator and is only deterministic single-threaded).
+///
+/// A PhysicsVariation scales every pair's mu (before the contact joints get it) and the mass
+/// and inertia given ODE for each object (trial::isVariedObject()); the identity leaves every
+/// value as the dwc has it.
 class Simulator final : public trial::PhysicsEngine {
  public:
-  /// Creates the world, bodies, joints and motors. @throws std::runtime_error if ODE is not
-  /// double precision.
-  explicit Simulator(const dynamics::DynamicWorkCell& dwc, SimulatorOptions options = {});
+  /// Creates the world, bodies, joints and motors, with the dwc's friction and object masses
+  /// scaled by `variation`. @throws std::runtime_error if ODE is not double precision;
+  /// std::invalid_argument for an invalid variation (trial::PhysicsVariation::check()).
+  explicit Simulator(const dynamics::DynamicWorkCell& dwc, SimulatorOptions options = {},
+                     const trial::PhysicsVariation& variation = {});
   /// Same, sharing a contact detector made for `dwc` (detection is const and thread-safe, so
   /// simulators in many threads may share one); options.contacts is then the detector's.
-  /// @throws std::invalid_argument if `detector` is null.
+  /// @throws std::invalid_argument if `detector` is null or as above.
   Simulator(const dynamics::DynamicWorkCell& dwc,
             std::shared_ptr<const contacts::ContactDetector> detector,
-            SimulatorOptions options = {});
+            SimulatorOptions options = {}, const trial::PhysicsVariation& variation = {});
   ~Simulator() override;
 
   /// Puts every body where `state` says, at rest; time restarts at 0. Motor targets, force
@@ -97,6 +103,8 @@ class Simulator final : public trial::PhysicsEngine {
   std::size_t lastStepRows() const;
   /// The options in use.
   const SimulatorOptions& options() const;
+  /// The physics variation in use.
+  const trial::PhysicsVariation& variation() const;
 
  private:
   struct Impl;
@@ -104,7 +112,8 @@ class Simulator final : public trial::PhysicsEngine {
 };
 
 /// The factory of ODE engines (Simulator) for `dwc`'s trials: name "ode", settings the ODE
-/// version and `options`; the engines share `detector` (null: each makes its own).
+/// version and `options`; the engines share `detector` (null: each makes its own); create()
+/// with a variation passes it to the Simulator.
 std::shared_ptr<const trial::EngineFactory> odeEngineFactory(
     const dynamics::DynamicWorkCell& dwc, SimulatorOptions options,
     std::shared_ptr<const contacts::ContactDetector> detector = nullptr);

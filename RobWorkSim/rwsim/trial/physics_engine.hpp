@@ -8,6 +8,7 @@
 #include "rw/math/types.hpp"
 #include "rwsim/contacts/contact_detector.hpp"
 #include "rwsim/dynamics/dynamic_workcell.hpp"
+#include "rwsim/trial/physics_variation.hpp"
 
 /// The physics seam: what a grasp trial asks of an engine. The trial's protocol
 /// (rwsim::simulator::GraspTrial) is written once against PhysicsEngine; ODE
@@ -103,8 +104,12 @@ class EngineFactory {
   /// The engine's version and the settings that decide its results, one line (recorded in
   /// run.csv, so that runs on different settings are not merged or resumed into each other).
   virtual std::string settings() const = 0;
-  /// A new engine at the dwc's default state.
-  virtual std::unique_ptr<PhysicsEngine> create() const = 0;
+  /// A new engine at the dwc's default state, on the dwc's own physical values.
+  std::unique_ptr<PhysicsEngine> create() const { return create(PhysicsVariation{}); }
+  /// A new engine at the dwc's default state whose friction coefficients and object masses are
+  /// the dwc's scaled by `variation` (the identity gives create()'s engine, bit for bit).
+  /// @throws std::invalid_argument if a scale is not finite and > 0 (PhysicsVariation::check()).
+  virtual std::unique_ptr<PhysicsEngine> create(const PhysicsVariation& variation) const = 0;
 };
 
 }  // namespace rwsim::trial

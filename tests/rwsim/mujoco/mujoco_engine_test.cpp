@@ -1,6 +1,6 @@
 // The MuJoCo engine against analytic physics and the physics seam's contract (free fall, a box at
-// rest, reset, a torque-limited velocity servo, a kinematic base at any pose), and the SDH box
-// trial through the one protocol, GraspTrial, on both engines.
+// rest, reset, a torque-limited velocity servo, a kinematic base at any pose, scaled friction and
+// object masses), and the SDH box trial through the one protocol, GraspTrial, on both engines.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -345,6 +345,144 @@ TEST(MujocoEngine, AModelMujocoCannotCompileIsReportedWithTheDwcAndMujocosMessag
 TEST(MujocoEngine, TheSdhHoldsTheBoxThroughGraspTrialOnBothEngines) {
   expectHeld(nullptr, "ode");
   expectHeld(rwsim::mujoco::mujocoEngineFactory(sdhBox()), "mujoco");
+}
+
+// --- Per-trial physics variations (rwsim::trial::PhysicsVariation) ----------------------------
+
+rwsim::trial::PhysicsVariation variation(double frictionScale, double objectMassScale) {
+  rwsim::trial::PhysicsVariation v;
+  v.frictionScale = frictionScale;
+  v.objectMassScale = objectMassScale;
+  return v;
+}
+
+TEST(MujocoEngine, FrictionScaleMakesABoxThatSticksOnTheSlopeSlide) {
+  // tan(20 deg) = 0.364: mu 0.4 holds the box, 0.5 * 0.4 = 0.2 does not. (Tilted gravity on a
+  // level table: the export meets the box with the table's top plane, exact for box-plane.)
+  const double angle = 20 * std::numbers::pi / 180;
+  const double mu = 0.4;
+  const double scale = 0.5;
+  const auto dwc = visgrab::test::sim::boxUnderTiltedGravity(angle, mu);
+  const BodyId block = dwc->findBody("Block");
+  const auto factory = rwsim::mujoco::mujocoEngineFactory(*dwc);
+  const auto held = factory->create();
+  const double x0 = held->bodyPose(block).translation().x();
+  runUntil(*held, 0.5);
+  // MuJoCo's friction is a soft constraint: a sticking contact creeps (impratio 10 keeps it to
+  // micrometres).
+  EXPECT_LT(std::abs(held->bodyPose(block).translation().x() - x0), 1e-4);
+  EXPECT_LT(held->bodyLinearVelocity(block).norm(), 1e-3);
+
+  const auto sliding = factory->create(variation(scale, 1.0));
+  const double expected = kG * (std::sin(angle) - scale * mu * std::cos(angle));
+  // From rest, semi-implicit Euler moves the box by a dt^2 n (n + 1) / 2 in n steps.
+  const double dt = sliding->timeStep();
+  runUntil(*sliding, 0.2);
+  const double n1 = std::round(sliding->time() / dt);
+  const double x1 = sliding->bodyPose(block).translation().x();
+  runUntil(*sliding, 0.8);
+  const double n2 = std::round(sliding->time() / dt);
+  const double x2 = sliding->bodyPose(block).translation().x();
+  const double a = 2.0 * (x2 - x1) / (dt * dt * (n2 * (n2 + 1) - n1 * (n1 + 1)));
+  // The elliptic cone has no preferred direction; MuJoCo's friction is a soft (regularised)
+  // constraint, which costs the slide 0.1 % (measured). 0.5 % leaves nothing for a wrong mu:
+  // 0.01 more or less of it moves a by 6 %.
+  EXPECT_NEAR(a, expected, 0.005 * expected);
+  RecordProperty("acceleration", std::to_string(a));
+}
+
+TEST(MujocoEngine, ObjectMassScaleScalesTheObjectsWeightButNotTheHandsLinks) {
+  // The box's weight on the table: its contact force. The gripper's jaws (a device's bodies)
+  // driven at their force limit accelerate at a rate set by their mass, which the variation must
+  // leave alone.
+  const double boxMass = 1.0;
+  const auto dwc = visgrab::test::sim::weighingScene(boxMass, 0.05);
+  const BodyId box = dwc->findBody("Box");
+  const auto gripper = dwc->findDevice("Gripper");
+  const auto factory = rwsim::mujoco::mujocoEngineFactory(*dwc);
+  const auto closeJaws = [&](PhysicsEngine& engine) {
+    engine.setMotorVelocityTargets(gripper, Q::Constant(2, 1.0));
+    runUntil(engine, 0.1);
+    return engine.jointPositions(gripper);
+  };
+  const auto identity = factory->create();
+  const Q jaws = closeJaws(*identity);
+  EXPECT_GT(jaws[0], 1e-3);
+  runUntil(*identity, 1.0);
+  EXPECT_NEAR(forceOn(*identity, box).z(), boxMass * kG, 1e-3 * boxMass * kG);
+  // At rest the table carries the weight to rounding (measured); 0.1 % is far from any other
+  // scale.
+  for (const double scale : {0.4, 2.5}) {
+    const auto varied = factory->create(variation(1.0, scale));
+    // One solver for the whole model: the box's other mass may move the jaws' result by the
+    // solver's tolerance, no more (scaled jaws would move 0.4 or 2.5 times as far).
+    EXPECT_LT((closeJaws(*varied) - jaws).cwiseAbs().maxCoeff(), 1e-9 * jaws[0])
+        << "scale " << scale;
+    runUntil(*varied, 1.0);
+    const Vector3D f = forceOn(*varied, box);
+    EXPECT_NEAR(f.z(), scale * boxMass * kG, 1e-3 * scale * boxMass * kG) << "scale " << scale;
+    EXPECT_NEAR(f.head<2>().norm(), 0.0, 1e-6) << "scale " << scale;
+  }
+}
+
+TEST(MujocoEngine, AVariedEngineStepsAsTheEngineOfTheScaledDwc) {
+  // Scaling by 2 (mass) and 0.5 (friction, 0.4 -> 0.2) is exact in floating point: the varied
+  // model copy, its derived constants recomputed, must be the model compiled from a dwc that has
+  // those values, step for step.
+  const double angle = 25 * std::numbers::pi / 180;
+  const auto dwc = visgrab::test::sim::boxUnderTiltedGravity(angle, 0.4);
+  const auto slippery = visgrab::test::sim::boxUnderTiltedGravity(angle, 0.2);
+  const BodyId block = dwc->findBody("Block");
+  const auto varied = rwsim::mujoco::mujocoEngineFactory(*dwc)->create(variation(0.5, 1.0));
+  const auto reference = rwsim::mujoco::mujocoEngineFactory(*slippery)->create();
+  runUntil(*varied, 0.3);
+  runUntil(*reference, 0.3);
+  EXPECT_EQ(varied->bodyPose(block).matrix(), reference->bodyPose(block).matrix());
+  EXPECT_EQ(forceOn(*varied, block), forceOn(*reference, block));
+
+  const auto light = visgrab::test::sim::weighingScene(1.0, 10.0);
+  const auto heavy = visgrab::test::sim::weighingScene(2.0, 10.0);
+  const BodyId box = light->findBody("Box");
+  auto state = light->workcell().defaultState();
+  light->workcell()
+      .frames()
+      .frame(light->body(box).frame)
+      .setMovableTransform(state, at(0, 0, 0.2));
+  const auto heavier = rwsim::mujoco::mujocoEngineFactory(*light)->create(variation(1.0, 2.0));
+  const auto twoKilos = rwsim::mujoco::mujocoEngineFactory(*heavy)->create();
+  for (PhysicsEngine* engine : {heavier.get(), twoKilos.get()}) {
+    engine->reset(state);
+    runUntil(*engine, 0.5);
+  }
+  EXPECT_EQ(heavier->bodyPose(box).matrix(), twoKilos->bodyPose(box).matrix());
+  EXPECT_EQ(forceOn(*heavier, box), forceOn(*twoKilos, box));
+  EXPECT_NEAR(forceOn(*heavier, box).z(), 2.0 * kG, 0.01 * 2.0 * kG);
+}
+
+TEST(MujocoEngine, TheIdentityVariationChangesNoBitAndInvalidScalesAreRejected) {
+  const auto& dwc = sdhBox();
+  rwsim::simulator::GraspTrialSetup setup;
+  setup.hand = "SchunkHand";
+  setup.tcpFrame = "SchunkHand.SDHTCP";
+  const auto factory = rwsim::mujoco::mujocoEngineFactory(dwc);
+  const rwsim::simulator::GraspTrial trial(dwc, setup, factory);
+  const auto plain = trial.run(sdhCylinderGrasp(), dwc.workcell().defaultState());
+  const auto identity = trial.run(sdhCylinderGrasp(), dwc.workcell().defaultState(),
+                                  rwsim::trial::PhysicsVariation{});
+  EXPECT_EQ(identity.outcome, plain.outcome);
+  EXPECT_EQ(identity.qLift, plain.qLift);
+  EXPECT_EQ(identity.qGws, plain.qGws);
+  EXPECT_EQ(identity.qGwsUnit, plain.qGwsUnit);
+  EXPECT_EQ(identity.qGrasp, plain.qGrasp);
+  EXPECT_EQ(identity.simulatedTime, plain.simulatedTime);
+  EXPECT_EQ(identity.objectLift, plain.objectLift);
+  EXPECT_EQ(identity.detail, plain.detail);
+  for (const auto& bad : {variation(0.0, 1.0), variation(1.0, -1.0), variation(std::nan(""), 1.0),
+                          variation(1.0, HUGE_VAL)}) {
+    EXPECT_THROW(factory->create(bad), std::invalid_argument);
+    EXPECT_THROW(trial.run(sdhCylinderGrasp(), dwc.workcell().defaultState(), bad),
+                 std::invalid_argument);
+  }
 }
 
 TEST(MujocoEngine, TheSdhTrialHoldsTheBoxWithTheHandTurned) {

@@ -8,6 +8,8 @@
 #include <future>
 #include <numbers>
 #include <stdexcept>
+#include <string>
+#include <string_view>
 
 #include "rw/math/rpy.hpp"
 #include "rwsim/loaders/dynamic_workcell_loader.hpp"
@@ -160,6 +162,52 @@ TEST(GraspTrialGripper, BadSetupAndParametersAreRejected) {
   EXPECT_THROW(trial.run(g, dwc->workcell().defaultState()), std::invalid_argument);
 }
 
+rwsim::trial::PhysicsVariation variation(double frictionScale, double objectMassScale) {
+  rwsim::trial::PhysicsVariation v;
+  v.frictionScale = frictionScale;
+  v.objectMassScale = objectMassScale;
+  return v;
+}
+
+TEST(GraspTrialGripper, LessFrictionOrAHeavierBoxLetsTheCentredGraspGo) {
+  // Two jaws of 20 N: 2 * 0.6 * 20 N = 24 N of friction against the box's 1.96 N weight. A
+  // twentieth of the friction (1.2 N) or twenty times the mass (39 N) cannot be held.
+  const auto dwc = gripperScene();
+  const GraspTrial trial(*dwc, gripperSetup());
+  const auto g = gripperGrasp(at(0, 0, 0.06));
+  const auto& state = dwc->workcell().defaultState();
+  for (const auto& v : {variation(0.05, 1.0), variation(1.0, 20.0)}) {
+    const auto r = trial.run(g, state, v);
+    EXPECT_TRUE(r.outcome == GraspOutcome::kDropped || r.outcome == GraspOutcome::kSlipped)
+        << v.frictionScale << " / " << v.objectMassScale << ": " << describe(r);
+  }
+  // A little less friction still holds, and the contacts report the friction simulated.
+  const auto r = trial.run(g, state, variation(0.9, 1.5));
+  EXPECT_EQ(r.outcome, GraspOutcome::kStable) << describe(r);
+  ASSERT_FALSE(r.contacts.empty());
+  for (const auto& c : r.contacts) {
+    EXPECT_EQ(c.mu, 0.6 * 0.9);
+    EXPECT_LE((c.force - c.normalForce * c.normal).norm(), c.mu * c.normalForce * (1 + 1e-6));
+  }
+}
+
+TEST(GraspTrialGripper, InvalidVariationsAreRejectedBeforeAnythingRuns) {
+  const auto dwc = gripperScene();
+  const GraspTrial trial(*dwc, gripperSetup());
+  const auto& state = dwc->workcell().defaultState();
+  // Even a grasp that never reaches the engine (in collision) checks its variation.
+  for (const auto& g : {gripperGrasp(at(0, 0, 0.06)), gripperGrasp(at(0, 0.045, 0.06))}) {
+    try {
+      trial.run(g, state, variation(0.0, 1.0));
+      ADD_FAILURE() << "a friction scale of 0 was accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("frictionScale"), std::string::npos) << e.what();
+    }
+    EXPECT_THROW(trial.run(g, state, variation(1.0, std::nan(""))), std::invalid_argument);
+    EXPECT_THROW(trial.run(g, state, variation(1.0, -3.0), nullptr), std::invalid_argument);
+  }
+}
+
 // --- The project's SDH on a box ---------------------------------------------------------------
 
 class SdhBoxTrial : public ::testing::Test {
@@ -270,6 +318,45 @@ void expectSame(const GraspTrialResult& a, const GraspTrialResult& b) {
     EXPECT_EQ(a.contacts[i].position, b.contacts[i].position);
     EXPECT_EQ(a.contacts[i].normalForce, b.contacts[i].normalForce);
     EXPECT_EQ(a.contacts[i].force, b.contacts[i].force);
+  }
+}
+
+void expectBitEqual(const GraspTrialResult& a, const GraspTrialResult& b) {
+  expectSame(a, b);
+  EXPECT_EQ(a.object, b.object);
+  EXPECT_EQ(a.handLift, b.handLift);
+  EXPECT_EQ(a.closingCapped, b.closingCapped);
+  EXPECT_EQ(a.detail, b.detail);
+  ASSERT_EQ(a.contacts.size(), b.contacts.size());
+  for (std::size_t i = 0; i < a.contacts.size(); ++i) {
+    EXPECT_EQ(a.contacts[i].normal, b.contacts[i].normal);
+    EXPECT_EQ(a.contacts[i].mu, b.contacts[i].mu);
+    EXPECT_EQ(a.contacts[i].handBody, b.contacts[i].handBody);
+  }
+}
+
+TEST_F(SdhBoxTrial, TheIdentityVariationGivesTheResultWithoutOneBitForBit) {
+  // The benchmark's byte-for-byte regression runs through run(grasp, initial); a trial of a
+  // robust verdict with the identity variation must be that trial exactly (held, slipped and
+  // in-collision grasps; the observer overloads too).
+  const GraspTrial t = trial();
+  const auto& state = dwc_->workcell().defaultState();
+  int observed = 0;
+  const rwsim::trial::Observer count = [&](const rwsim::trial::PhysicsEngine&, std::string_view) {
+    ++observed;
+  };
+  for (const Vector3D& p :
+       {Vector3D(0.005, 0.003, 0.05), Vector3D(0.012, -0.01, 0.06), Vector3D(0, 0, -0.05)}) {
+    const auto g = cylinderGrasp(p);
+    const auto plain = t.run(g, state);
+    const auto identity = t.run(g, state, rwsim::trial::PhysicsVariation{});
+    expectBitEqual(identity, plain);
+    observed = 0;
+    expectBitEqual(t.run(g, state, rwsim::trial::PhysicsVariation{}, count), plain);
+    const int steps = observed;
+    observed = 0;
+    expectBitEqual(t.run(g, state, count), plain);
+    EXPECT_EQ(observed, steps);
   }
 }
 

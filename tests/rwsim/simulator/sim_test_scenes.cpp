@@ -1,5 +1,6 @@
 #include "sim_test_scenes.hpp"
 
+#include <cmath>
 #include <functional>
 #include <numbers>
 #include <vector>
@@ -220,6 +221,25 @@ std::unique_ptr<DynamicWorkCell> SceneBuilder::build(double gravity) {
   dwc->setGravity(Vector3D(0, 0, -gravity));
   for (const auto& step : pending_->steps) step(*dwc);
   return dwc;
+}
+
+std::unique_ptr<DynamicWorkCell> boxUnderTiltedGravity(double angle, double mu) {
+  SceneBuilder scene("tilted", mu);
+  scene.addTable("Table", rw::math::makeTranslation(Vector3D(0, 0, -0.05)), Vector3D(2, 1, 0.1));
+  scene.addBox("Block", rw::math::makeTranslation(Vector3D(-0.5, 0, 0.025)),
+               Vector3D(0.1, 0.1, 0.05), 0.5);
+  auto dwc = scene.build();
+  dwc->setGravity(kG * Vector3D(std::sin(angle), 0, -std::cos(angle)));
+  return dwc;
+}
+
+std::unique_ptr<DynamicWorkCell> weighingScene(double boxMass, double jawForce) {
+  SceneBuilder scene("weighing");
+  scene.addTable("Table", rw::math::makeTranslation(Vector3D(0, 0, -0.05)), Vector3D(1, 1, 0.1));
+  scene.addBox("Box", rw::math::makeTranslation(Vector3D(0, 0, 0.05)), Vector3D(0.1, 0.1, 0.1),
+               boxMass);
+  scene.addGripper(rw::math::makeTranslation(Vector3D(0.5, 0, 0.5)), 0.05, jawForce);
+  return scene.build();
 }
 
 }  // namespace visgrab::test::sim

@@ -58,4 +58,17 @@ class SceneBuilder {
 /// Inertia of a solid box about its centre.
 Eigen::Matrix3d boxInertia(double mass, const rw::math::Vector3D& size);
 
+/// A slope without a tilted table: a box "Block" (0.1 x 0.1 x 0.05 m, 0.5 kg) resting at
+/// x = -0.5 on a level table "Table" (2 x 1 m, top at z = 0, mu Object-Table `mu`) under
+/// gravity kG turned by `angle` about world +y, so that downhill is world +x. Every engine then
+/// meets a face-up table (MuJoCo's export uses its top plane; see mjcf_export.hpp).
+std::unique_ptr<rwsim::dynamics::DynamicWorkCell> boxUnderTiltedGravity(double angle, double mu);
+
+/// Weighing scene: a box "Box" (0.1 m cube, `boxMass`, a rigid body of no device) resting on a
+/// table "Table" (top at z = 0), and, clear of both, the two-jaw gripper (addGripper: jaws of
+/// 0.1 kg, gap 0.05) at (0.5, 0, 0.5) with force limit `jawForce`: driven at their limit the
+/// jaws accelerate at a rate set by their mass. (No other fixed box: MuJoCo's export gives a
+/// fixed face-up box an unbounded top plane.)
+std::unique_ptr<rwsim::dynamics::DynamicWorkCell> weighingScene(double boxMass, double jawForce);
+
 }  // namespace visgrab::test::sim

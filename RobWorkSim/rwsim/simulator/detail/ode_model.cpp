@@ -8,6 +8,7 @@
 #include <string>
 
 #include "rw/kinematics/frame_tree.hpp"
+#include "rwsim/trial/physics_variation.hpp"
 
 namespace rwsim::simulator::detail {
 
@@ -262,7 +263,7 @@ Transform3D odePose(dBodyID body) {
 }
 
 OdeWorld::OdeWorld(const dynamics::DynamicWorkCell& dwc, const rw::kinematics::State& state,
-                   const SimulatorOptions& options) {
+                   const SimulatorOptions& options, double objectMassScale) {
   world_ = dWorldCreate();
   // ODE's default threading implementation is one global object; worlds stepped in parallel
   // threads must each have their own, or their islands get mixed up.
@@ -278,7 +279,7 @@ OdeWorld::OdeWorld(const dynamics::DynamicWorkCell& dwc, const rw::kinematics::S
   dWorldSetContactMaxCorrectingVel(world_, options.maxCorrectingVelocity);
   dWorldSetAutoDisableFlag(world_, 0);
   try {
-    createBodies(dwc, state);
+    createBodies(dwc, state, objectMassScale);
     createDevices(dwc, state);
     createConstraints(dwc, state);
   } catch (...) {
@@ -298,7 +299,7 @@ void OdeWorld::destroy() {
 }
 
 void OdeWorld::createBodies(const dynamics::DynamicWorkCell& dwc,
-                            const rw::kinematics::State& state) {
+                            const rw::kinematics::State& state, double objectMassScale) {
   const auto& tree = dwc.workcell().frames();
   const rw::kinematics::FKTable fk(tree, state);
   bodies_.resize(dwc.bodies().size());
@@ -318,10 +319,15 @@ void OdeWorld::createBodies(const dynamics::DynamicWorkCell& dwc,
     if (body.kind == dynamics::BodyKind::kRigid) {
       checkMass(body);
       sim.cog = body.mass.cog;
-      const Eigen::Matrix3d& I = body.mass.inertia;
+      double mass = body.mass.mass;
+      Eigen::Matrix3d I = body.mass.inertia;
+      // Only a real scale touches the values: the identity gives ODE the dwc's bit for bit.
+      if (objectMassScale != 1.0 && trial::isVariedObject(body)) {
+        mass *= objectMassScale;
+        I *= objectMassScale;
+      }
       dMass m;
-      dMassSetParameters(&m, body.mass.mass, 0, 0, 0, I(0, 0), I(1, 1), I(2, 2), I(0, 1), I(0, 2),
-                         I(1, 2));
+      dMassSetParameters(&m, mass, 0, 0, 0, I(0, 0), I(1, 1), I(2, 2), I(0, 1), I(0, 2), I(1, 2));
       dBodySetMass(sim.id, &m);
       setDamping(sim.id, body);
     } else {

@@ -112,12 +112,13 @@ struct SimConstraint {
 /// Owns the ODE objects; not copyable.
 class OdeWorld {
  public:
-  /// Builds the world with bodies where `state` puts them, at rest.
+  /// Builds the world with bodies where `state` puts them, at rest; each object's
+  /// (trial::isVariedObject()) mass and inertia times `objectMassScale` (1: the dwc's values).
   /// @throws std::invalid_argument for bodies or devices ODE cannot simulate (mass <= 0,
   /// inertia not positive definite, a joint link that is not a rigid body, a constraint with a
   /// spring, ...).
   OdeWorld(const dynamics::DynamicWorkCell& dwc, const rw::kinematics::State& state,
-           const SimulatorOptions& options);
+           const SimulatorOptions& options, double objectMassScale);
   ~OdeWorld();
   OdeWorld(const OdeWorld&) = delete;
   OdeWorld& operator=(const OdeWorld&) = delete;
@@ -162,7 +163,8 @@ class OdeWorld {
   std::size_t constraintRows(const SimJoint& joint) const;
 
  private:
-  void createBodies(const dynamics::DynamicWorkCell& dwc, const rw::kinematics::State& state);
+  void createBodies(const dynamics::DynamicWorkCell& dwc, const rw::kinematics::State& state,
+                    double objectMassScale);
   void createDevices(const dynamics::DynamicWorkCell& dwc, const rw::kinematics::State& state);
   void createConstraints(const dynamics::DynamicWorkCell& dwc, const rw::kinematics::State& state);
   void destroy();

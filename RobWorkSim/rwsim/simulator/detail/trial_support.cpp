@@ -50,8 +50,8 @@ std::vector<TrialContact> objectContacts(const dynamics::DynamicWorkCell& dwc,
                                          const std::vector<SolvedBodyContact>& contacts,
                                          const std::vector<bool>& isHandBody,
                                          dynamics::BodyId object,
-                                         const rw::math::Transform3D& X_W_object,
-                                         double threshold) {
+                                         const rw::math::Transform3D& X_W_object, double threshold,
+                                         double frictionScale) {
   std::vector<TrialContact> out;
   const rw::math::Transform3D X_object_W = X_W_object.inverse();
   for (const auto& bc : contacts) {
@@ -59,7 +59,8 @@ std::vector<TrialContact> objectContacts(const dynamics::DynamicWorkCell& dwc,
     if (!(objectIsB || bc.bodyA == object)) continue;
     const dynamics::BodyId other = objectIsB ? bc.bodyA : bc.bodyB;
     if (!isHand(isHandBody, other)) continue;
-    const double mu = dwc.materials().mu(dwc.body(object).material, dwc.body(other).material);
+    double mu = dwc.materials().mu(dwc.body(object).material, dwc.body(other).material);
+    if (frictionScale != 1.0) mu *= frictionScale;  // the identity keeps the dwc's mu exactly
     for (const auto& p : bc.points) {
       const Load load = loadOn(p, objectIsB);
       if (load.normalForce <= threshold) continue;

@@ -16,12 +16,14 @@ std::vector<int> handContactCounts(const std::vector<SolvedBodyContact>& contact
                                    const std::vector<bool>& isHandBody, double threshold);
 
 /// The loaded contacts between the hand and `object`, in the object's frame (X_W_object is the
-/// object's pose), normals pointing into the object, mu from the pair's materials.
+/// object's pose), normals pointing into the object, mu from the pair's materials times
+/// `frictionScale` (the trial's PhysicsVariation).
 std::vector<TrialContact> objectContacts(const dynamics::DynamicWorkCell& dwc,
                                          const std::vector<SolvedBodyContact>& contacts,
                                          const std::vector<bool>& isHandBody,
                                          dynamics::BodyId object,
-                                         const rw::math::Transform3D& X_W_object, double threshold);
+                                         const rw::math::Transform3D& X_W_object, double threshold,
+                                         double frictionScale);
 
 /// Largest distance from a body's centre of mass to a vertex of its collision geometry, m
 /// (0 without geometry).
