@@ -301,6 +301,25 @@ int integerOption(const Arguments& a, const std::string& name, int def, int lo) 
                    "\"");
 }
 
+double parseNumber(const std::string& option, const std::string& text) {
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(v)) {
+    throw UsageError("--" + option + ": '" + text + "' is not a number");
+  }
+  return v;
+}
+
+double fractionOption(const Arguments& a, const std::string& name, double def) {
+  const auto text = a.option(name);
+  if (!text) return def;
+  const double v = parseNumber(name, *text);
+  if (!(v > 0.0 && v < 1.0)) {
+    throw UsageError("--" + name + " needs a number between 0 and 1 (exclusive), got " + *text);
+  }
+  return v;
+}
+
 int threadsOption(const Arguments& a) {
   const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
   return integerOption(a, "threads", static_cast<int>(cores), 1);

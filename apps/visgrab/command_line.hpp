@@ -133,6 +133,14 @@ CLI::Validator positiveNumber();
 /// @throws UsageError naming the option for anything else.
 int integerOption(const Arguments& a, const std::string& name, int def, int lo);
 
+/// `text`, the value of option `option`, as a finite number.
+/// @throws UsageError naming the option for anything else.
+double parseNumber(const std::string& option, const std::string& text);
+
+/// The value of option `name` as a number strictly between 0 and 1, or `def` when not given.
+/// @throws UsageError naming the option for anything else.
+double fractionOption(const Arguments& a, const std::string& name, double def);
+
 /// --threads N (default: the number of cores).
 int threadsOption(const Arguments& a);
 

@@ -1,6 +1,7 @@
 #include "run_commands.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -13,6 +14,7 @@
 #include "baseline_commands.hpp"
 #include "cli_common/data_folder.hpp"
 #include "progress_reporter.hpp"
+#include "repeat_options.hpp"
 #include "rw/common/diagnostic.hpp"
 #include "rw/common/stop_signals.hpp"
 #include "stage_times.hpp"
@@ -81,6 +83,11 @@ int runRun(const Arguments& a) {
   options.scenes = scenesFilter(a);
   options.threads = threadsOption(a);
   options.resume = a.flag("resume");
+  readRepeatOptions(a, options);
+  if (const auto dt = a.option("dt")) {
+    options.timeStep = parseNumber("dt", *dt);
+    if (!(*options.timeStep > 0.0)) throw UsageError("--dt must be > 0, got " + *dt);
+  }
   const auto shard = a.option("shard");
   const auto of = a.option("of");
   if (shard.has_value() != of.has_value()) {
@@ -99,6 +106,10 @@ int runRun(const Arguments& a) {
   if (!done) return rw::common::stopExitCode(rw::common::stopSignal());
   const runner::RunSummary& summary = *done;
   for (const auto& d : summary.rejected) std::cerr << d.format() << "\n";
+  if (options.repeats > 1) {
+    std::cout << "grasps.csv: P(success) per grasp over " << options.repeats << " repeats"
+              << (options.adaptive ? " (adaptive)" : "") << "\n";
+  }
   std::cout << summary.trials << " trials run, " << summary.resumed << " resumed, "
             << summary.rejected.size() << " grasps rejected; " << summary.scenes << " scenes, "
             << summary.methods << " methods\n";
@@ -286,6 +297,11 @@ void addRunCommands(CommandLine& cli) {
   run.add_option("--of", "The number of shards the work is cut into (with --shard)")
       ->type_name("N")
       ->check(integerAtLeast(1));
+  addRepeatOptions(run);
+  run.add_option("--dt",
+                 "ODE's time step in s for every scene instead of the scene's own (default: the "
+                 "scenes' engine properties, 0.005); recorded in run.csv's engine settings")
+      ->type_name("SECONDS");
   addDataOption(run);
   addQuietFlag(run);
 

@@ -59,15 +59,6 @@ std::unique_ptr<DynamicWorkCell> load(const std::string& file) {
   }
 }
 
-double parseNumber(const std::string& option, const std::string& text) {
-  char* end = nullptr;
-  const double v = std::strtod(text.c_str(), &end);
-  if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(v)) {
-    throw UsageError("--" + option + ": '" + text + "' is not a number");
-  }
-  return v;
-}
-
 double positiveOption(const Arguments& a, const std::string& name, std::optional<double> def) {
   const auto text = a.option(name);
   if (!text) {

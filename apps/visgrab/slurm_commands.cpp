@@ -1,5 +1,7 @@
 #include "slurm_commands.hpp"
 
+#include "repeat_options.hpp"
+
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -13,6 +15,7 @@
 #include <string>
 
 #include "cli_common/data_folder.hpp"
+#include "repeat_options.hpp"
 #include "visgrab/database/atomic_file.hpp"
 
 namespace visgrab::app {
@@ -118,6 +121,7 @@ std::string trialsScript(const SlurmPlan& plan) {
   s += "exec " + quoted(plan.visgrab) + " run --db " + quoted(plan.database) +
        R"( --grasps "$grasps" --hand "$hand")";
   if (!plan.scenes.empty()) s += " --scenes " + quoted(plan.scenes);
+  for (const std::string& word : plan.runArguments) s += " " + quoted(word);
   s += " \\\n  --shard \"$shard\" --of \"$shards\" --threads " + std::to_string(plan.cpusPerTask) +
        " --resume --quiet \\\n  --out " + quoted(plan.out / "shards") +
        "/\"$name\"/shard-\"$shard\"\n";
@@ -248,6 +252,7 @@ int runSlurm(const Arguments& a) {
   if (plan.hands.empty())
     plan.hands.push_back(abs((dataFolder(a) / "hands/sdh/sdh.grasp.xml").string()));
   plan.scenes = scenesFilter(a);
+  plan.runArguments = repeatArguments(a);
   plan.shards = integerOption(a, "shards", 1, 1);
   plan.cpusPerTask = integerOption(a, "cpus-per-task", 1, 1);
   plan.out = abs(a.option("out").value());
@@ -382,6 +387,7 @@ void addSlurmCommands(CommandLine& cli) {
       ->type_name("FILE")
       ->default_str("sbatch");
   addScenesOption(slurm);
+  addRepeatOptions(slurm);
   addDataOption(slurm);
 }
 

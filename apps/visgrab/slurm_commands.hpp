@@ -32,6 +32,8 @@ struct SlurmPlan {
   bool analyze = true;
   /// See analyze.
   bool pictures = true;
+  /// `visgrab run`'s repeat options, passed on to every shard (repeatArguments; empty: none).
+  std::vector<std::string> runArguments;
 };
 
 /// A run of the sweep: its name (its folder under shards/ and results/), grasp set and hand.

@@ -53,15 +53,19 @@ struct Format {
   bool legacy = false;
 };
 
-// The current column line, from the per-trial record's table.
-const std::string& trialsColumns() {
-  static const std::string line = trialColumnLine();
-  return line;
+// The current column line, from the per-trial record's table (with the repeat columns of a run
+// with repeats when `repeated`).
+const std::string& trialsColumns(bool repeated = false) {
+  static const std::string line = trialColumnLine(false);
+  static const std::string repeatedLine = trialColumnLine(true);
+  return repeated ? repeatedLine : line;
 }
 
-const std::array<Format, 4>& trialsFormats() {
-  static const std::array<Format, 4> formats = {{
+// The current version with repeats is second: the first is what errors name as expected.
+const std::array<Format, 5>& trialsFormats() {
+  static const std::array<Format, 5> formats = {{
       {kTrialsFormatVersion, trialsColumns(), false},
+      {kTrialsFormatVersion, trialsColumns(true), false},
       {3, kTrialsColumnsVersion3, false},
       {2, kTrialsColumnsVersion3, true},
       {1, kTrialsColumnsVersion1, true},
@@ -272,11 +276,12 @@ std::string readWholeFile(const fs::path& path) {
 
 }  // namespace
 
-std::string trialsHeader() { return trialsColumns() + "\n"; }
+std::string trialsHeader(bool repeated) { return trialsColumns(repeated) + "\n"; }
 
-std::string formatTrialLine(const TrialRecord& t) {
+std::string formatTrialLine(const TrialRecord& t, bool repeated) {
   std::string line;
   for (const TrialColumn& column : trialColumns()) {
+    if (column.repeatedOnly && !repeated) continue;
     if (!line.empty()) line += ',';
     line += column.format(t);
   }
@@ -316,6 +321,13 @@ std::string formatRunFile(const RunResults& run) {
   if (!run.sources.engineSettings.empty()) {
     text += "engine_settings," + csvField(run.sources.engineSettings) + ",,,,,,\n";
   }
+  if (run.repeats.repeated()) {
+    text += "repeats," + std::to_string(run.repeats.count) + ",,,,,,\n";
+    text += "noise," + csvField(run.repeats.noise) + ",,,,,,\n";
+    if (!run.repeats.adaptive.empty()) {
+      text += "adaptive," + csvField(run.repeats.adaptive) + ",,,,,,\n";
+    }
+  }
   return text;
 }
 
@@ -329,12 +341,16 @@ TrialsFile parseTrials(std::string_view text, const std::string& file) {
   // the file is empty: nothing to read; the writer starts the file afresh.
   if (!body.format) return out;
   out.version = body.format->version;
-  const std::span<const TrialColumn> columns = trialColumns();
+  out.repeated = body.format->columns == trialsColumns(true);
+  std::vector<const TrialColumn*> columns;
+  for (const TrialColumn& c : trialColumns()) {
+    if (!c.repeatedOnly || out.repeated) columns.push_back(&c);
+  }
   // Older versions lack columns: q_gws_unit (version 1) and closing_capped (before 4).
   const std::size_t missing = (out.version < 4 ? 1 : 0) + (out.version == 1 ? 1 : 0);
   const std::size_t fieldCount = columns.size() - missing;
   const std::string_view columnLine = body.format->columns;
-  std::map<std::tuple<std::string, std::string, std::string>, int> seen;
+  std::map<std::tuple<std::string, std::string, std::string, int>, int> seen;
   for (CsvRecord& record : body.records) {
     const int lineNo = record.line;
     if (record.blank) fail(file, lineNo, "empty line (expected a trial)");
@@ -352,7 +368,7 @@ TrialsFile parseTrials(std::string_view text, const std::string& file) {
     TrialRecord t;
     for (std::size_t i = 0; i < columns.size(); ++i) {
       try {
-        columns[i].parse(f[i], t);
+        columns[i]->parse(f[i], t);
       } catch (const std::invalid_argument& e) {
         fail(file, lineNo, e.what());
       }
@@ -363,10 +379,11 @@ TrialsFile parseTrials(std::string_view text, const std::string& file) {
       t.qGws = std::numeric_limits<double>::quiet_NaN();
     }
     const auto [it, inserted] =
-        seen.emplace(std::make_tuple(t.sceneId, t.method, t.graspId), lineNo);
+        seen.emplace(std::make_tuple(t.sceneId, t.method, t.graspId, t.repeat), lineNo);
     if (!inserted) {
       fail(file, lineNo,
            "trial (" + t.sceneId + ", " + t.method + ", " + t.graspId +
+               (out.repeated ? ", repeat " + std::to_string(t.repeat) : std::string()) +
                ") is given twice (first at line " + std::to_string(it->second) + ")");
     }
     out.trials.push_back(std::move(t));
@@ -386,6 +403,7 @@ RunResults parseRunFile(std::string_view text, const std::string& file) {
   }
   std::map<std::string, int> seenScenes;
   std::map<std::string, int> seenMethods;
+  int repeatDetailLine = 0;
   for (CsvRecord& record : body.records) {
     const int lineNo = record.line;
     if (record.blank) fail(file, lineNo, "empty line (expected a record)");
@@ -438,12 +456,30 @@ RunResults parseRunFile(std::string_view text, const std::string& file) {
       run.sources.engine = f[1];
     } else if (f[0] == "engine_settings") {
       run.sources.engineSettings = f[1];
+    } else if (f[0] == "repeats") {
+      try {
+        run.repeats.count = parseInt(f[1]);
+      } catch (const std::invalid_argument& e) {
+        fail(file, lineNo, e.what());
+      }
+      if (run.repeats.count < 2) {
+        fail(file, lineNo, "repeats " + f[1] + " (a repeats record holds 2 or more)");
+      }
+    } else if (f[0] == "noise") {
+      run.repeats.noise = f[1];
+      repeatDetailLine = lineNo;
+    } else if (f[0] == "adaptive") {
+      run.repeats.adaptive = f[1];
+      repeatDetailLine = lineNo;
     } else {
       fail(file, lineNo,
            "unknown record '" + f[0] +
                "' (expected scene, method, rejected, database, database_hash, grasps, hand, "
-               "engine or engine_settings)");
+               "engine, engine_settings, repeats, noise or adaptive)");
     }
+  }
+  if (!run.repeats.repeated() && (!run.repeats.noise.empty() || !run.repeats.adaptive.empty())) {
+    fail(file, repeatDetailLine, "a noise or adaptive record without a repeats record");
   }
   return run;
 }
@@ -479,7 +515,8 @@ void sortTrials(std::vector<TrialRecord>& trials, const std::vector<RunScene>& s
       return pa != pb ? pa < pb : a.method < b.method;
     }
     if (a.rank != b.rank) return a.rank < b.rank;
-    return a.graspId < b.graspId;
+    if (a.graspId != b.graspId) return a.graspId < b.graspId;
+    return a.repeat < b.repeat;
   });
 }
 
@@ -492,6 +529,18 @@ RunResults readResults(const fs::path& dir, std::vector<Diagnostic>* warnings) {
   if (!fs::exists(trialsPath)) fail(trialsPath.string(), 0, "no trials file in the result folder");
   const std::string text = readWholeFile(trialsPath);
   TrialsFile trials = parseTrials(text, trialsPath.string());
+  if (haveRun && trials.repeated != run.repeats.repeated()) {
+    fail(trialsPath.string(), 1,
+         trials.repeated
+             ? "trials with repeat columns, but " + runPath.string() + " records no repeats"
+             : "trials without repeat columns, but " + runPath.string() + " records " +
+                   std::to_string(run.repeats.count) + " repeats");
+  }
+  if (!haveRun) {
+    for (const TrialRecord& t : trials.trials) {
+      run.repeats.count = std::max(run.repeats.count, t.repeat + 1);
+    }
+  }
   if (trials.tornLastLine && warnings) {
     Diagnostic d;
     d.severity = Diagnostic::Severity::kWarning;
@@ -541,8 +590,9 @@ RunResults readResults(const fs::path& dir, std::vector<Diagnostic>* warnings) {
 void writeResults(const fs::path& dir, const RunResults& run) {
   std::vector<TrialRecord> trials = run.trials;
   sortTrials(trials, run.scenes, run.methods);
-  std::string text = trialsHeader();
-  for (const TrialRecord& t : trials) text += formatTrialLine(t);
+  const bool repeated = run.repeats.repeated();
+  std::string text = trialsHeader(repeated);
+  for (const TrialRecord& t : trials) text += formatTrialLine(t, repeated);
   database::writeFileAtomically(dir / kRunFileName, formatRunFile(run));
   database::writeFileAtomically(dir / kTrialsFileName, text);
 }

@@ -17,7 +17,8 @@
 ///  - `trials.csv` (version 4): the column line `scene,method,grasp,rank,outcome,robwork_code,
 ///    q_lift,q_gws,q_gws_unit,object,simulated_time,closing_capped,detail` (one line; the columns
 ///    are trial_columns.hpp's table), then one record per finished trial (detail always quoted;
-///    an empty q_gws or q_gws_unit is "not computed", NaN; closing_capped is 0 or 1).
+///    an empty q_gws or q_gws_unit is "not computed", NaN; closing_capped is 0 or 1). A run with
+///    repeats (`--repeats N`, N > 1) writes `repeat,seed` after `rank`.
 ///  - `run.csv` (version 2): the column line `record,id,texture,kind,arrangement,objects,pose,
 ///    count`, then one `scene` record per scene (conditions empty when unknown; objects separated
 ///    by spaces), one `method` record per method, one `rejected` record (count in the last
@@ -46,11 +47,12 @@ inline constexpr int kTrialsFormatVersion = 4;
 /// first, backslash escapes).
 inline constexpr int kRunFormatVersion = 2;
 
-/// The column line of trials.csv (ending in '\n'): what an empty result folder's file holds.
-std::string trialsHeader();
+/// The column line of trials.csv (ending in '\n'): what an empty result folder's file holds;
+/// with the repeat and seed columns when `repeated` (a run with repeats).
+std::string trialsHeader(bool repeated = false);
 /// The record of trials.csv for `trial`, ending in '\n' (it spans lines when a field holds a
-/// line break).
-std::string formatTrialLine(const TrialRecord& trial);
+/// line break); with its repeat and seed when `repeated`.
+std::string formatTrialLine(const TrialRecord& trial, bool repeated = false);
 /// The whole run.csv for `run`'s scenes, methods and rejected counts (its trials are ignored).
 std::string formatRunFile(const RunResults& run);
 
@@ -71,13 +73,16 @@ struct TrialsFile {
   std::size_t completeBytes = 0;
   /// Format version of the file (kTrialsFormatVersion, 3, 2 or 1; see above).
   int version = kTrialsFormatVersion;
+  /// The file has the repeat and seed columns (version 4 of a run with repeats).
+  bool repeated = false;
 };
 
 /// Reads trials.csv text of version 4, 3, 2 or 1; `file` names it in errors. A last record without
 /// its line break is torn (see TrialsFile) and dropped, whatever it holds. @throws
 /// rw::common::LoadError with `file:line` (the line where the record starts; the message gives
 /// the column) for a wrong column line or version, a malformed record, an unknown outcome, a
-/// RobWork code that does not match the outcome, or a trial (scene, method, grasp) given twice.
+/// RobWork code that does not match the outcome, or a trial (scene, method, grasp, repeat) given
+/// twice.
 TrialsFile parseTrials(std::string_view text, const std::string& file);
 
 /// Reads run.csv text of version 2 or 1 (scenes, methods, rejected, inputs; no trials).
@@ -86,7 +91,8 @@ TrialsFile parseTrials(std::string_view text, const std::string& file);
 RunResults parseRunFile(std::string_view text, const std::string& file);
 
 /// Puts trials in the canonical order: scene (position in `scenes`, unlisted scenes after them
-/// by id), method (position in `methods`, unlisted after them by name), rank, grasp id.
+/// by id), method (position in `methods`, unlisted after them by name), rank, grasp id,
+/// repeat.
 void sortTrials(std::vector<TrialRecord>& trials, const std::vector<RunScene>& scenes,
                 const std::vector<std::string>& methods);
 
@@ -98,8 +104,9 @@ void sortTrials(std::vector<TrialRecord>& trials, const std::vector<RunScene>& s
 RunResults readResults(const std::filesystem::path& dir,
                        std::vector<rw::common::Diagnostic>* warnings = nullptr);
 
-/// Writes `run` as a result folder (run.csv and trials.csv in canonical order), each file
-/// atomically. @throws std::runtime_error if a file cannot be written.
+/// Writes `run` as a result folder (run.csv and trials.csv in canonical order, with the repeat
+/// columns when run.repeats.repeated()), each file atomically. @throws std::runtime_error if a file
+/// cannot be written.
 void writeResults(const std::filesystem::path& dir, const RunResults& run);
 
 }  // namespace visgrab::results

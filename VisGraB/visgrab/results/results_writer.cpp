@@ -51,16 +51,23 @@ ResultsWriter::ResultsWriter(fs::path dir, Options options)
     droppedTorn_ = file.tornLastLine;
     keep = file.completeBytes;
     resumed_ = file.trials.size();
+    if (file.repeated != options_.repeated && !file.trials.empty()) {
+      throw std::runtime_error(trialsPath.string() + " holds trials of a run " +
+                               (file.repeated ? "with" : "without") + " repeats; this run is " +
+                               (options_.repeated ? "" : "not ") +
+                               "repeated: choose another folder");
+    }
+    if (file.repeated != options_.repeated) keep = 0;  // only a column line: write the right one
     if (file.version != kTrialsFormatVersion && file.completeBytes > 0) {
       // An older format: rewrite it in the current one before appending (its trials keep what
       // they had; see parseTrials), so the file never mixes formats.
-      std::string text = trialsHeader();
-      for (const TrialRecord& t : file.trials) text += formatTrialLine(t);
+      std::string text = trialsHeader(options_.repeated);
+      for (const TrialRecord& t : file.trials) text += formatTrialLine(t, options_.repeated);
       database::writeFileAtomically(trialsPath, text);
       keep = text.size();
     }
     for (TrialRecord& t : file.trials) {
-      keys_.emplace(t.sceneId, t.method, t.graspId);
+      keys_.emplace(Key(t.sceneId, t.method, t.graspId, t.repeat), t.outcome);
       trials_.push_back(std::move(t));
     }
   }
@@ -76,7 +83,7 @@ ResultsWriter::ResultsWriter(fs::path dir, Options options)
     throw rw::common::WriteError(trialsPath, std::error_code(why, std::generic_category()));
   }
   size_ = keep;
-  if (keep == 0) writeAll(trialsHeader());
+  if (keep == 0) writeAll(trialsHeader(options_.repeated));
 }
 
 ResultsWriter::~ResultsWriter() {
@@ -84,9 +91,19 @@ ResultsWriter::~ResultsWriter() {
 }
 
 bool ResultsWriter::contains(std::string_view scene, std::string_view method,
-                             std::string_view graspId) const {
+                             std::string_view graspId, int repeat) const {
   std::lock_guard lock(mutex_);
-  return keys_.find(std::make_tuple(scene, method, graspId)) != keys_.end();
+  return keys_.find(std::make_tuple(scene, method, graspId, repeat)) != keys_.end();
+}
+
+std::optional<rwsim::trial::GraspOutcome> ResultsWriter::outcomeOf(std::string_view scene,
+                                                                   std::string_view method,
+                                                                   std::string_view graspId,
+                                                                   int repeat) const {
+  std::lock_guard lock(mutex_);
+  const auto it = keys_.find(std::make_tuple(scene, method, graspId, repeat));
+  if (it == keys_.end()) return std::nullopt;
+  return it->second;
 }
 
 std::vector<TrialRecord> ResultsWriter::trials() const {
@@ -126,16 +143,20 @@ void ResultsWriter::writeAll(std::string_view bytes) {
 }
 
 void ResultsWriter::append(const TrialRecord& trial) {
-  const std::string line = formatTrialLine(trial);
+  const std::string line = formatTrialLine(trial, options_.repeated);
   std::lock_guard lock(mutex_);
   if (fd_ < 0) throw std::logic_error("ResultsWriter::append after finalize()");
-  Key key(trial.sceneId, trial.method, trial.graspId);
+  if (trial.repeat != 0 && !options_.repeated) {
+    throw std::logic_error("ResultsWriter::append: a repeat in a run without repeats");
+  }
+  Key key(trial.sceneId, trial.method, trial.graspId, trial.repeat);
   if (keys_.count(key) != 0) {
     throw std::logic_error("trial (" + trial.sceneId + ", " + trial.method + ", " + trial.graspId +
+                           ", repeat " + std::to_string(trial.repeat) +
                            ") is already in the results");
   }
   writeAll(line);
-  keys_.insert(std::move(key));
+  keys_.emplace(std::move(key), trial.outcome);
   trials_.push_back(trial);
 }
 
@@ -152,8 +173,8 @@ void ResultsWriter::finalize() {
   if (fd_ < 0) return;
   std::vector<TrialRecord> sorted = trials_;
   sortTrials(sorted, scenes_, methods_);
-  std::string text = trialsHeader();
-  for (const TrialRecord& t : sorted) text += formatTrialLine(t);
+  std::string text = trialsHeader(options_.repeated);
+  for (const TrialRecord& t : sorted) text += formatTrialLine(t, options_.repeated);
   database::writeFileAtomically(dir_ / kTrialsFileName, text);
   ::close(fd_);
   fd_ = -1;

@@ -2,8 +2,9 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <map>
 #include <mutex>
-#include <set>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <system_error>
@@ -31,10 +32,14 @@ class ResultsWriter {
   struct Options {
     /// fdatasync after every trial (survives a power cut, not only a killed process; slower).
     bool syncEachTrial = false;
+    /// The run repeats its grasps: trials.csv has the repeat and seed columns. Opening a file
+    /// holding trials of the other kind is an error.
+    bool repeated = false;
   };
 
   /// Opens (creating) `dir` and its trials.csv; reads back existing trials and run.csv.
-  /// @throws rw::common::LoadError (file:line) if an existing file is corrupt,
+  /// @throws rw::common::LoadError (file:line) if an existing file is corrupt, std::runtime_error
+  /// if it holds trials with repeats and options.repeated is false or the other way round,
   /// rw::common::WriteError if the folder or file cannot be created or written.
   explicit ResultsWriter(std::filesystem::path dir);
   /// See ResultsWriter(dir).
@@ -49,8 +54,14 @@ class ResultsWriter {
   std::size_t resumedCount() const { return resumed_; }
   /// True if the file ended in a torn record when opened (it was dropped).
   bool droppedTornLine() const { return droppedTorn_; }
-  /// True if trial (scene, method, graspId) is in the file (read back or appended).
-  bool contains(std::string_view scene, std::string_view method, std::string_view graspId) const;
+  /// True if trial (scene, method, graspId, repeat) is in the file (read back or appended).
+  bool contains(std::string_view scene, std::string_view method, std::string_view graspId,
+                int repeat = 0) const;
+  /// The outcome of trial (scene, method, graspId, repeat) if it is in the file.
+  std::optional<rwsim::trial::GraspOutcome> outcomeOf(std::string_view scene,
+                                                      std::string_view method,
+                                                      std::string_view graspId,
+                                                      int repeat = 0) const;
   /// All trials so far: read back ones first, then appended ones in append order.
   std::vector<TrialRecord> trials() const;
   /// Appends one finished trial and hands it to the OS (fdatasync too if syncEachTrial).
@@ -69,7 +80,7 @@ class ResultsWriter {
   void finalize();
 
  private:
-  using Key = std::tuple<std::string, std::string, std::string>;
+  using Key = std::tuple<std::string, std::string, std::string, int>;
   void writeAll(std::string_view bytes);
 
   std::filesystem::path dir_;
@@ -82,7 +93,7 @@ class ResultsWriter {
   std::error_code failure_;
   std::size_t resumed_ = 0;
   bool droppedTorn_ = false;
-  std::set<Key, std::less<>> keys_;
+  std::map<Key, rwsim::trial::GraspOutcome, std::less<>> keys_;
   std::vector<TrialRecord> trials_;
   std::vector<RunScene> scenes_;
   std::vector<std::string> methods_;

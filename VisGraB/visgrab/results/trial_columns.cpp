@@ -1,7 +1,10 @@
 #include "visgrab/results/trial_columns.hpp"
 
 #include <array>
+#include <cerrno>
 #include <cmath>
+#include <cstdint>
+#include <cstdlib>
 #include <limits>
 #include <stdexcept>
 
@@ -27,7 +30,7 @@ std::string nonEmpty(const std::string& field, const char* what) {
 }
 
 // Each column's three functions, as captureless lambdas (the table holds function pointers).
-constexpr std::array<TrialColumn, 13> kColumns = {{
+constexpr std::array<TrialColumn, 15> kColumns = {{
     {"scene", "scene", "The scene id.", [](const TrialRecord& t) { return csvField(t.sceneId); },
      [](const std::string& f, TrialRecord& t) { t.sceneId = nonEmpty(f, "scene id"); },
      [](const TrialRecord& t) { return TrialValue(t.sceneId); }},
@@ -45,6 +48,29 @@ constexpr std::array<TrialColumn, 13> kColumns = {{
        if (t.rank < 0) throw std::invalid_argument("negative rank " + f);
      },
      [](const TrialRecord& t) { return TrialValue(static_cast<long long>(t.rank)); }},
+    {"repeat", "repeat",
+     "Which run of the grasp: 0 unperturbed, 1..N-1 under the noise model's seeded perturbations "
+     "(columns written only by a run with --repeats N > 1).",
+     [](const TrialRecord& t) { return std::to_string(t.repeat); },
+     [](const std::string& f, TrialRecord& t) {
+       t.repeat = parseInt(f);
+       if (t.repeat < 0) throw std::invalid_argument("negative repeat " + f);
+     },
+     [](const TrialRecord& t) { return TrialValue(static_cast<long long>(t.repeat)); }, true},
+    {"seed", "seed", "The seed (63 bits) of the repeat's perturbation (0 for repeat 0).",
+     [](const TrialRecord& t) { return std::to_string(t.seed); },
+     [](const std::string& f, TrialRecord& t) {
+       const bool digits =
+           !f.empty() && f.size() <= 20 && f.find_first_not_of("0123456789") == std::string::npos;
+       if (!digits) throw std::invalid_argument("seed '" + f + "' is not an unsigned integer");
+       errno = 0;
+       const unsigned long long v = std::strtoull(f.c_str(), nullptr, 10);
+       if (errno == ERANGE || v > static_cast<unsigned long long>(INT64_MAX)) {
+         throw std::invalid_argument("seed " + f + " is out of range (63 bits)");
+       }
+       t.seed = v;
+     },
+     [](const TrialRecord& t) { return TrialValue(static_cast<long long>(t.seed)); }, true},
     {"outcome", "outcome",
      "The outcome's name (stable, slipped, dropped, missed, in_collision, invalid_contacts, "
      "simulation_failure, ...).",
@@ -120,9 +146,10 @@ constexpr std::array<TrialColumn, 13> kColumns = {{
 
 std::span<const TrialColumn> trialColumns() { return kColumns; }
 
-std::string trialColumnLine() {
+std::string trialColumnLine(bool repeated) {
   std::string line;
   for (const TrialColumn& c : kColumns) {
+    if (c.repeatedOnly && !repeated) continue;
     if (!line.empty()) line += ',';
     line += c.name;
   }

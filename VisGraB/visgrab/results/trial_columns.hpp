@@ -33,13 +33,18 @@ struct TrialColumn {
   void (*parse)(const std::string& field, TrialRecord& trial);
   /// The value as a binding returns it.
   TrialValue (*value)(const TrialRecord& trial);
+  /// Written only by a repeated run (`visgrab run --repeats N`, N > 1): repeat and seed. A run
+  /// without repeats writes the column line without them, as before repeats existed.
+  bool repeatedOnly = false;
 };
 
-/// The columns of trials.csv (the current format version), in order.
+/// The columns of trials.csv (the current format version), in order, the repeated-only ones
+/// included.
 std::span<const TrialColumn> trialColumns();
 
-/// The column line of the current version: the names joined by commas (no line break).
-std::string trialColumnLine();
+/// The column line of the current version: the names joined by commas (no line break); the
+/// repeated-only columns only when `repeated`.
+std::string trialColumnLine(bool repeated = false);
 
 /// Records what a trial measured: the simulation-dependent fields of `record` (outcome, Q_lift,
 /// Q_GWS, ..., closing_capped, detail) from `result`; `objectId` is the database id (1..18, 0 for

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -24,6 +25,12 @@ struct TrialRecord {
   /// Position of the grasp among its scene's grasps of this method, 0-based, in the order the
   /// user gave them (the analyses' "attempts").
   int rank = 0;
+  /// Which run of the grasp this is (`visgrab run --repeats N`): 0 is the unperturbed trial (the
+  /// paper's analyses use it alone), 1..N-1 ran under seeded perturbations (Part 17's noise
+  /// model). Only a repeated run writes the repeat and seed columns.
+  int repeat = 0;
+  /// The seed of the repeat's perturbation, below 2^63 (0 for repeat 0: none).
+  std::uint64_t seed = 0;
   /// Outcome (kInvalidContacts when the grasp utilities rejected the contacts).
   rwsim::trial::GraspOutcome outcome = rwsim::trial::GraspOutcome::kSimulationFailure;
   /// Paper eq. 5 (0 unless held).
@@ -79,6 +86,22 @@ struct RunSources {
   std::string engineSettings;
 };
 
+/// How a run repeated its grasps (`visgrab run --repeats N`; run.csv's repeats, noise and
+/// adaptive records, written only when count > 1).
+struct RunRepeats {
+  /// Runs per grasp: repeat 0 unperturbed, 1..count-1 perturbed (1: no repeats).
+  int count = 1;
+  /// The noise model of the perturbed repeats (runner::describe of it; empty without repeats).
+  std::string noise;
+  /// The adaptive stopping rule (runner's description of it; empty: every grasp runs all
+  /// count repeats).
+  std::string adaptive;
+  /// True when the run repeats its grasps (count > 1).
+  bool repeated() const { return count > 1; }
+  /// Same count, noise and rule.
+  bool operator==(const RunRepeats&) const = default;
+};
+
 /// Everything a run produced: the analyses' input.
 struct RunResults {
   /// The scenes the run covered, in database order.
@@ -92,6 +115,8 @@ struct RunResults {
   std::vector<std::pair<std::string, int>> rejected;
   /// The run's input files (run.csv records database, grasps, hand; empty for older files).
   RunSources sources;
+  /// How the run repeated its grasps (count 1: not repeated).
+  RunRepeats repeats;
   /// Name of the run when several are compared side by side (readResults: the folder's name);
   /// may be empty.
   std::string label;

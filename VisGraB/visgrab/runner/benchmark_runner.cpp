@@ -12,13 +12,18 @@
 #include "rw/common/stop_signals.hpp"
 #include "rw/common/task_pool.hpp"
 #include "rw/common/text_file.hpp"
+#include "rw/kinematics/frame_tree.hpp"
 #include "rwsim/simulator/grasp_trial.hpp"
 #include "visgrab/database/database.hpp"
 #include "visgrab/grasp/grasp_resolver.hpp"
 #include "visgrab/grasp/hand_grasp_setup.hpp"
+#include "visgrab/results/csv.hpp"
+#include "visgrab/results/grasp_summary.hpp"
 #include "visgrab/results/results_file.hpp"
 #include "visgrab/results/results_writer.hpp"
+#include "visgrab/results/statistics.hpp"
 #include "visgrab/results/trial_columns.hpp"
+#include "visgrab/runner/noise_model.hpp"
 #include "visgrab/runner/shard_record.hpp"
 #include "visgrab/session/grasp_order.hpp"
 #include "visgrab/session/scene_loader.hpp"
@@ -51,40 +56,109 @@ int objectIdOf(const rwsim::dynamics::DynamicWorkCell& dwc, rwsim::dynamics::Bod
   return database::objectIdByName(name).value_or(0);
 }
 
+/// How the run repeats each grasp (RunOptions::repeats and the rest, checked and loaded).
+struct RepeatPlan {
+  /// Runs per grasp (1: none).
+  int count = 1;
+  /// The perturbations of repeats 1..count-1.
+  NoiseModel noise;
+  /// RunOptions::noiseSeed.
+  std::uint64_t seed = 1;
+  /// Adaptive: a grasp whose first decideAfter trials agree is decided; 0: every grasp runs all.
+  int decideAfter = 0;
+  /// What run.csv records.
+  results::RunRepeats record;
+};
+
+RepeatPlan planRepeats(const RunOptions& options) {
+  if (options.repeats < 1) {
+    throw std::invalid_argument("repeats must be at least 1, not " +
+                                std::to_string(options.repeats));
+  }
+  RepeatPlan plan;
+  plan.count = options.repeats;
+  plan.seed = options.noiseSeed;
+  if (options.repeats == 1) {
+    if (!options.noise.empty()) {
+      throw std::invalid_argument("a noise model (" + options.noise.string() +
+                                  ") needs repeats: give --repeats N with N > 1");
+    }
+    if (options.adaptive) throw std::invalid_argument("adaptive repeats need --repeats N, N > 1");
+    return plan;
+  }
+  plan.noise = options.noise.empty() ? defaultNoiseModel() : loadNoiseModel(options.noise);
+  plan.record.count = options.repeats;
+  plan.record.noise = describe(plan.noise) + "; seed " + std::to_string(options.noiseSeed);
+  if (options.adaptive) {
+    plan.decideAfter = results::repeatsToDecide(options.adaptiveAlpha, options.adaptiveMargin);
+    plan.record.adaptive = "stop after " + std::to_string(plan.decideAfter) +
+                           " agreeing trials (alpha " +
+                           results::formatDouble(options.adaptiveAlpha) + ", margin " +
+                           results::formatDouble(options.adaptiveMargin) + ")";
+  }
+  return plan;
+}
+
+/// True when the adaptive rule has decided a grasp whose first trials held as `held` says.
+bool decided(const RepeatPlan& plan, const std::vector<bool>& held) {
+  if (plan.decideAfter == 0 || static_cast<int>(held.size()) < plan.decideAfter) return false;
+  return std::all_of(held.begin(), held.end(), [&](bool h) { return h == held.front(); });
+}
+
 /// Runs one scene's pending grasps in its session; appends each trial as it finishes.
 class SceneRunner {
  public:
   SceneRunner(const SceneGraspList& work, const session::SceneLoader& loader)
-      : work_(&work), session_(loader, *work.entry) {}
+      : work_(&work), session_(loader, *work.entry) {
+    const auto& bodies = session_.dynamicWorkcell().bodies();
+    for (std::size_t b = 0; b < bodies.size(); ++b) {
+      if (bodies[b].kind != rwsim::dynamics::BodyKind::kRigid) continue;
+      if (session_.trial().isHandBody(rwsim::dynamics::BodyId(b))) continue;
+      objects_.push_back(bodies[b].frame);
+    }
+  }
 
   /// The engine's version and settings in this scene (EngineFactory::settings()).
   std::string engineSettings() const { return session_.trial().engine().settings(); }
 
-  /// The trial record of `job`, or nullopt (and `rejected` set) for a grasp rejected as input.
-  std::optional<results::TrialRecord> run(const RankedGrasp& job, Diagnostic& rejected) const {
+  /// The grasp as the benchmark places it (once per grasp, whatever its repeats).
+  grasp::ResolvedGrasp resolve(const RankedGrasp& job) const {
+    return session_.resolve(*job.request);
+  }
+
+  /// The trial record of repeat `repeat` of `job`, resolved as `resolved` (not an input error).
+  results::TrialRecord run(const RankedGrasp& job, const grasp::ResolvedGrasp& resolved, int repeat,
+                           const RepeatPlan& plan) const {
     const grasp::GraspRequest& r = *job.request;
-    const grasp::ResolvedGrasp resolved = session_.resolve(r);
-    if (resolved.status == grasp::ResolveStatus::kInputError) {
-      rejected = rejection(r, resolved.reason);
-      return std::nullopt;
-    }
     results::TrialRecord record;
     record.sceneId = work_->entry->id;
     record.conditions = work_->entry->conditions;
     record.method = r.method;
     record.graspId = r.id;
     record.rank = job.rank;
-    if (resolved.status == grasp::ResolveStatus::kInvalidContacts ||
-        resolved.status == grasp::ResolveStatus::kInCollision) {
-      // Nothing to simulate: the contact IK found no configuration, or the placement search
-      // no collision-free placement (the message gives the least penetration).
-      record.outcome = resolved.status == grasp::ResolveStatus::kInCollision
-                           ? GraspOutcome::kInCollision
-                           : GraspOutcome::kInvalidContacts;
+    record.repeat = repeat;
+    record.seed = repeat == 0 ? 0 : repeatSeed(plan.seed, record.sceneId, r.method, r.id, repeat);
+    // Nothing to simulate: the contact IK found no configuration (whatever the perturbation), or
+    // the placement search no collision-free placement (the message gives the least
+    // penetration; a perturbed repeat tries its placement in the trial).
+    const bool inCollision = resolved.status == grasp::ResolveStatus::kInCollision;
+    if (resolved.status == grasp::ResolveStatus::kInvalidContacts || (inCollision && repeat == 0)) {
+      record.outcome = inCollision ? GraspOutcome::kInCollision : GraspOutcome::kInvalidContacts;
       record.detail = resolved.message;
       return record;
     }
-    const auto result = session_.trial().run(resolved.parameters, session_.initialState());
+    rwsim::simulator::GraspTrialResult result;
+    if (repeat == 0) {
+      result = session_.trial().run(resolved.parameters, session_.initialState());
+    } else {
+      const Perturbation p = samplePerturbation(plan.noise, record.seed);
+      rwsim::simulator::GraspParameters grasp = resolved.parameters;
+      grasp.X_W_tcp = grasp.X_W_tcp * p.X_tcp_perturbed;
+      rwsim::trial::PhysicsVariation variation;
+      variation.frictionScale = p.frictionScale;
+      variation.objectMassScale = p.massScale;
+      result = session_.trial().run(grasp, perturbedState(p), variation);
+    }
     results::recordResult(result, objectIdOf(session_.dynamicWorkcell(), result.object), record);
     if (resolved.placement && resolved.placement->tests > 1) {
       record.detail += "; " + resolved.placement->describe();
@@ -93,8 +167,34 @@ class SceneRunner {
   }
 
  private:
+  /// The scene's initial state with every object moved by the perturbation's planar motion
+  /// (about the vertical through the mean of the objects' origins), so that they stay on the
+  /// table and keep their places relative to each other.
+  rw::kinematics::State perturbedState(const Perturbation& p) const {
+    rw::kinematics::State state = session_.initialState();
+    if (objects_.empty() || (p.objectDx == 0.0 && p.objectDy == 0.0 && p.objectYaw == 0.0)) {
+      return state;
+    }
+    const auto& tree = session_.workcell().frames();
+    const rw::kinematics::FKTable fk(tree, state);
+    rw::math::Vector3D centre = rw::math::Vector3D::Zero();
+    for (const auto frame : objects_) centre += fk.worldTransform(frame).translation();
+    centre /= static_cast<double>(objects_.size());
+    centre.z() = 0.0;
+    const rw::math::Transform3D motion =
+        Eigen::Translation3d(centre + rw::math::Vector3D(p.objectDx, p.objectDy, 0.0)) *
+        Eigen::AngleAxisd(p.objectYaw, rw::math::Vector3D::UnitZ()) * Eigen::Translation3d(-centre);
+    for (const auto frame : objects_) {
+      const auto& f = tree.frame(frame);
+      const rw::math::Transform3D X_W_parent = fk.worldTransform(f.parent());
+      f.setMovableTransform(state, X_W_parent.inverse() * motion * fk.worldTransform(frame));
+    }
+    return state;
+  }
+
   const SceneGraspList* work_;
   session::SceneSession session_;
+  std::vector<rw::kinematics::FrameId> objects_;
 };
 
 }  // namespace
@@ -216,14 +316,18 @@ void finishShard(const fs::path& out, ShardRecord record, std::size_t trials) {
   writeShardRecord(out, record);
 }
 
-/// The scenes with trials not yet in `writer` (resume) and how many trials they hold.
+/// The scenes with trials not yet in `writer` (resume) and how many trials they hold (every
+/// repeat not yet run; the adaptive rule may leave some out later).
 PendingWork pendingScenes(const std::vector<SceneGraspList>& work,
-                          const results::ResultsWriter& writer) {
+                          const results::ResultsWriter& writer, int repeats) {
   PendingWork pending;
   for (const auto& w : work) {
-    const auto left = std::count_if(w.grasps.begin(), w.grasps.end(), [&](const RankedGrasp& j) {
-      return !writer.contains(w.entry->id, j.request->method, j.request->id);
-    });
+    std::ptrdiff_t left = 0;
+    for (const RankedGrasp& j : w.grasps) {
+      for (int k = 0; k < repeats; ++k) {
+        left += writer.contains(w.entry->id, j.request->method, j.request->id, k) ? 0 : 1;
+      }
+    }
     if (left == 0) continue;
     pending.scenes.push_back(&w);
     pending.progress.trialsTotal += static_cast<int>(left);
@@ -232,11 +336,25 @@ PendingWork pendingScenes(const std::vector<SceneGraspList>& work,
   return pending;
 }
 
-/// The inputs run.csv records when `options` resumes a folder that has one.
-std::optional<results::RunSources> previousSources(const RunOptions& options) {
+/// What run.csv records when `options` resumes a folder that has one.
+std::optional<results::RunResults> previousRun(const RunOptions& options) {
   const fs::path file = options.out / results::kRunFileName;
   if (!options.resume || !fs::exists(file)) return std::nullopt;
-  return results::parseRunFile(rw::common::readTextFileOrThrow(file), file.string()).sources;
+  return results::parseRunFile(rw::common::readTextFileOrThrow(file), file.string());
+}
+
+/// A resumed folder's trials must have been repeated in the same way (count, noise, seed, rule).
+void checkSameRepeats(const RunOptions& options, const std::optional<results::RunResults>& previous,
+                      const results::RunRepeats& current) {
+  if (!previous || previous->repeats == current) return;
+  const auto what = [](const results::RunRepeats& r) {
+    if (!r.repeated()) return std::string("no repeats");
+    return std::to_string(r.count) + " repeats (" + r.noise +
+           (r.adaptive.empty() ? "" : "; adaptive: " + r.adaptive) + ")";
+  };
+  throw std::runtime_error(options.out.string() + " holds trials of a run with " +
+                           what(previous->repeats) + "; this run has " + what(current) +
+                           ": resume it with the same options or choose another folder");
 }
 
 /// A resumed folder's trials must come from the same database (run.csv's index hash; a run.csv
@@ -303,17 +421,21 @@ std::string checkHandFits(const PendingWork& pending, const RunPlan& plan,
   }
 }
 
-/// What a scene reports per grasp done: the grasp, and its rejection if it was rejected as input.
-using TrialDone = std::function<void(const grasp::GraspRequest&, const std::optional<Diagnostic>&)>;
+/// What a scene reports: a trial done (with the grasp's rejection if it was rejected as input,
+/// nullopt for a trial), and trials the run will not do after all (`skipped`: repeats the
+/// adaptive rule left out, or the repeats of a rejected grasp).
+struct SceneReport {
+  std::function<void(const grasp::GraspRequest&, const std::optional<Diagnostic>&)> trialDone;
+  std::function<void(int skipped)> skipped;
+};
 
-/// Runs one scene's trials that are not in `writer` yet, appending each as it finishes;
-/// `trialDone` gets each grasp done and its rejection if it was rejected as input (nullopt for
-/// a trial). Returns false early, between trials, once `stopping` says so. A scene file that
-/// cannot be read throws rw::common::LoadError; a scene the hand cannot be put in rejects its
-/// grasps.
-bool runScene(const SceneGraspList& w, const session::SceneLoader& loader,
+/// Runs one scene's trials that are not in `writer` yet (each grasp's repeats in order),
+/// appending each as it finishes. Returns false early, between trials, once `stopping` says so.
+/// A scene file that cannot be read throws rw::common::LoadError; a scene the hand cannot be put
+/// in rejects its grasps.
+bool runScene(const SceneGraspList& w, const session::SceneLoader& loader, const RepeatPlan& plan,
               results::ResultsWriter& writer, const std::function<bool()>& stopping,
-              const TrialDone& trialDone) {
+              const SceneReport& report) {
   std::unique_ptr<SceneRunner> runner;
   std::string failure;
   try {
@@ -323,19 +445,41 @@ bool runScene(const SceneGraspList& w, const session::SceneLoader& loader,
   } catch (const std::exception& e) {
     failure = e.what();
   }
+  const std::string& scene = w.entry->id;
   for (const RankedGrasp& job : w.grasps) {
-    if (stopping()) return false;
     const auto& r = *job.request;
-    if (writer.contains(w.entry->id, r.method, r.id)) continue;
-    Diagnostic rejected;
-    std::optional<results::TrialRecord> record;
-    if (runner) {
-      record = runner->run(job, rejected);
-    } else {
-      rejected = rejection(r, "scene " + w.entry->id + " cannot be simulated: " + failure);
+    std::vector<bool> held;
+    std::optional<grasp::ResolvedGrasp> resolved;
+    for (int k = 0; k < plan.count; ++k) {
+      if (decided(plan, held)) {
+        int left = 0;
+        for (int rest = k; rest < plan.count; ++rest) {
+          left += writer.contains(scene, r.method, r.id, rest) ? 0 : 1;
+        }
+        report.skipped(left);
+        break;
+      }
+      if (const auto done = writer.outcomeOf(scene, r.method, r.id, k)) {
+        held.push_back(results::isSuccess(*done));
+        continue;
+      }
+      if (stopping()) return false;
+      if (!resolved) {
+        resolved = runner ? runner->resolve(job) : grasp::ResolvedGrasp{};
+        if (!runner) {
+          resolved->reason = "scene " + scene + " cannot be simulated: " + failure;
+        }
+      }
+      if (resolved->status == grasp::ResolveStatus::kInputError) {
+        report.trialDone(r, rejection(r, resolved->reason));
+        report.skipped(plan.count - 1);
+        break;
+      }
+      const results::TrialRecord record = runner->run(job, *resolved, k, plan);
+      writer.append(record);
+      held.push_back(results::isSuccess(record.outcome));
+      report.trialDone(r, std::nullopt);
     }
-    if (record) writer.append(*record);
-    trialDone(r, record ? std::nullopt : std::optional<Diagnostic>(rejected));
   }
   return true;
 }
@@ -344,15 +488,17 @@ bool runScene(const SceneGraspList& w, const session::SceneLoader& loader,
 /// into `plan`. A set options.stop, or an error in any scene (a scene file that cannot be read,
 /// a failed write), ends every scene after its current trial; no new scene starts; the first
 /// error is thrown.
-void runScenes(const RunOptions& options, const session::SceneLoader& loader, PendingWork& pending,
-               RunPlan& plan, results::ResultsWriter& writer, const std::function<void()>& report) {
+void runScenes(const RunOptions& options, const session::SceneLoader& loader,
+               const RepeatPlan& repeats, PendingWork& pending, RunPlan& plan,
+               results::ResultsWriter& writer, const std::function<void()>& report) {
   std::mutex mutex;
   std::atomic<bool> failing{false};
   const auto stopping = [&] {
     return failing.load() || (options.stop != nullptr && options.stop->load());
   };
-  const auto trialDone = [&](const grasp::GraspRequest& r,
-                             const std::optional<Diagnostic>& rejected) {
+  SceneReport sceneReport;
+  sceneReport.trialDone = [&](const grasp::GraspRequest& r,
+                              const std::optional<Diagnostic>& rejected) {
     const std::lock_guard lock(mutex);
     if (rejected) {
       plan.rejected.push_back(*rejected);
@@ -361,12 +507,16 @@ void runScenes(const RunOptions& options, const session::SceneLoader& loader, Pe
     ++pending.progress.trialsDone;
     report();
   };
+  sceneReport.skipped = [&](int skipped) {
+    const std::lock_guard lock(mutex);
+    pending.progress.trialsTotal -= skipped;
+  };
   const rw::common::TaskPool pool(
       std::min<int>(options.threads, static_cast<int>(pending.scenes.size())), options.stop);
   pool.run(pending.scenes.size(), [&](std::size_t i, int /*worker*/) {
     bool complete = false;
     try {
-      complete = runScene(*pending.scenes[i], loader, writer, stopping, trialDone);
+      complete = runScene(*pending.scenes[i], loader, repeats, writer, stopping, sceneReport);
     } catch (...) {
       failing = true;
       throw;
@@ -378,11 +528,16 @@ void runScenes(const RunOptions& options, const session::SceneLoader& loader, Pe
   });
 }
 
-/// Rewrites run.csv with the final rejected counts, puts trials.csv in canonical order and sums
-/// the run up.
+/// Rewrites run.csv with the final rejected counts, puts trials.csv in canonical order, writes
+/// grasps.csv for a run with repeats and sums the run up.
 RunSummary finishRun(RunPlan& plan, results::ResultsWriter& writer) {
   writeRunFile(plan, writer);
   writer.finalize();
+  if (plan.run.repeats.repeated()) {
+    results::RunResults run = plan.run;
+    run.trials = writer.trials();
+    results::writeGraspSummary(writer.dir(), run);
+  }
   RunSummary summary;
   summary.resumed = static_cast<int>(writer.resumedCount());
   for (const auto& t : writer.trials()) {
@@ -402,6 +557,12 @@ RunSummary finishRun(RunPlan& plan, results::ResultsWriter& writer) {
 
 }  // namespace
 
+std::uint64_t repeatSeed(std::uint64_t base, const std::string& scene, const std::string& method,
+                         const std::string& graspId, int repeat) {
+  const std::uint64_t grasp = results::deriveSeed(base, scene + "\n" + method + "\n" + graspId);
+  return results::deriveSeed(grasp, static_cast<std::uint64_t>(repeat)) >> 1U;
+}
+
 std::string unknownSceneReason(const database::Database& db, const std::string& sceneId) {
   const auto close = db.closestIds(sceneId);
   return "unknown scene \"" + sceneId + "\"" +
@@ -420,23 +581,31 @@ RunSummary runBenchmark(const RunOptions& options,
                              " of a run; resume it with --shard " + std::to_string(s.index) +
                              " --of " + std::to_string(s.count));
   }
+  const RepeatPlan repeats = planRepeats(options);
   const RunInputs in = openInputs(options);
   // After openInputs: the loader keeps the address of in.db.
-  const session::SceneLoader loader(in.db, *in.hand, options.engine);
-  const std::optional<results::RunSources> previous = previousSources(options);
+  session::SceneLoader loader(in.db, *in.hand, options.engine);
+  loader.setTimeStep(options.timeStep);
+  const std::optional<results::RunResults> previousRecord = previousRun(options);
+  checkSameRepeats(options, previousRecord, repeats.record);
+  const std::optional<results::RunSources> previous =
+      previousRecord ? std::optional(previousRecord->sources) : std::nullopt;
   RunPlan plan = planRun(options, in);
+  plan.run.repeats = repeats.record;
   std::optional<ShardRecord> shard;
   if (options.shard) {
     restrictToShard(plan, *options.shard);
     shard = startShard(options);
   }
-  results::ResultsWriter writer(options.out);
-  PendingWork pending = pendingScenes(plan.order.scenes, writer);
+  results::ResultsWriter::Options writerOptions;
+  writerOptions.repeated = repeats.record.repeated();
+  results::ResultsWriter writer(options.out, writerOptions);
+  PendingWork pending = pendingScenes(plan.order.scenes, writer, repeats.count);
   plan.run.sources.engineSettings = checkHandFits(pending, plan, loader, options.hand);
   checkSameDatabase(options, previous, plan.run.sources);
   checkSameEngine(options, previous, plan.run.sources);
   writeRunFile(plan, writer);
-  runScenes(options, loader, pending, plan, writer, [&] {
+  runScenes(options, loader, repeats, pending, plan, writer, [&] {
     pending.progress.elapsed =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (progress) progress(pending.progress);

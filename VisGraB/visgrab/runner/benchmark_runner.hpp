@@ -1,6 +1,7 @@
 #pragma once
 
 #include <atomic>
+#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <map>
@@ -33,12 +34,35 @@ struct RunOptions {
   /// rwsim::engines). Recorded in run.csv with its settings; resuming a folder of another
   /// engine is an error.
   std::string engine = "ode";
+  /// ODE's integration step instead of each scene's own (`--dt`; session::SceneLoader::
+  /// setTimeStep), for the time-step study; recorded in run.csv's engine settings.
+  std::optional<double> timeStep;
   /// Only the scenes this filter selects (docs/database-format.md); empty: all.
   std::string scenes;
   /// Worker threads (each runs whole scenes; the results do not depend on the count).
   int threads = 1;
   /// Continue an interrupted run in `out` (without it, an existing trials.csv is an error).
   bool resume = false;
+  /// Runs per grasp (`--repeats N`): repeat 0 is the unperturbed trial, repeats 1..N-1 run under
+  /// seeded perturbations drawn from the noise model (docs/noise-model.md). 1: no repeats, the
+  /// files exactly as without the option. N > 1: trials.csv gains the repeat and seed columns,
+  /// run.csv the repeats and noise records, and grasps.csv (results::writeGraspSummary) is
+  /// written beside them.
+  int repeats = 1;
+  /// The noise model's XML file (`--noise FILE`); empty: defaultNoiseModel(). Needs repeats > 1.
+  std::filesystem::path noise;
+  /// The base of the repeats' seeds (`--seed`): repeat r >= 1 of a grasp draws from
+  /// repeatSeed(noiseSeed, scene, method, grasp id, r).
+  std::uint64_t noiseSeed = 1;
+  /// Stop repeating a grasp once its first repeats agree (`--adaptive`; the rule of
+  /// results::repeatsToDecide with adaptiveAlpha and adaptiveMargin); a grasp whose repeats
+  /// disagree runs all N. Needs repeats > 1.
+  bool adaptive = false;
+  /// The adaptive rule's error rate.
+  double adaptiveAlpha = 0.05;
+  /// The adaptive rule's margin: a grasp with P <= 1 - margin is declared always held with
+  /// probability at most adaptiveAlpha (and P >= margin never held).
+  double adaptiveMargin = 0.65;
   /// Run only this shard of the work (planShards over the selected scenes' grasp counts): its
   /// scenes in run.csv and trials.csv, and `out`/shard.txt (shard_record.hpp) saying which
   /// shard of which run it is, "running" until the shard has finished. The first shard also
@@ -98,13 +122,21 @@ struct RunSummary {
 /// existing result folder without `resume`, a result folder resumed with another engine or other
 /// engine settings than its run.csv records, a shard folder of another shard or run, or a shard
 /// folder resumed without `shard`,
-/// std::invalid_argument for a shard outside 1..count or an engine this build lacks.
+/// std::invalid_argument for a shard outside 1..count, an engine this build lacks, repeats < 1,
+/// a noise file or adaptive rule without repeats, or an adaptive alpha or margin outside (0, 1),
+/// rw::common::LoadError (file:line) for a bad noise file.
+RunSummary runBenchmark(const RunOptions& options,
+                        const std::function<void(const RunProgress&)>& progress = {});
+
+/// The seed of repeat `repeat` (>= 1) of a grasp: results::deriveSeed of `base`, the scene id,
+/// method and grasp id (one text joined by line feeds) and the repeat, shifted right by one (63
+/// bits, so that Python reads it as an int64).
+std::uint64_t repeatSeed(std::uint64_t base, const std::string& scene, const std::string& method,
+                         const std::string& graspId, int repeat);
+
 /// Why a grasp of scene `sceneId`, which `db` does not hold, is rejected: "unknown scene \"ID\""
 /// and the closest id as a "did you mean" (the runner's words; the Python module's check before a
 /// run uses them too).
 std::string unknownSceneReason(const database::Database& db, const std::string& sceneId);
-
-RunSummary runBenchmark(const RunOptions& options,
-                        const std::function<void(const RunProgress&)>& progress = {});
 
 }  // namespace visgrab::runner

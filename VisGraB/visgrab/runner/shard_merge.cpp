@@ -7,6 +7,7 @@
 #include <string>
 
 #include "rw/common/text_file.hpp"
+#include "visgrab/results/grasp_summary.hpp"
 #include "visgrab/results/results_file.hpp"
 #include "visgrab/runner/shard_record.hpp"
 
@@ -130,6 +131,12 @@ MergeSummary mergeShards(const std::vector<fs::path>& shardDirs, const fs::path&
     if (&s == &shards.front()) {
       merged.methods = part.methods;
       merged.sources = part.sources;
+      merged.repeats = part.repeats;
+    } else if (part.repeats != merged.repeats) {
+      throw std::runtime_error("shard folders " + shards.front().dir.string() + " and " +
+                               s.dir.string() +
+                               " are shards of different runs: their run.csv records other "
+                               "repeats, noise or adaptive rule");
     } else if (part.methods != merged.methods) {
       throw std::runtime_error("shard folders " + shards.front().dir.string() + " and " +
                                s.dir.string() +
@@ -159,6 +166,7 @@ MergeSummary mergeShards(const std::vector<fs::path>& shardDirs, const fs::path&
   }
   for (const auto& [method, n] : rejected) merged.rejected.emplace_back(method, n);
   results::writeResults(out, merged);
+  if (merged.repeats.repeated()) results::writeGraspSummary(out, merged);
 
   MergeSummary summary;
   summary.shards = static_cast<int>(shards.size());

@@ -1,6 +1,7 @@
 #include "visgrab/session/scene_loader.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 #include <system_error>
@@ -52,6 +53,17 @@ rwsim::simulator::GraspTrialSetup trialSetup(const grasp::HandGraspSetup& hand,
   setup.tcpFrame = hand.tcpFrameName();
   setup.simulator = rwsim::simulator::optionsFromEngineProperties(dwc);
   return setup;
+}
+
+void SceneLoader::setTimeStep(std::optional<double> dt) {
+  if (dt && !(std::isfinite(*dt) && *dt > 0.0)) {
+    throw std::invalid_argument("the time step must be a number > 0 s");
+  }
+  if (dt && engine_ != "ode") {
+    throw std::invalid_argument("a time step sets ODE's integration step; the " + engine_ +
+                                " engine has its own");
+  }
+  timeStep_ = dt;
 }
 
 rw::loaders::IncludeRedirects handRedirects(const fs::path& databaseRoot,

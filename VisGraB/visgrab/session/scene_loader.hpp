@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "rw/loaders/workcell_loader.hpp"
@@ -52,6 +53,14 @@ class SceneLoader {
   const std::string& engine() const { return engine_; }
   /// The redirects each scene is loaded with (empty: scenes as they are).
   const rw::loaders::IncludeRedirects& redirects() const { return redirects_; }
+  /// ODE's integration step for every scene's trials instead of the scene's own (`visgrab run
+  /// --dt`, the time-step study of docs/report.md); nullopt: the scene's. It shows in the
+  /// engine's settings, so run.csv records it.
+  /// @throws std::invalid_argument unless `dt` is finite and > 0, or if the engine is not ODE
+  /// (MuJoCo has its own step, rwsim::mujoco::MujocoOptions).
+  void setTimeStep(std::optional<double> dt);
+  /// See setTimeStep.
+  std::optional<double> timeStep() const { return timeStep_; }
 
   /// The scene's dynamic workcell with the hand in it, hanging from the scene's HandMount frame
   /// as the generated one. A scene that does not include the database's hand (an original or
@@ -66,6 +75,7 @@ class SceneLoader {
   const grasp::HandGraspSetup* hand_;
   std::string engine_;
   rw::loaders::IncludeRedirects redirects_;
+  std::optional<double> timeStep_;
 };
 
 }  // namespace visgrab::session

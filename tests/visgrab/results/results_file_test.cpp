@@ -347,18 +347,104 @@ TEST(ResultsFileTest, EmptyQualityMeansNotComputed) {
 
 TEST(ResultsFileTest, ColumnLineIsTheRecordTable) {
   // One definition: the header, each record's field count and the Python properties follow
-  // trialColumns(); the header written is its names in order.
+  // trialColumns(); the header written is its names in order, the repeat columns only in a run
+  // with repeats.
   std::string names;
-  for (const TrialColumn& c : trialColumns())
-    names += std::string(names.empty() ? "" : ",") + std::string(c.name);
+  std::string repeatedNames;
+  for (const TrialColumn& c : trialColumns()) {
+    repeatedNames += std::string(repeatedNames.empty() ? "" : ",") + std::string(c.name);
+    if (!c.repeatedOnly) names += std::string(names.empty() ? "" : ",") + std::string(c.name);
+  }
   EXPECT_EQ(trialsHeader(), names + "\n");
-  EXPECT_EQ(trialColumns().size(), 13u);
+  EXPECT_EQ(trialsHeader(true), repeatedNames + "\n");
+  EXPECT_EQ(trialsHeader(true).rfind("scene,method,grasp,rank,repeat,seed,outcome,", 0), 0u);
+  EXPECT_EQ(trialColumns().size(), 15u);
   EXPECT_EQ(trialColumns()[2].property, "id");
   TrialRecord t = makeTrial("s", "m", "g", 0, GraspOutcome::kSlipped);
   t.closingCapped = true;
-  EXPECT_EQ(std::get<bool>(trialColumns()[11].value(t)), true);
-  EXPECT_EQ(std::get<std::string>(trialColumns()[4].value(t)), "slipped");
-  EXPECT_EQ(std::get<long long>(trialColumns()[5].value(t)), 5);
+  t.repeat = 3;
+  t.seed = 123456789012345ULL;
+  EXPECT_EQ(std::get<long long>(trialColumns()[4].value(t)), 3);
+  EXPECT_EQ(std::get<long long>(trialColumns()[5].value(t)), 123456789012345LL);
+  EXPECT_EQ(std::get<bool>(trialColumns()[13].value(t)), true);
+  EXPECT_EQ(std::get<std::string>(trialColumns()[6].value(t)), "slipped");
+  EXPECT_EQ(std::get<long long>(trialColumns()[7].value(t)), 5);
+}
+
+TEST(ResultsFileTest, RepeatedRunsRoundTripWithTheirRepeatColumnsAndRecords) {
+  test::TempDir dir;
+  RunResults run = smallRun();
+  run.repeats.count = 3;
+  run.repeats.noise = "hand 0.002 m 0.01 rad; seed 1";
+  run.repeats.adaptive = "stop after 3 agreeing trials";
+  std::vector<TrialRecord> trials;
+  for (const TrialRecord& t : run.trials) {
+    for (int k = 2; k >= 0; --k) {  // out of order: the writer sorts by repeat last
+      TrialRecord r = t;
+      r.repeat = k;
+      r.seed = k == 0 ? 0 : (9223372036854775807ULL - static_cast<unsigned>(k));
+      trials.push_back(r);
+    }
+  }
+  run.trials = trials;
+  writeResults(dir.path(), run);
+  const RunResults back = readResults(dir.path());
+  EXPECT_EQ(back.repeats, run.repeats);
+  ASSERT_EQ(back.trials.size(), 9u);
+  for (std::size_t i = 0; i < back.trials.size(); ++i) {
+    EXPECT_EQ(back.trials[i].repeat, static_cast<int>(i % 3));
+    EXPECT_EQ(back.trials[i].seed, i % 3 == 0 ? 0u : 9223372036854775807ULL - i % 3);
+  }
+  const std::string text = readText(dir.path() / "trials.csv");
+  EXPECT_EQ(text.rfind("scene,method,grasp,rank,repeat,seed,outcome,", 0), 0u) << text;
+  EXPECT_NE(text.find(",g0,0,1,9223372036854775806,stable,"), std::string::npos) << text;
+  const std::string runText = readText(dir.path() / "run.csv");
+  EXPECT_NE(runText.find("\nrepeats,3,,,,,,\nnoise,hand 0.002 m 0.01 rad; seed 1,,,,,,\n"
+                         "adaptive,stop after 3 agreeing trials,,,,,,\n"),
+            std::string::npos)
+      << runText;
+  // The same trial and repeat twice, a negative repeat, a seed beyond 63 bits.
+  const std::string h = trialsHeader(true);
+  const std::string line = "s,m,g,0,1,77,stable,1,0.9,0.5,0.25,5,1.2,0,\"\"\n";
+  try {
+    parseTrials(h + line + line, "r/trials.csv");
+    ADD_FAILURE() << "no error for a repeat given twice";
+  } catch (const rw::common::LoadError& e) {
+    EXPECT_NE(std::string(e.what()).find("r/trials.csv:3: error: trial (s, m, g, repeat 1) is "
+                                         "given twice (first at line 2)"),
+              std::string::npos)
+        << e.what();
+  }
+  expectLoadError(h + "s,m,g,0,-1,77,stable,1,0.9,0.5,0.25,5,1.2,0,\"\"\n", "r/trials.csv:2",
+                  "negative repeat -1");
+  expectLoadError(h + "s,m,g,0,1,9223372036854775808,stable,1,0.9,0.5,0.25,5,1.2,0,\"\"\n",
+                  "r/trials.csv:2", "out of range (63 bits)");
+  expectLoadError(h + "s,m,g,0,1,x7,stable,1,0.9,0.5,0.25,5,1.2,0,\"\"\n", "r/trials.csv:2",
+                  "seed 'x7' is not an unsigned integer");
+  // A run.csv that says repeats while trials.csv has no repeat columns, and the other way.
+  writeResults(dir.path(), smallRun());
+  const std::string plainTrials = readText(dir.path() / "trials.csv");
+  test::writeFile(dir.path() / "run.csv", runText);
+  try {
+    readResults(dir.path());
+    ADD_FAILURE() << "no error for trials without repeat columns in a repeated run";
+  } catch (const rw::common::LoadError& e) {
+    EXPECT_NE(std::string(e.what()).find("trials without repeat columns, but"), std::string::npos)
+        << e.what();
+  }
+  // A repeats record of 1, and a noise record without repeats.
+  for (const auto& [bad, what] : std::vector<std::pair<std::string, std::string>>{
+           {"repeats,1,,,,,,\n", "a repeats record holds 2 or more"},
+           {"noise,hand,,,,,,\n", "a noise or adaptive record without a repeats record"}}) {
+    try {
+      parseRunFile("record,id,texture,kind,arrangement,objects,pose,count\n" + bad, "r/run.csv");
+      ADD_FAILURE() << "no error for " << bad;
+    } catch (const rw::common::LoadError& e) {
+      EXPECT_NE(std::string(e.what()).find("r/run.csv:2: error: "), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_FALSE(plainTrials.empty());
 }
 
 TEST(ResultsFileTest, Version3FilesReadClosingCappedFromTheDetail) {

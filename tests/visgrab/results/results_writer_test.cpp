@@ -81,6 +81,52 @@ TEST(ResultsWriterTest, AppendsOneLinePerTrialAndResumes) {
   EXPECT_EQ(readResults(dir.path()).trials.size(), trials.size());
 }
 
+TEST(ResultsWriterTest, RepeatsAreTrialsOfTheirOwnAndTheFileKindMustMatch) {
+  test::TempDir dir;
+  const std::vector<TrialRecord> trials = allTrials();
+  ResultsWriter::Options repeated;
+  repeated.repeated = true;
+  {
+    ResultsWriter writer(dir.path(), repeated);
+    RunResults run = runInfo();
+    run.repeats.count = 2;
+    run.repeats.noise = "test";
+    writer.writeRun(run);
+    TrialRecord again = trials[0];
+    again.repeat = 1;
+    again.seed = 42;
+    again.outcome = GraspOutcome::kDropped;
+    writer.append(trials[0]);
+    writer.append(again);
+    EXPECT_THROW(writer.append(again), std::logic_error);
+    EXPECT_TRUE(writer.contains(again.sceneId, again.method, again.graspId, 1));
+    EXPECT_FALSE(writer.contains(again.sceneId, again.method, again.graspId, 2));
+    EXPECT_EQ(writer.outcomeOf(again.sceneId, again.method, again.graspId, 0),
+              GraspOutcome::kMissed);
+    EXPECT_EQ(writer.outcomeOf(again.sceneId, again.method, again.graspId, 1),
+              GraspOutcome::kDropped);
+    EXPECT_EQ(writer.outcomeOf(again.sceneId, again.method, again.graspId, 2), std::nullopt);
+  }
+  EXPECT_EQ(readText(dir.path() / "trials.csv").rfind("scene,method,grasp,rank,repeat,seed,", 0),
+            0u);
+  // Resumed as a run without repeats: refused, the file untouched.
+  const std::string before = readText(dir.path() / "trials.csv");
+  try {
+    ResultsWriter plain(dir.path());
+    ADD_FAILURE() << "a repeated file resumed as a plain run";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("holds trials of a run with repeats"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_EQ(readText(dir.path() / "trials.csv"), before);
+  // A plain writer takes no repeat.
+  test::TempDir other;
+  ResultsWriter plain(other.path());
+  TrialRecord again = trials[0];
+  again.repeat = 1;
+  EXPECT_THROW(plain.append(again), std::logic_error);
+}
+
 TEST(ResultsWriterTest, ResumingAVersion1FileRewritesItInTheCurrentFormat) {
   // A run started before q_gws_unit existed: its trials keep their unit-force value (now
   // q_gws_unit) and an unknown q_gws; new trials are appended in the current format.
