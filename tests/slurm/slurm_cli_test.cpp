@@ -109,6 +109,41 @@ TEST_F(SlurmCommand, ScriptsRunWithoutSlurmGiveTheOneMachineResults) {
   }
 }
 
+TEST_F(SlurmCommand, RepeatOptionsReachEveryShardAndTheMergeWritesGraspsCsv) {
+  const fs::path out = tmp_.path() / "sweep";
+  const fs::path noise = visgrab::test::writeFile(
+      tmp_.path() / "n.xml", "<NoiseModel>\n  <Friction sigma=\"0.2\"/>\n</NoiseModel>\n");
+  const std::string repeats = " --repeats 3 --seed 5 --noise " + shellQuoted(noise);
+  auto r = runProgram(VISGRAB_BINARY, "slurm" + common() + repeats +
+                                          " --shards 2 --no-analyze --out " + shellQuoted(out));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const std::string script = fileBytes(out / "slurm" / "trials.sbatch");
+  EXPECT_TRUE(contains(script, "'--repeats' '3' '--seed' '5' '--noise' '" + noise.string() + "'"))
+      << script;
+  for (const int task : {1, 0}) {
+    r = runProgram("/usr/bin/env", "SLURM_ARRAY_TASK_ID=" + std::to_string(task) + " /bin/bash " +
+                                       shellQuoted(out / "slurm" / "trials.sbatch"));
+    ASSERT_EQ(r.exitCode, 0) << task << "\n" << r.output;
+  }
+  r = runProgram("/bin/bash", shellQuoted(out / "slurm" / "merge.sbatch"));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const fs::path whole = tmp_.path() / "whole";
+  r = runProgram(VISGRAB_BINARY,
+                 "run" + common() + repeats + " --quiet --threads 2 --out " + shellQuoted(whole));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  for (const auto name : {"trials.csv", "run.csv", "grasps.csv"}) {
+    EXPECT_EQ(fileBytes(out / "results" / "top" / name), fileBytes(whole / name)) << name;
+  }
+  // An option of the adaptive rule without --adaptive is refused before anything is written.
+  r = runProgram(VISGRAB_BINARY, "slurm" + common() + repeats +
+                                     " --adaptive-alpha 0.1 --shards 2 --out " +
+                                     shellQuoted(tmp_.path() / "bad"));
+  EXPECT_NE(r.exitCode, 0);
+  EXPECT_TRUE(contains(r.output, "--adaptive-alpha and --adaptive-margin need --adaptive"))
+      << r.output;
+  EXPECT_FALSE(fs::exists(tmp_.path() / "bad"));
+}
+
 TEST_F(SlurmCommand, SubmitChainsTheMergeJobOnTheArraysId) {
   const fs::path calls = tmp_.path() / "calls.txt";
   const fs::path sbatch = visgrab::test::writeFile(
