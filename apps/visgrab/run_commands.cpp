@@ -147,6 +147,17 @@ analysis::ShowcaseDrawer pictureDrawer(const Arguments& a, int threads, bool qui
   };
 }
 
+// The report's statistics options (--ci-level, --bootstrap, --seed) and --threads.
+analysis::AnalysisOptions analysisOptions(const Arguments& a) {
+  analysis::AnalysisOptions options;
+  options.ciLevel = fractionOption(a, "ci-level", options.ciLevel);
+  options.bootstrapResamples = integerOption(a, "bootstrap", options.bootstrapResamples, 0);
+  options.bootstrapSeed = static_cast<std::uint64_t>(
+      integerOption(a, "seed", static_cast<int>(options.bootstrapSeed), 0));
+  options.threads = threadsOption(a);
+  return options;
+}
+
 int runAnalyze(const Arguments& a) {
   const auto out = a.option("out");
   std::vector<results::RunResults> runs;
@@ -155,7 +166,8 @@ int runAnalyze(const Arguments& a) {
     runs.push_back(results::readResults(dir, &warnings));
     for (const auto& w : warnings) std::cerr << w.format() << "\n";
   }
-  analysis::writeReport(runs, *out, {}, pictureDrawer(a, threadsOption(a), a.flag("quiet")));
+  analysis::writeReport(runs, *out, analysisOptions(a),
+                        pictureDrawer(a, threadsOption(a), a.flag("quiet")));
   std::cout << "report in " << *out << " (report.html, report.md, CSV tables)\n";
   return 0;
 }
@@ -251,7 +263,9 @@ int runBenchmarkCommand(const Arguments& a) {
             << summary.rejected.size() << " grasps rejected\n";
   const fs::path reportDir = fs::path(*out) / "report";
   times.start("report");
-  analysis::writeReport({results::readResults(options.out)}, reportDir, {},
+  analysis::AnalysisOptions reportOptions;  // intervals with the default 2,000 resamples
+  reportOptions.threads = threads;
+  analysis::writeReport({results::readResults(options.out)}, reportDir, reportOptions,
                         pictureDrawer(a, threads, quiet));
   times.stop(a.flag("no-pictures") ? "without pictures" : "with pictures");
   std::cout << "report in " << (reportDir / "report.html").string() << "\n";
@@ -334,9 +348,11 @@ void addRunCommands(CommandLine& cli) {
 
   CLI::App& analyze = cli.addCommand(
       nullptr, "analyze",
-      "The paper's five analyses of one or more result folders (methods side by side): CSV "
-      "tables, report.md, report.html with SVG plots and pictures of the best, a typical and a "
-      "failed grasp per method and condition (REPORT/images; --no-pictures leaves them out).",
+      "The paper's five analyses of one or more result folders (methods side by side), every "
+      "estimate with a scene-bootstrap confidence interval, overall success rates, each pair of "
+      "methods compared on their shared scenes, robust rates of runs with repeats: CSV tables, "
+      "report.md, report.html with SVG plots and pictures of the best, a typical and a failed "
+      "grasp per method and condition (REPORT/images; --no-pictures leaves them out).",
       guarded(runAnalyze));
   analyze.add_option("RESULTS", "Result folders of `visgrab run`, one per method")
       ->required()
@@ -344,6 +360,26 @@ void addRunCommands(CommandLine& cli) {
       ->allow_extra_args()
       ->type_name("");
   analyze.add_option("--out", "The report folder to write")->required()->type_name("REPORT");
+  analyze
+      .add_option("--ci-level",
+                  "Confidence level of the intervals (scene bootstrap; docs/report.md, \"Error "
+                  "bars\")")
+      ->type_name("L")
+      ->default_str("0.95");
+  analyze
+      .add_option("--bootstrap",
+                  "Bootstrap resamples behind every interval and comparison; 0: none (the report "
+                  "without intervals, overall success rates and comparisons)")
+      ->type_name("B")
+      ->default_str("2000")
+      ->check(integerAtLeast(0));
+  analyze
+      .add_option("--seed",
+                  "Seed of the bootstrap and permutation streams (the same seed gives the same "
+                  "intervals with any --threads)")
+      ->type_name("S")
+      ->default_str("20120601")
+      ->check(integerAtLeast(0));
   addThreadsOption(analyze);
   addFlag(analyze, "--no-pictures", "Leave the report's pictures out");
   addQuietFlag(analyze);

@@ -2,7 +2,9 @@
 #include <pybind11/stl/filesystem.h>
 
 #include <cmath>
+#include <cstdint>
 #include <mutex>
+#include <optional>
 #include <set>
 #include <string>
 #include <tuple>
@@ -71,8 +73,15 @@ py::dict summaryDict(const runner::RunSummary& s) {
 
 py::dict runBenchmark(const fs::path& database, const fs::path& grasps, const fs::path& out,
                       const fs::path& hand, const std::string& scenes, int threads, bool resume,
-                      const std::string& engine, const py::object& progress) {
+                      const std::string& engine, const py::object& progress, int repeats,
+                      const fs::path& noise, long long seed, bool adaptive) {
   if (threads < 1) throw py::value_error("threads must be >= 1, got " + std::to_string(threads));
+  if (repeats < 1) throw py::value_error("repeats must be >= 1, got " + std::to_string(repeats));
+  if (seed < 0) throw py::value_error("seed must be >= 0, got " + std::to_string(seed));
+  if (repeats == 1 && (!noise.empty() || adaptive)) {
+    throw py::value_error(std::string(adaptive ? "adaptive" : "noise") +
+                          " needs repeats > 1 (repeat 0 is the unperturbed trial)");
+  }
   try {
     rwsim::engines::checkEngine(engine);
   } catch (const std::invalid_argument& e) {
@@ -87,6 +96,10 @@ py::dict runBenchmark(const fs::path& database, const fs::path& grasps, const fs
   options.threads = threads;
   options.resume = resume;
   options.engine = engine;
+  options.repeats = repeats;
+  options.noise = noise;
+  options.noiseSeed = static_cast<std::uint64_t>(seed);
+  options.adaptive = adaptive;
   std::mutex mutex;
   runner::RunProgress latest;
   bool fresh = false;
@@ -244,7 +257,8 @@ input files. Iterating or indexing goes over the trials.
 
   m.def("_run", &runBenchmark, py::arg("database"), py::arg("grasps"), py::arg("out"),
         py::arg("hand"), py::arg("scenes"), py::arg("threads"), py::arg("resume"),
-        py::arg("engine"), py::arg("progress"),
+        py::arg("engine"), py::arg("progress"), py::arg("repeats"), py::arg("noise"),
+        py::arg("seed"), py::arg("adaptive"),
         "run's C++ side: runner::runBenchmark; returns its summary.");
   m.def("engines", &rwsim::engines::availableEngines,
         "The physics engines this build has: [\"ode\"], and \"mujoco\" when it was built with "
@@ -252,10 +266,16 @@ input files. Iterating or indexing goes over the trials.
 
   m.def(
       "_analyze",
-      [](const std::vector<fs::path>& dirs, const fs::path& out, int threads, bool pictures) {
+      [](const std::vector<fs::path>& dirs, const fs::path& out, int threads, bool pictures,
+         double ciLevel, int bootstrap, std::optional<std::uint64_t> seed) {
         if (threads < 1) {
           throw py::value_error("threads must be >= 1, got " + std::to_string(threads));
         }
+        analysis::AnalysisOptions analysisOptions;
+        analysisOptions.ciLevel = ciLevel;
+        analysisOptions.bootstrapResamples = bootstrap;
+        if (seed) analysisOptions.bootstrapSeed = *seed;
+        analysisOptions.threads = threads;
         std::vector<std::string> warnings;
         std::vector<results::RunResults> runs;
         runs.reserve(dirs.size());
@@ -264,10 +284,12 @@ input files. Iterating or indexing goes over the trials.
         view::ReportPictureOptions options;
         options.threads = threads;
         analysis::writeReport(
-            runs, out, {}, pictures ? view::showcaseDrawer(options) : analysis::ShowcaseDrawer());
+            runs, out, analysisOptions,
+            pictures ? view::showcaseDrawer(options) : analysis::ShowcaseDrawer());
         return warnings;
       },
-      py::arg("dirs"), py::arg("out"), py::arg("threads"), py::arg("pictures"),
+      py::arg("dirs"), py::arg("out"), py::arg("threads"), py::arg("pictures"), py::arg("ci_level"),
+      py::arg("bootstrap"), py::arg("seed"),
       "analyze's C++ side: analysis::writeReport as `visgrab analyze`; returns the warnings.");
 }
 

@@ -74,8 +74,8 @@ def test_trials_csv_is_byte_identical_to_the_cli(runs):
     assert trials.summary["trials"] == 4 and trials.rejected == []
     assert sum(trials.summary["outcomes"].values()) == 4
     # The run's grasp list is kept where run.csv points (visgrab render --results uses it).
-    assert trials.results.sources["grasps"] == [str(runs["module"] / "grasps.csv")]
-    assert visgrab.read_grasps(runs["module"] / "grasps.csv") == runs["grasps"]
+    assert trials.results.sources["grasps"] == [str(runs["module"] / "grasp_list.csv")]
+    assert visgrab.read_grasps(runs["module"] / "grasp_list.csv") == runs["grasps"]
 
 
 def test_two_threads_give_the_same_bytes_and_out_none_leaves_nothing(runs, db, tmp_path,
@@ -118,7 +118,7 @@ def test_rejected_grasps_have_the_cli_messages(runs, db, binary, test_db_path, t
     assert [t.id for t in trials] == ["above"]
     assert len(trials.rejected) == 3
     # The CLI on the same grasp file prints the same diagnostics (file:line: error: ...).
-    result = cli(binary, "run", "--db", test_db_path, "--grasps", out / "grasps.csv", "--out",
+    result = cli(binary, "run", "--db", test_db_path, "--grasps", out / "grasp_list.csv", "--out",
                  tmp_path / "cli", "--threads", "1", "--quiet")
     printed = [line for line in result.stderr.splitlines() if ": error: " in line]
     assert sorted(printed) == sorted(trials.rejected)
@@ -130,19 +130,19 @@ def test_rejected_grasps_have_the_cli_messages(runs, db, binary, test_db_path, t
         with pytest.raises(ValueError) as error:
             visgrab.run(db, [good, grasp], threads=1, out=strict_out)
         message = str(error.value)
-        assert message.startswith(f"{strict_out / 'grasps.csv'}:")
+        assert message.startswith(f"{strict_out / 'grasp_list.csv'}:")
         # The same message but for the file's folder and line.
-        unplaced = lambda text: re.sub(r"\S*grasps\.csv:\d+:", "FILE:", text)
+        unplaced = lambda text: re.sub(r"\S*grasp_list\.csv:\d+:", "FILE:", text)
         assert unplaced(message) in [unplaced(m) for m in trials.rejected], message
         assert not (strict_out / "trials.csv").exists()
 
 
 def test_existing_results_need_resume_and_resume_completes(runs, db, tmp_path):
-    kept = (runs["module"] / "grasps.csv").read_bytes()
+    kept = (runs["module"] / "grasp_list.csv").read_bytes()
     with pytest.raises(RuntimeError, match=r"trials\.csv already holds results; resume them "
                                            r"\(resume=True\)"):
         visgrab.run(db, runs["grasps"][:1], threads=1, out=runs["module"])
-    assert (runs["module"] / "grasps.csv").read_bytes() == kept
+    assert (runs["module"] / "grasp_list.csv").read_bytes() == kept
     again = visgrab.run(db, runs["grasps"], threads=2, out=runs["module"], resume=True)
     assert again.summary["resumed"] == 4 and again.summary["trials"] == 0
 
@@ -214,3 +214,67 @@ def test_analyze_writes_the_cli_report(runs, binary, tmp_path):
     assert mismatch == [] and errors == []
     with pytest.raises(OSError):
         visgrab.analyze([tmp_path / "none"], out=tmp_path / "x", pictures=False)
+
+
+def test_analyze_takes_the_clis_interval_options(runs, binary, tmp_path):
+    """ci_level, bootstrap and seed are --ci-level, --bootstrap and --seed: the same files with
+    any thread count; bootstrap=0 leaves the intervals, success.csv and comparisons.csv out."""
+    dirs = [runs["cli"], runs["module"]]
+    cli(binary, "analyze", *dirs, "--out", tmp_path / "cli", "--no-pictures", "--quiet",
+        "--ci-level", "0.9", "--bootstrap", "300", "--seed", "7", "--threads", "2")
+    visgrab.analyze(dirs, out=tmp_path / "py", pictures=False, ci_level=0.9, bootstrap=300,
+                    seed=7, threads=1)
+    names = sorted(os.listdir(tmp_path / "cli"))
+    assert {"success.csv", "comparisons.csv"} <= set(names)
+    assert names == sorted(os.listdir(tmp_path / "py"))
+    _, mismatch, errors = filecmp.cmpfiles(tmp_path / "cli", tmp_path / "py", names,
+                                           shallow=False)
+    assert mismatch == [] and errors == []
+    report = (tmp_path / "py" / "report.md").read_text()
+    assert "Intervals: 90 % percentile intervals of a scene bootstrap (300 resamples, seed 7)" \
+        in report
+    # The two runs ran the same grasps: their comparison differs by nothing.
+    header, *rows = (tmp_path / "py" / "comparisons.csv").read_text().splitlines()
+    assert header.startswith("group,method_a,method_b,scenes,rate_a,rate_b,difference,")
+    overall = [r for r in rows if r.startswith("overall,")]
+    assert len(overall) == 1 and ",0,0,0,1," in overall[0]
+
+    visgrab.analyze(dirs, out=tmp_path / "none", pictures=False, bootstrap=0)
+    assert not (tmp_path / "none" / "success.csv").exists()
+    assert "_ci_low" not in (tmp_path / "none" / "quality.csv").read_text()
+    for bad in (dict(ci_level=1.5), dict(bootstrap=-1), dict(seed=-3)):
+        with pytest.raises(ValueError):
+            visgrab.analyze(dirs, out=tmp_path / "bad", pictures=False, **bad)
+    for option, value in (("--ci-level", "1.5"), ("--bootstrap", "-1"), ("--seed", "x")):
+        bad = cli(binary, "analyze", *dirs, "--out", tmp_path / "bad", "--no-pictures",
+                  "--quiet", option, value, check=False)
+        assert bad.returncode == 2 and option in bad.stderr, (option, bad.stderr)
+
+
+def test_repeats_run_as_the_cli_runs_them(runs, binary, test_db_path, tmp_path):
+    """repeats=3 through the module equals `visgrab run --repeats 3` byte for byte; repeat 0 is
+    the plain trial; every trial says its repeat and seed; grasps.csv is written."""
+    out = tmp_path / "module"
+    trials = visgrab.run(visgrab.Database(test_db_path), runs["grasps"], threads=2, out=out,
+                         repeats=3)
+    assert len(trials) == 3 * len(runs["trials"])
+    assert sorted({t.repeat for t in trials}) == [0, 1, 2]
+    assert all((t.seed == 0) == (t.repeat == 0) for t in trials)
+    plain = {(t.scene, t.id): (t.outcome, t.q_lift, t.simulated_time) for t in runs["trials"]}
+    for t in trials:
+        if t.repeat == 0:
+            assert (t.outcome, t.q_lift, t.simulated_time) == plain[(t.scene, t.id)]
+    cli(binary, "run", "--db", test_db_path, "--grasps", out / "grasp_list.csv", "--out",
+        tmp_path / "cli", "--threads", "1", "--repeats", "3", "--quiet")
+    for name in ("trials.csv", "grasps.csv"):
+        assert (out / name).read_bytes() == (tmp_path / "cli" / name).read_bytes(), name
+    header = (out / "grasps.csv").read_text().splitlines()[0]
+    assert header.startswith("scene,method,grasp,rank,repeats,held,p,p_ci_low,p_ci_high,")
+    with pytest.raises(ValueError, match="needs repeats"):
+        visgrab.run(visgrab.Database(test_db_path), runs["grasps"], out=tmp_path / "x",
+                    noise=tmp_path / "none.xml")
+    bad = tmp_path / "bad.xml"
+    bad.write_text("<NoiseModel>\n  <Mass sigma=\"-1\"/>\n</NoiseModel>\n")
+    with pytest.raises(OSError, match=r"bad\.xml:2"):
+        visgrab.run(visgrab.Database(test_db_path), runs["grasps"], out=tmp_path / "y",
+                    repeats=2, noise=bad)

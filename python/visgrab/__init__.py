@@ -293,24 +293,32 @@ class RunTrials(list):
 
 
 def run(db, grasps, hand=None, threads=None, out=None, scenes=None, resume=False, strict=True,
-        progress=None, engine="ode"):
+        progress=None, engine="ode", repeats=1, noise=None, seed=1, adaptive=False):
     """Runs grasps through the simulator, as `visgrab run` does; returns a RunTrials list.
 
     db: a Database or its path; grasps: Grasp objects; hand: a Hand, a hand name or path
     (default "sdh"); threads: worker threads (None: the number of cores; the results do not
     depend on it); out: the result folder to write (trials.csv, run.csv and the grasp list
-    grasps.csv the run read, so `visgrab render --results` and `visgrab analyze` work on it);
+    grasp_list.csv the run read, so `visgrab render --results` and `visgrab analyze` work on it);
     None: a temporary folder, removed afterwards; scenes: only the scenes this filter selects;
     resume: continue an interrupted run in `out`; progress: called as progress(done, total)
     from the calling thread; engine: the physics engine, "ode" (the benchmark's, default) or
     "mujoco" (when this build has it: visgrab.engines()), recorded in run.csv; an engine the
     build lacks is a ValueError that says how to get it.
 
+    Robust verdicts, as `visgrab run --repeats N --noise FILE --seed S --adaptive`: repeats=N
+    runs each grasp N times, repeat 0 unperturbed and repeats 1..N-1 under seeded perturbations
+    of the noise model (noise: an XML file, None: the documented defaults; docs/noise-model.md);
+    each TrialResult then has its .repeat and .seed, and `out` holds grasps.csv with every
+    grasp's P(success) and Wilson interval. adaptive=True stops repeating a grasp once its first
+    trials agree. repeats=1 (default) is the plain run; noise or adaptive without repeats > 1 is
+    a ValueError, a bad noise file an OSError naming its file and line.
+
     The grasps are written with the grasp list writer and the runner reads that file, exactly
     as `visgrab run --grasps FILE` would: trials.csv is byte-identical. strict=True (default)
     raises ValueError before running if any grasp would be rejected (unknown scene, unknown
     pre-shape, wrong number of joint values, duplicate id; message as the CLI's, naming the
-    line of grasps.csv); strict=False runs the others and lists the rejected in .rejected.
+    line of grasp_list.csv); strict=False runs the others and lists the rejected in .rejected.
     OSError: unreadable database, scene files or hand; an existing trials.csv in `out` without
     resume is a RuntimeError. Ctrl-C stops the run (finished trials are written; resume=True
     continues) and raises KeyboardInterrupt.
@@ -325,18 +333,20 @@ def run(db, grasps, hand=None, threads=None, out=None, scenes=None, resume=False
     with tempfile.TemporaryDirectory(prefix="visgrab-run-") as tmp:
         folder = pathlib.Path(tmp if out is None else os.fspath(out))
         if not resume and (folder / "trials.csv").exists():
-            # Checked before grasps.csv is written: the earlier run's input stays as it was.
+            # Checked before grasp_list.csv is written: the earlier run's input stays as it was.
             raise RuntimeError(f"{folder / 'trials.csv'} already holds results; resume them "
                                "(resume=True) or choose another folder")
         folder.mkdir(parents=True, exist_ok=True)
-        grasp_file = folder / "grasps.csv"
+        grasp_file = folder / "grasp_list.csv"
         write_grasps(grasp_file, grasps)
         if strict:
             problems = _visgrab._grasp_problems(db, hand, str(grasp_file))
             if problems:
                 raise ValueError("\n".join(problems))
         summary = _visgrab._run(db.path, str(grasp_file), str(folder), hand.file, scenes or "",
-                                threads, resume, engine, progress)
+                                threads, resume, engine, progress, int(repeats),
+                                "" if noise is None else os.fspath(noise), int(seed),
+                                bool(adaptive))
         return RunTrials(read_results(folder), summary)
 
 
@@ -353,18 +363,26 @@ def read_results(dir):
     return results
 
 
-def analyze(dirs, out, threads=None, pictures=True):
+def analyze(dirs, out, threads=None, pictures=True, ci_level=0.95, bootstrap=2000, seed=None):
     """Writes the report of one or more result folders, as `visgrab analyze DIRS --out OUT`.
 
     The paper's analyses: CSV tables, report.md, report.html with SVG plots and (pictures=True,
     the CLI's default; False = --no-pictures) pictures of the best, a typical and a failed
-    grasp per method and condition. Returns the path of report.html. OSError for unreadable
-    result folders.
+    grasp per method and condition. Every estimate gets a `ci_level` interval from a scene
+    bootstrap of `bootstrap` resamples (--ci-level, --bootstrap; 0 = no intervals, no overall
+    success rates and no comparisons), seeded with `seed` (--seed; None = the CLI's default):
+    the same seed gives the same intervals with any `threads`. Returns the path of report.html.
+    OSError for unreadable result folders, ValueError for options out of range.
     """
     if isinstance(dirs, (str, os.PathLike)):
         dirs = [dirs]
+    if isinstance(bootstrap, bool) or not isinstance(bootstrap, int) or bootstrap < 0:
+        raise ValueError(f"bootstrap must be an integer >= 0, got {bootstrap!r}")
+    if seed is not None and (isinstance(seed, bool) or not isinstance(seed, int) or seed < 0):
+        raise ValueError(f"seed must be an integer >= 0, got {seed!r}")
     notes = _visgrab._analyze([os.fspath(d) for d in dirs], os.fspath(out),
-                              _default_threads(threads), bool(pictures))
+                              _default_threads(threads), bool(pictures), float(ci_level),
+                              bootstrap, seed)
     for message in notes:
         warnings.warn(message, stacklevel=2)
     return os.path.join(os.fspath(out), "report.html")

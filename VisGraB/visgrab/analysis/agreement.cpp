@@ -376,13 +376,14 @@ Agreement compareRuns(const AgreementRun& a, const AgreementRun& b) {
   out.trialsA = static_cast<int>(ra.trials.size());
   out.trialsB = static_cast<int>(rb.trials.size());
 
-  using Key = std::tuple<std::string, std::string, std::string>;
+  // A trial is its grasp and repeat (runs with --repeats: each repeat pairs with the same repeat).
+  using Key = std::tuple<std::string, std::string, std::string, int>;
   std::map<Key, const results::TrialRecord*> inB;
-  for (const auto& t : rb.trials) inB.emplace(Key{t.sceneId, t.method, t.graspId}, &t);
+  for (const auto& t : rb.trials) inB.emplace(Key{t.sceneId, t.method, t.graspId, t.repeat}, &t);
 
   GroupTallies tallies;
   for (const auto& ta : ra.trials) {
-    const auto it = inB.find(Key{ta.sceneId, ta.method, ta.graspId});
+    const auto it = inB.find(Key{ta.sceneId, ta.method, ta.graspId, ta.repeat});
     if (it == inB.end()) continue;
     const results::TrialRecord& tb = *it->second;
     ++out.shared;

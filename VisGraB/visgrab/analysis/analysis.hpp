@@ -8,7 +8,9 @@
 #include <vector>
 
 #include "rwsim/trial/grasp_outcome.hpp"
+#include "visgrab/analysis/table.hpp"
 #include "visgrab/database/scene_set.hpp"
+#include "visgrab/results/statistics.hpp"
 #include "visgrab/results/trial_record.hpp"
 
 /// The paper's five analyses (§2.4.2) of one or more runs, per condition group and method.
@@ -26,6 +28,18 @@ struct AnalysisOptions {
   std::uint64_t seed = 20120601;
   /// Attempts axis 1..maxAttempts; 0: the largest number of grasps of any scene and method.
   int maxAttempts = 0;
+  /// Confidence level of the intervals, in (0, 1).
+  double ciLevel = 0.95;
+  /// Resamples of the scene bootstrap behind every interval; 0: no intervals, and with them no
+  /// overall success rates and no comparisons (the report as it was before intervals existed).
+  int bootstrapResamples = 2000;
+  /// Seed of the bootstrap and permutation streams (each estimate's stream is derived from it and
+  /// the estimate's group, column and kind: docs/report.md, "Error bars").
+  std::uint64_t bootstrapSeed = 20120601;
+  /// Permutations of each paired permutation test (method against method).
+  int permutations = 10000;
+  /// Worker threads for the intervals; they do not depend on the count.
+  int threads = 1;
 };
 
 /// A set of scenes the analyses report on (a row of the paper's tables).
@@ -63,6 +77,14 @@ struct MethodColumn {
   int closingCapped = 0;
 };
 
+/// `N` undefined intervals.
+template <std::size_t N>
+constexpr std::array<results::Interval, N> filledIntervals() {
+  std::array<results::Interval, N> out{};
+  for (results::Interval& i : out) i = kUndefinedInterval;
+  return out;
+}
+
 /// Analysis 1 (Figure 6): distribution of the outcomes. Every scene of the group has weight
 /// 1/scenes: a scene without grasps adds it to noGraspShare, a scene with n grasps adds 1/n of
 /// it to the share of each grasp's outcome. So noGraspShare is the proportion of scenes without a
@@ -81,6 +103,10 @@ struct Distribution {
   std::array<double, kOutcomeCount> share{};
   /// Share of scenes without grasps.
   double noGraspShare = 0.0;
+  /// The scene-bootstrap interval of each share (undefined without intervals).
+  std::array<results::Interval, kOutcomeCount> shareCi = filledIntervals<kOutcomeCount>();
+  /// The interval of noGraspShare.
+  results::Interval noGraspShareCi = kUndefinedInterval;
 };
 
 /// Analysis 2 (Table 1): mean qualities over all successful grasps (stable, slipped) of the group.
@@ -94,6 +120,12 @@ struct QualityMeans {
   double meanQGws = 0.0;
   /// Mean Q_GWS with unit normal forces (NaN without successes or if one of them lacks it).
   double meanQGwsUnit = 0.0;
+  /// The scene-bootstrap intervals of the three means (undefined without intervals).
+  results::Interval meanQLiftCi = kUndefinedInterval;
+  /// Of meanQGws.
+  results::Interval meanQGwsCi = kUndefinedInterval;
+  /// Of meanQGwsUnit.
+  results::Interval meanQGwsUnitCi = kUndefinedInterval;
 };
 
 /// Analysis 3 (Figure 7): success rate against the number of attempts n = 1..maxAttempts, the
@@ -103,6 +135,8 @@ struct AttemptsCurve {
   std::vector<double> exact;
   /// The paper's estimate by randomized trials (randomizedAttempts()).
   std::vector<double> randomized;
+  /// The scene-bootstrap interval of each exact value (empty without intervals).
+  std::vector<results::Interval> exactCi;
 };
 
 /// Analysis 4 (Table 2): how often and how soon a success comes.
@@ -120,6 +154,24 @@ struct FirstSuccess {
   double gaRandomized = 0.0;
   /// ga when the grasps are tried in the order given (by rank).
   double gaGivenOrder = 0.0;
+  /// The scene-bootstrap intervals (undefined without intervals): of p.
+  results::Interval pCi = kUndefinedInterval;
+  /// Of ga.
+  results::Interval gaCi = kUndefinedInterval;
+  /// Of gaGivenOrder.
+  results::Interval gaGivenOrderCi = kUndefinedInterval;
+};
+
+/// The overall success rate: successful grasps among all grasps of the group, pooled.
+struct SuccessRate {
+  /// Grasps.
+  int grasps = 0;
+  /// Successful ones.
+  int successes = 0;
+  /// successes / grasps (NaN without grasps).
+  double rate = 0.0;
+  /// Its scene-bootstrap interval (undefined without intervals).
+  results::Interval rateCi = kUndefinedInterval;
 };
 
 /// All analyses of one group and column.
@@ -132,6 +184,8 @@ struct GroupResult {
   AttemptsCurve attempts;
   /// Table 2.
   FirstSuccess firstSuccess;
+  /// The overall success rate.
+  SuccessRate success;
 };
 
 /// Successful grasps among the grasps of some scenes.
@@ -142,6 +196,8 @@ struct SuccessCount {
   int successes = 0;
   /// Successful ones that held the pair's first / second object (double scenes only).
   std::array<int, 2> byObject{};
+  /// The scene-bootstrap interval of percent() (undefined without intervals).
+  results::Interval percentCi = kUndefinedInterval;
   /// 100 * successes / grasps (NaN without grasps).
   double percent() const;
   /// 100 * byObject[i] / grasps (NaN without grasps).
@@ -156,6 +212,66 @@ struct ObjectTable {
   /// pairs[pair index (a = 0)][0 far (apart), 1 close].
   std::array<std::array<SuccessCount, 2>, database::kPairCount> pairs{};
 };
+
+/// One paired difference of two columns on their shared scenes: estimate A - B, its paired
+/// scene-bootstrap interval and its two-sided paired permutation p-value.
+struct PairedDifference {
+  /// A's value.
+  double a = 0.0;
+  /// B's value.
+  double b = 0.0;
+  /// a - b.
+  double difference = 0.0;
+  /// Its paired bootstrap interval (results::pairedBootstrapInterval).
+  results::Interval differenceCi = kUndefinedInterval;
+  /// Its paired permutation p-value (results::pairedPermutationPValue).
+  double pValue = 0.0;
+};
+
+/// Method against method: two columns compared on the scenes of a group that both were run on.
+struct Comparison {
+  /// Index into Analysis::groups.
+  std::size_t group = 0;
+  /// Index into Analysis::columns of A (the earlier column).
+  std::size_t columnA = 0;
+  /// Of B.
+  std::size_t columnB = 0;
+  /// Shared scenes of the group (the paired units).
+  int scenes = 0;
+  /// The pooled success rate (successes / grasps over the shared scenes).
+  PairedDifference rate;
+  /// p, the share of the shared scenes with a success.
+  PairedDifference p;
+  /// What differs between the two columns' runs (differingSources); empty within one run.
+  std::vector<std::string> runDifferences;
+};
+
+/// The robust success of one column and group, from a run with repeats: each grasp's P(success)
+/// = held trials / trials over its repeats (repeat 0 included, as grasps.csv counts them).
+struct RobustRate {
+  /// Index into Analysis::groups.
+  std::size_t group = 0;
+  /// Index into Analysis::columns.
+  std::size_t column = 0;
+  /// Grasps (each counted once).
+  int grasps = 0;
+  /// Trials over all their repeats.
+  int trials = 0;
+  /// Mean over the grasps of P(success) (NaN without grasps).
+  double rate = 0.0;
+  /// Its scene-bootstrap interval.
+  results::Interval rateCi = kUndefinedInterval;
+  /// Share of the grasps with 0 < P < 1 (NaN without grasps).
+  double borderlineShare = 0.0;
+  /// Its scene-bootstrap interval.
+  results::Interval borderlineShareCi = kUndefinedInterval;
+};
+
+/// The run fields that differ between two runs: "hand", "engine", "engine settings",
+/// "database" (the database's index hash), in that order; an unknown (empty) field differs from
+/// a known one. An empty engine counts as "ode" (runs older than the record were ODE's).
+std::vector<std::string> differingSources(const results::RunSources& a,
+                                          const results::RunSources& b);
 
 /// Everything the report shows.
 struct Analysis {
@@ -175,11 +291,23 @@ struct Analysis {
   std::array<std::vector<ObjectTable>, 2> objectTables;
   /// Scenes of unknown conditions per run (only in "overall").
   std::vector<int> unknownScenes;
+  /// The intervals were computed (options.bootstrapResamples > 0).
+  bool intervals = false;
+  /// Every pair of columns with shared scenes, per group with shared scenes (group order, then
+  /// column pairs in column order); empty without intervals.
+  std::vector<Comparison> comparisons;
+  /// Per group and column of a run with repeats (some trial's repeat > 0), group order then
+  /// column order; empty when no run has repeats.
+  std::vector<RobustRate> robust;
 };
 
-/// Runs the five analyses on `runs` (each run's methods become columns). Trials of a scene not in
-/// the run's scene list are analysed with that scene added (conditions from the trial).
-/// @throws std::invalid_argument for options out of range (randomTrials < 1, maxAttempts < 0).
+/// Runs the five analyses on `runs` (each run's methods become columns), with the overall
+/// success rates, every estimate's scene-bootstrap interval and the comparisons of the columns
+/// (unless options.bootstrapResamples is 0), and the robust rates of runs with repeats. The
+/// paper's analyses read only the unperturbed trials (repeat 0). Trials of a scene not in the
+/// run's scene list are analysed with that scene added (conditions from the trial).
+/// @throws std::invalid_argument for options out of range (randomTrials < 1, maxAttempts < 0,
+/// ciLevel outside (0, 1), bootstrapResamples < 0, permutations < 1, threads < 1).
 Analysis analyze(const std::vector<results::RunResults>& runs, const AnalysisOptions& options = {});
 
 }  // namespace visgrab::analysis

@@ -3,15 +3,16 @@
 #include <string>
 
 #include "visgrab/analysis/detail/format.hpp"
+#include "visgrab/analysis/detail/report_tables.hpp"
 #include "visgrab/analysis/paper_tables.hpp"
 #include "visgrab/analysis/report.hpp"
+#include "visgrab/analysis/table.hpp"
 
 namespace visgrab::analysis {
 
 namespace {
 
 using detail::fixed;
-using detail::percent;
 using rwsim::trial::GraspOutcome;
 using rwsim::trial::kOutcomeTable;
 
@@ -148,6 +149,24 @@ std::string attemptsSvg(const Analysis& a, std::size_t group) {
   }
   svg += "<text x=\"" + num(left + plotWidth / 2) + "\" y=\"" + num(top + height + 30) +
          "\" class=\"xlabel\">number of attempts</text>\n";
+  // The intervals as bands under the lines.
+  for (std::size_t c = 0; c < a.columns.size(); ++c) {
+    const AttemptsCurve& curve = a.results[group][c].attempts;
+    std::string upper;
+    std::string lower;
+    for (std::size_t k = 0; k < curve.exactCi.size(); ++k) {
+      const results::Interval& ci = curve.exactCi[k];
+      if (!ci.defined()) continue;
+      const std::string x = num(xOf(static_cast<int>(k) + 1));
+      upper += (upper.empty() ? "" : " ") + x + "," + num(yOf(ci.high));
+      lower = x + "," + num(yOf(ci.low)) + (lower.empty() ? "" : " ") + lower;
+    }
+    if (upper.empty()) continue;
+    svg += "<polygon points=\"" + upper + " " + lower + "\" fill=\"" +
+           std::string(methodColour(c)) + "\" class=\"band\"><title>" +
+           escapeHtml(a.columns[c].label) + " (" + detail::levelText(a.options.ciLevel) +
+           " % interval)</title></polygon>\n";
+  }
   for (std::size_t c = 0; c < a.columns.size(); ++c) {
     const AttemptsCurve& curve = a.results[group][c].attempts;
     std::string points;
@@ -176,51 +195,10 @@ std::string methodLegendLines(const Analysis& a) {
     html += "<span><i style=\"background:" + std::string(methodColour(c)) + "\"></i>" +
             escapeHtml(a.columns[c].label) + "</span> ";
   }
-  return html + "(lines: exact expectation; dots: randomized trials)</p>\n";
-}
-
-/// Table 1 or 2 for one table (texture): rows as in the paper, per method its values (`heads`,
-/// `cells` gives them in the same order), and for a method named like one of the paper's grasp
-/// types the paper's two values right after the first two (the ones they compare with); further
-/// values (e.g. Q_GWS,unit) come after those.
-template <typename Cells>
-std::string conditionTable(const Analysis& a, std::size_t table, PaperTable paperTable,
-                           const std::vector<std::string_view>& heads, Cells cells) {
-  const std::size_t own = heads.size();
-  std::string html = "<table>\n<thead><tr><th colspan=\"2\"></th>";
-  for (const MethodColumn& c : a.columns) {
-    html += "<th colspan=\"" + std::to_string(own + (isPaperMethod(c.method) ? 2 : 0)) + "\">" +
-            escapeHtml(c.label) + "</th>";
-  }
-  html += "</tr>\n<tr><th colspan=\"2\"></th>";
-  for (const MethodColumn& c : a.columns) {
-    html += "<th>" + std::string(heads[0]) + "</th><th>" + std::string(heads[1]) + "</th>";
-    if (isPaperMethod(c.method)) {
-      html += "<th class=\"paper\">paper " + std::string(heads[0]) +
-              "</th><th class=\"paper\">paper " + std::string(heads[1]) + "</th>";
-    }
-    for (std::size_t k = 2; k < own; ++k) html += "<th>" + std::string(heads[k]) + "</th>";
-  }
-  html += "</tr></thead>\n<tbody>\n";
-  const auto rows = tableGroups(table);
-  for (std::size_t r = 0; r < rows.size(); ++r) {
-    html +=
-        "<tr><th>" + std::string(kRowKinds[r]) + "</th><th>" + std::string(kRowNames[r]) + "</th>";
-    for (std::size_t c = 0; c < a.columns.size(); ++c) {
-      const std::vector<std::string> values = cells(a.results[rows[r]][c]);
-      html += "<td>" + values[0] + "</td><td>" + values[1] + "</td>";
-      if (isPaperMethod(a.columns[c].method)) {
-        const auto paper = paperValues(paperTable, a.groups[rows[r]].key, a.columns[c].method);
-        for (std::size_t k = 0; k < 2; ++k) {
-          html +=
-              "<td class=\"paper\">" + (paper ? fixed((*paper)[k], 2) : std::string()) + "</td>";
-        }
-      }
-      for (std::size_t k = 2; k < own; ++k) html += "<td>" + values[k] + "</td>";
-    }
-    html += "</tr>\n";
-  }
-  return html + "</tbody>\n</table>\n";
+  return html + "(lines: exact expectation" +
+         (a.intervals ? "; bands: its " + detail::levelText(a.options.ciLevel) + " % interval"
+                      : "") +
+         "; dots: randomized trials)</p>\n";
 }
 
 bool hasPaperColumns(const Analysis& a) {
@@ -238,49 +216,33 @@ std::string comparisonNoteHtml() {
   return html;
 }
 
-std::string objectTables(const Analysis& a, std::size_t table) {
-  std::string html = "<h3>Single-object scenes</h3>\n<table>\n<thead><tr><th></th>";
-  for (const MethodColumn& c : a.columns) {
-    html += "<th colspan=\"2\">" + escapeHtml(c.label) + "</th>";
-  }
-  html += "</tr>\n<tr><th>object</th>";
-  for (std::size_t c = 0; c < a.columns.size(); ++c) html += "<th>s</th><th>l</th>";
-  html += "</tr></thead>\n<tbody>\n";
-  for (std::size_t i = 0; i < database::kObjectCount; ++i) {
-    html += "<tr><th title=\"" + std::string(database::objectName(static_cast<int>(i) + 1)) +
-            "\">" + std::to_string(i + 1) + "</th>";
-    for (std::size_t c = 0; c < a.columns.size(); ++c) {
-      for (std::size_t k = 0; k < 2; ++k) {
-        const SuccessCount& s = a.objectTables[table][c].single[i][k];
-        html += "<td title=\"" + std::to_string(s.successes) + " of " + std::to_string(s.grasps) +
-                "\">" + percent(s.percent()) + "</td>";
+/// A table with its title as an HTML section (`level` heading, note paragraph, table).
+std::string htmlSection(const Table& table, const std::string& level = "h2") {
+  std::string html = "<" + level + ">" + escapeHtml(table.title) + "</" + level + ">\n";
+  if (!table.note.empty()) html += "<p class=\"note\">" + escapeHtml(table.note) + "</p>\n";
+  return html + htmlText(table);
+}
+
+/// The overall success rates, method against method and the robust rates (each only when it has
+/// rows).
+std::string statisticsHtml(const Analysis& a) {
+  std::string html;
+  if (a.intervals) html += htmlSection(detail::successTable(a));
+  if (!a.comparisons.empty()) {
+    const Table winners = detail::winnersTable(a);
+    if (!winners.rows.empty()) {
+      html += htmlSection(winners) + "<ul>\n";
+      for (const std::string& sentence : detail::comparisonSentences(a)) {
+        html += "<li>" + escapeHtml(sentence) + "</li>\n";
       }
+      html += "</ul>\n";
+    } else {
+      html += "<h2>Method against method</h2>\n";
     }
-    html += "</tr>\n";
+    html += htmlSection(detail::comparisonsTable(a), "h3");
   }
-  html += "</tbody>\n</table>\n<h3>Double-object scenes</h3>\n<table>\n<thead><tr><th></th>";
-  for (const MethodColumn& c : a.columns) {
-    html += "<th colspan=\"2\">" + escapeHtml(c.label) + "</th>";
-  }
-  html += "</tr>\n<tr><th>pair</th>";
-  for (std::size_t c = 0; c < a.columns.size(); ++c) html += "<th>f</th><th>c</th>";
-  html += "</tr></thead>\n<tbody>\n";
-  for (std::size_t i = 0; i < database::kPairCount; ++i) {
-    const database::ObjectPair& p = database::kObjectPairs[i];
-    html += "<tr><th title=\"" + std::to_string(p.first) + "-" + std::to_string(p.second) + "\">" +
-            std::string(1, p.letter) + "</th>";
-    for (std::size_t c = 0; c < a.columns.size(); ++c) {
-      for (std::size_t k = 0; k < 2; ++k) {
-        const SuccessCount& s = a.objectTables[table][c].pairs[i][k];
-        html += "<td title=\"" + std::to_string(s.successes) + " of " + std::to_string(s.grasps) +
-                "\">" + percent(s.percent()) + "<br/><small>" + std::to_string(p.first) + ": " +
-                percent(s.percentOf(0)) + ", " + std::to_string(p.second) + ": " +
-                percent(s.percentOf(1)) + "</small></td>";
-      }
-    }
-    html += "</tr>\n";
-  }
-  return html + "</tbody>\n</table>\n";
+  if (!a.robust.empty()) html += htmlSection(detail::robustTable(a));
+  return html;
 }
 
 constexpr std::string_view kStyle =
@@ -298,6 +260,9 @@ constexpr std::string_view kStyle =
     ".ptitle{font-size:12px;font-weight:bold}"
     "small{color:#666}"
     ".paper{color:#555;background:#f4f4f4;font-style:italic}"
+    "td.text{text-align:left}"
+    ".band{opacity:0.18;stroke:none}"
+    "summary{cursor:pointer;margin:0.3em 0}"
     ".note{max-width:50em}"
     ".picture{margin:0.5em 0 1.2em}.picture img{max-width:100%;border:1px solid #ccc}"
     ".picture figcaption{font-size:13px;color:#444}";
@@ -340,18 +305,10 @@ std::string htmlReport(const Analysis& a, const std::vector<Showcase>& showcases
       std::string(kStyle) + "</style>\n</head>\n<body>\n<h1>VisGraB results</h1>\n";
   html += "<p>Success: stable grasp or object slipped. Randomized trials: " +
           std::to_string(a.options.randomTrials) + ", seed " + std::to_string(a.options.seed) +
-          ". Definitions: docs/report.md.</p>\n";
-  html +=
-      "<table>\n<thead><tr><th>#</th><th>run</th><th>method</th><th>rejected grasps</th>"
-      "<th title=\"trials whose closing ran into the closing cap before the fingers came to "
-      "rest\">closings at the cap</th></tr></thead>\n<tbody>\n";
-  for (std::size_t c = 0; c < a.columns.size(); ++c) {
-    const MethodColumn& m = a.columns[c];
-    html += "<tr><td>" + std::to_string(c + 1) + "</td><td>" + escapeHtml(a.runLabels[m.run]) +
-            "</td><td>" + escapeHtml(m.label) + "</td><td>" + std::to_string(m.rejected) +
-            "</td><td>" + std::to_string(m.closingCapped) + "</td></tr>\n";
-  }
-  html += "</tbody>\n</table>\n";
+          ". " + (a.intervals ? escapeHtml(detail::intervalsSentence(a)) + " " : std::string()) +
+          "Definitions: docs/report.md.</p>\n";
+  html += htmlText(detail::runsTable(a));
+  html += statisticsHtml(a);
 
   html +=
       "<h2>Figure 6: grasp results</h2>\n<p>Distribution of all grasps over all scenes (each "
@@ -361,18 +318,11 @@ std::string htmlReport(const Analysis& a, const std::vector<Showcase>& showcases
     html += "<figure><figcaption>" + std::string(t == 0 ? "Textured" : "Non-textured (plain)") +
             " background</figcaption>\n" + distributionSvg(a, t) + "</figure>\n";
   }
+  html += "<details><summary>The shares as a table</summary>\n" +
+          htmlText(detail::distributionTable(a)) + "</details>\n";
 
-  html += "<h2>Table 1: grasp quality of the successful grasps</h2>\n";
-  for (std::size_t t = 0; t < 2; ++t) {
-    html += "<h3>" + std::string(t == 0 ? "Textured" : "Non-textured") + " background</h3>\n";
-    html += conditionTable(a, t, PaperTable::kQuality,
-                           {"Q<sub>lift</sub>", "Q<sub>GWS</sub>", "Q<sub>GWS,unit</sub>"},
-                           [](const GroupResult& r) {
-                             return std::vector<std::string>{fixed(r.quality.meanQLift, 2),
-                                                             fixed(r.quality.meanQGws, 2),
-                                                             fixed(r.quality.meanQGwsUnit, 2)};
-                           });
-  }
+  html += "<h2>Table 1: grasp quality of the successful grasps</h2>\n" +
+          htmlText(detail::qualityTable(a));
   html += "<p>" + escapeHtml(std::string(kQualityColumnsNote)) + "</p>\n";
   if (hasPaperColumns(a)) {
     html += "<p>" + escapeHtml(paperColumnsNote(PaperTable::kQuality)) + "</p>\n";
@@ -384,18 +334,14 @@ std::string htmlReport(const Analysis& a, const std::vector<Showcase>& showcases
        {std::size_t{2}, std::size_t{5}, std::size_t{9}, std::size_t{12}, a.groups.size() - 1}) {
     html += attemptsSvg(a, g);
   }
-  html += "</div>\n";
+  html += "</div>\n<details><summary>Every group as a table</summary>\n" +
+          htmlText(detail::attemptsDisplayTable(a)) + "</details>\n";
 
   html +=
       "<h2>Table 2: scenes with a successful grasp (p) and attempts until the first success "
       "(ga)</h2>\n<p>ga: expected attempts when the scene's grasps are tried in random order, "
-      "(n+1)/(k+1), averaged over the scenes with a success.</p>\n";
-  for (std::size_t t = 0; t < 2; ++t) {
-    html += "<h3>" + std::string(t == 0 ? "Textured" : "Non-textured") + " background</h3>\n";
-    html += conditionTable(a, t, PaperTable::kFirstSuccess, {"p", "ga"}, [](const GroupResult& r) {
-      return std::vector<std::string>{fixed(r.firstSuccess.p, 2), fixed(r.firstSuccess.ga, 2)};
-    });
-  }
+      "(n+1)/(k+1), averaged over the scenes with a success.</p>\n" +
+      htmlText(detail::firstSuccessTable(a));
   if (hasPaperColumns(a)) {
     html += "<p>" + escapeHtml(paperColumnsNote(PaperTable::kFirstSuccess)) + "</p>\n" +
             comparisonNoteHtml();
@@ -404,9 +350,10 @@ std::string htmlReport(const Analysis& a, const std::vector<Showcase>& showcases
   for (std::size_t t = 0; t < 2; ++t) {
     html += std::string("<h2>Table ") + (t == 0 ? "3" : "4") + ": successful grasps per object, " +
             (t == 0 ? "textured" : "non-textured") +
-            " scenes</h2>\n<p>s standing, l lying; f far (apart), c close; pairs also by the "
-            "object held.</p>\n" +
-            objectTables(a, t);
+            " scenes</h2>\n<p>s standing, l lying; f far (apart), c close; pairs: total (first "
+            "object / second object held).</p>\n<h3>Single-object scenes</h3>\n" +
+            htmlText(detail::objectDisplayTable(a, t, true)) + "<h3>Double-object scenes</h3>\n" +
+            htmlText(detail::objectDisplayTable(a, t, false));
   }
   return html + showcasesHtml(a, showcases) + "</body>\n</html>\n";
 }

@@ -22,14 +22,19 @@ std::string_view outcomeLegend(rwsim::trial::GraspOutcome outcome);
 std::string escapeHtml(std::string_view text);
 
 /// Writes the CSV tables into `outDir`: distribution.csv (Figure 6), quality.csv (Table 1),
-/// attempts.csv (Figure 7), first_success.csv (Table 2), objects.csv (Tables 3-4); each
-/// atomically. quality.csv and first_success.csv also give the paper's values (paperValues()),
-/// empty where it has none. Undefined values (NaN) are empty fields. @throws std::runtime_error.
+/// attempts.csv (Figure 7), first_success.csv (Table 2), objects.csv (Tables 3-4), with the
+/// intervals also success.csv (overall success rates) and comparisons.csv (method against
+/// method), with repeats robust.csv; each atomically. With intervals each estimate column X is
+/// followed by X_ci_low and X_ci_high. quality.csv and first_success.csv also give the paper's
+/// values (paperValues()), empty where it has none. Undefined values (NaN) are empty fields.
+/// @throws std::runtime_error.
 void writeCsvTables(const Analysis& analysis, const std::filesystem::path& outDir);
 
-/// The report as Markdown (tables of all five analyses, definitions in short; Tables 1 and 2 with
-/// the paper's values beside the methods named like its grasp types, and the note on comparing),
-/// then the showcases that have a picture, as image links.
+/// The report as Markdown (with intervals: the overall success rates and method against method
+/// first; robust rates with repeats; tables of all five analyses, definitions in short, every
+/// estimate with its interval; Tables 1 and 2 with the paper's values beside the methods named
+/// like its grasp types, and the note on comparing), then the showcases that have a picture, as
+/// image links.
 std::string markdownReport(const Analysis& analysis, const std::vector<Showcase>& showcases = {});
 
 /// The report as one HTML page (inline SVG plots); the showcases' pictures, if any, are the only

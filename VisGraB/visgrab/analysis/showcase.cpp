@@ -39,7 +39,11 @@ std::vector<Showcase> chooseShowcases(const Analysis& analysis,
     for (const ConditionGroup& group : groups) {
       std::vector<const results::TrialRecord*> held, failed;
       for (const results::TrialRecord& t : run.trials) {
-        if (t.method != column.method || !t.conditions || !group.contains(t.conditions)) continue;
+        // The unperturbed trials only (repeat 0), as the analyses read them.
+        if (t.method != column.method || t.repeat != 0 || !t.conditions ||
+            !group.contains(t.conditions)) {
+          continue;
+        }
         (results::isSuccess(t.outcome) ? held : failed).push_back(&t);
       }
       auto add = [&](const char* role, const results::TrialRecord& t) {

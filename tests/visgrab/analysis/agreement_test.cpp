@@ -384,4 +384,30 @@ TEST_F(AgreementTest, RecordedIndexHashesDecideWherePathsCannot) {
                         "fedcba9876543210");
 }
 
+/// Two runs of one grasp with two repeats each: repeat 0 held in both, repeat 1 held only in A.
+/// Each repeat pairs with the same repeat of the other run: 2 shared trials, one disagreement
+/// (matching by grasp alone would pair both of A's trials with B's first one: no disagreement).
+TEST(AgreementRepeats, EachRepeatPairsWithTheSameRepeat) {
+  visgrab::results::RunResults a;
+  const auto c =
+      visgrab::database::SceneConditions::single(visgrab::database::Texture::kTextured, 5, 1);
+  a.scenes = {{visgrab::database::sceneIdOf(c), c}};
+  a.methods = {"m"};
+  visgrab::results::TrialRecord t;
+  t.sceneId = a.scenes[0].id;
+  t.conditions = c;
+  t.method = "m";
+  t.graspId = "g";
+  t.outcome = rwsim::trial::GraspOutcome::kStable;
+  t.object = 5;
+  a.trials = {t, t};
+  a.trials[1].repeat = 1;
+  a.trials[1].seed = 7;
+  visgrab::results::RunResults b = a;
+  b.trials[1].outcome = rwsim::trial::GraspOutcome::kMissed;
+  const Agreement agreement = compareRuns({"A", a}, {"B", b});
+  EXPECT_EQ(agreement.shared, 2);
+  EXPECT_EQ(agreement.disagreements.size(), 1u);
+}
+
 }  // namespace

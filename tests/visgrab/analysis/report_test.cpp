@@ -11,6 +11,7 @@
 
 #include "support/test_support.hpp"
 #include "test_runs.hpp"
+#include "visgrab/analysis/detail/report_tables.hpp"
 
 namespace visgrab::analysis {
 namespace {
@@ -98,9 +99,19 @@ TEST(ReportTest, EscapesHtml) {
   EXPECT_EQ(escapeHtml("a<b & \"c\" 'd'>"), "a&lt;b &amp; &quot;c&quot; &#39;d&#39;&gt;");
 }
 
+/// The options of the report as it was before intervals: no resamples.
+AnalysisOptions withoutIntervals() {
+  AnalysisOptions options;
+  options.bootstrapResamples = 0;
+  return options;
+}
+
+/// The paper's numbers of the shared test runs, without intervals (ReportIntervalsTest has them).
 class ReportFilesTest : public ::testing::Test {
  protected:
-  void SetUp() override { writeReport({test_runs::runA(), test_runs::runB()}, dir.path()); }
+  void SetUp() override {
+    writeReport({test_runs::runA(), test_runs::runB()}, dir.path(), withoutIntervals());
+  }
   test::TempDir dir;
 };
 
@@ -117,9 +128,13 @@ TEST_F(ReportFilesTest, HtmlIsWellFormedSelfContainedAndHasTheNumbers) {
   EXPECT_NE(html.find("x&lt;&amp;&gt;&quot;"), std::string::npos);
   EXPECT_EQ(html.find("x<&>"), std::string::npos);
   // Table 2, textured single standing, runA: p = 0.50, ga = 5/3 = 1.67 (analysis_test.cpp).
-  EXPECT_NE(html.find("<td>0.50</td><td>1.67</td>"), std::string::npos);
+  EXPECT_NE(html.find("<tr><td class=\"text\">textured, single, standing</td>"
+                      "<td class=\"text\">runA: A</td><td>0.50</td><td>1.67</td>"),
+            std::string::npos);
   // Table 1, textured single standing, runA: Q_lift 0.70, Q_GWS 0.30, Q_GWS,unit 0.03.
-  EXPECT_NE(html.find("<td>0.70</td><td>0.30</td><td>0.03</td>"), std::string::npos);
+  EXPECT_NE(html.find("<td class=\"text\">runA: A</td><td>2</td><td>0.70</td><td>0.30</td>"
+                      "<td>0.03</td></tr>"),
+            std::string::npos);
   EXPECT_NE(html.find("<th>Q<sub>lift</sub></th><th>Q<sub>GWS</sub></th>"
                       "<th>Q<sub>GWS,unit</sub></th>"),
             std::string::npos);
@@ -130,7 +145,13 @@ TEST_F(ReportFilesTest, HtmlIsWellFormedSelfContainedAndHasTheNumbers) {
   EXPECT_NE(html.find("fill=\"#a6a6a6\""), std::string::npos);
   // Table 3: cocacola standing 50 %; pair e far 33 %, held object 14: 33 %.
   EXPECT_NE(html.find("title=\"2 of 4\">50 %</td>"), std::string::npos);
-  EXPECT_NE(html.find("33 %<br/><small>5: 0 %, 14: 33 %</small>"), std::string::npos);
+  EXPECT_NE(html.find("<th>pair</th>"), std::string::npos);
+  EXPECT_NE(html.find("<td class=\"text\">e: 5-14</td>"), std::string::npos);
+  EXPECT_NE(html.find("title=\"1 of 3\">33 % <small>(0 % / 33 %)</small></td>"), std::string::npos);
+  // No intervals: no band, no interval, no statistics section.
+  EXPECT_EQ(html.find("<polygon"), std::string::npos);
+  EXPECT_EQ(html.find(" ["), std::string::npos);
+  EXPECT_EQ(html.find("Overall success rate"), std::string::npos);
 }
 
 TEST_F(ReportFilesTest, MarkdownAndCsvHaveTheNumbers) {
@@ -202,7 +223,7 @@ results::RunResults paperNamedRun() {
 
 TEST(ReportPaperColumnsTest, PaperValuesBesideOursOnlyForThePapersMethods) {
   test::TempDir dir;
-  writeReport({paperNamedRun()}, dir.path());
+  writeReport({paperNamedRun()}, dir.path(), withoutIntervals());
 
   // Markdown: Table 2 and Table 1 with the paper's columns; s3EGA1 textured single has p = 0.84,
   // ga = 2.60 in the paper (single all), 0.88, 2.18 (single standing); Q 0.72, 0.59 (standing).
@@ -234,28 +255,28 @@ TEST(ReportPaperColumnsTest, PaperValuesBesideOursOnlyForThePapersMethods) {
   EXPECT_NE(md.find("\n### Comparing with the paper\n"), std::string::npos);
   EXPECT_NE(md.find("not the paper's real camera images"), std::string::npos);
 
-  // HTML: four columns for s3EGA1 (ours, then the paper's), two for mine.
+  // HTML: the same tables, the paper's columns grey and italic.
   const std::string html = readText(dir.path() / "report.html");
   EXPECT_EQ(checkWellFormed(html), "");
-  EXPECT_NE(html.find("<th colspan=\"4\">s3EGA1</th><th colspan=\"2\">mine</th>"),
-            std::string::npos);
   EXPECT_NE(html.find("<th>p</th><th>ga</th><th class=\"paper\">paper p</th>"
-                      "<th class=\"paper\">paper ga</th><th>p</th><th>ga</th></tr>"),
+                      "<th class=\"paper\">paper ga</th><th>ga (randomized)</th>"
+                      "<th>ga (given order)</th></tr>"),
             std::string::npos);
   // Table 2, textured single all; Table 1, textured single standing.
-  EXPECT_NE(html.find("<th>single</th><th>all</th><td>1.00</td><td>1.00</td>"
-                      "<td class=\"paper\">0.84</td><td class=\"paper\">2.60</td>"
-                      "<td>1.00</td><td>1.00</td></tr>"),
+  EXPECT_NE(html.find("<td class=\"text\">textured, single, all</td><td class=\"text\">s3EGA1"
+                      "</td><td>1.00</td><td>1.00</td><td class=\"paper\">0.84</td>"
+                      "<td class=\"paper\">2.60</td><td>1.00</td><td>1.00</td></tr>"),
             std::string::npos);
-  EXPECT_NE(html.find("<th>single</th><th>standing</th><td>0.90</td><td>0.40</td>"
-                      "<td class=\"paper\">0.72</td><td class=\"paper\">0.59</td><td>0.04</td>"
-                      "<td>0.50</td><td>0.20</td><td>0.02</td></tr>"),
+  EXPECT_NE(html.find("<td class=\"text\">s3EGA1</td><td>1</td><td>0.90</td><td>0.40</td>"
+                      "<td class=\"paper\">0.72</td><td class=\"paper\">0.59</td>"
+                      "<td>0.04</td></tr>"),
             std::string::npos);
-  EXPECT_NE(html.find("<th colspan=\"5\">s3EGA1</th><th colspan=\"3\">mine</th>"),
+  EXPECT_NE(html.find("<th>Q<sub>GWS</sub></th><th class=\"paper\">paper Q<sub>lift</sub></th>"),
             std::string::npos);
-  // The table's "all scenes" row has empty paper cells.
-  EXPECT_NE(html.find("<th></th><th>all scenes</th><td>1.00</td><td>1.00</td>"
-                      "<td class=\"paper\"></td><td class=\"paper\"></td>"),
+  // Rows the paper does not have get empty paper cells.
+  EXPECT_NE(html.find("<td class=\"text\">overall</td><td class=\"text\">s3EGA1</td>"
+                      "<td>1.00</td><td>1.00</td><td class=\"paper\"></td>"
+                      "<td class=\"paper\"></td>"),
             std::string::npos);
   EXPECT_NE(html.find("<h3>Comparing with the paper</h3>"), std::string::npos);
   EXPECT_NE(html.find("not the paper&#39;s real camera images"), std::string::npos);
@@ -277,10 +298,111 @@ TEST(ReportPaperColumnsTest, PaperValuesBesideOursOnlyForThePapersMethods) {
 
 TEST_F(ReportFilesTest, ReportIsDeterministic) {
   test::TempDir other;
-  writeReport({test_runs::runA(), test_runs::runB()}, other.path());
+  writeReport({test_runs::runA(), test_runs::runB()}, other.path(), withoutIntervals());
   for (const char* file : {"report.html", "report.md", "attempts.csv", "distribution.csv"}) {
     EXPECT_EQ(readText(dir.path() / file), readText(other.path() / file)) << file;
   }
+}
+
+/// Without resamples the report's files are byte for byte those of the writer before intervals
+/// and the table model existed: data/before_intervals holds them, written by the code of commit
+/// 4fb8abf (writeReport with its default options) for runA + runB ("ab") and paperNamedRun()
+/// ("paper"). report.html is not compared: its tables now share the Markdown layout.
+TEST(ReportWithoutIntervalsTest, FilesAreThoseOfTheWriterBeforeIntervals) {
+  const std::filesystem::path before =
+      test::sourceDir() / "tests/visgrab/analysis/data/before_intervals";
+  const std::vector<std::pair<std::string, std::vector<results::RunResults>>> cases = {
+      {"ab", {test_runs::runA(), test_runs::runB()}}, {"paper", {paperNamedRun()}}};
+  for (const auto& [name, runs] : cases) {
+    test::TempDir dir;
+    writeReport(runs, dir.path(), withoutIntervals());
+    for (const char* file : {"distribution.csv", "quality.csv", "attempts.csv", "first_success.csv",
+                             "objects.csv", "report.md"}) {
+      const std::string expected = readText(before / name / file);
+      ASSERT_FALSE(expected.empty()) << before / name / file;
+      EXPECT_EQ(readText(dir.path() / file), expected) << name << "/" << file;
+    }
+    for (const char* file : {"success.csv", "comparisons.csv", "robust.csv"}) {
+      EXPECT_FALSE(std::filesystem::exists(dir.path() / file)) << file;
+    }
+  }
+}
+
+/// The two hand-worked scenes of intervals_test.cpp with the default options: every estimate
+/// shows its interval, which is [S2 alone, S1 alone] (or the reverse) there.
+class ReportIntervalsTest : public ::testing::Test {
+ protected:
+  void SetUp() override { writeReport({test_runs::twoSceneRun()}, dir.path()); }
+  test::TempDir dir;
+};
+
+TEST_F(ReportIntervalsTest, CsvHasEachIntervalAfterItsEstimate) {
+  const std::string first = readText(dir.path() / "first_success.csv");
+  EXPECT_EQ(first.substr(0, first.find('\n')),
+            "group,method,scenes,scenes_with_success,p,p_ci_low,p_ci_high,ga,ga_ci_low,ga_ci_high,"
+            "ga_randomized,ga_given_order,ga_given_order_ci_low,ga_given_order_ci_high,paper_p,"
+            "paper_ga");
+  // ga = (5/3 + 2) / 2, interval [5/3, 2]; given order 1.5 in [1, 2].
+  EXPECT_NE(first.find("\noverall,M,2,2,1,1,1,1.8333333333333335,1.6666666666666667,2,"),
+            std::string::npos)
+      << first;
+  const std::string quality = readText(dir.path() / "quality.csv");
+  EXPECT_EQ(quality.substr(0, quality.find('\n')),
+            "group,method,successes,mean_q_lift,mean_q_lift_ci_low,mean_q_lift_ci_high,"
+            "mean_q_gws,mean_q_gws_ci_low,mean_q_gws_ci_high,paper_q_lift,paper_q_gws,"
+            "mean_q_gws_unit,mean_q_gws_unit_ci_low,mean_q_gws_unit_ci_high");
+  const std::string distribution = readText(dir.path() / "distribution.csv");
+  EXPECT_NE(distribution.find(",share_stable,share_stable_ci_low,share_stable_ci_high,"),
+            std::string::npos);
+  EXPECT_NE(distribution.find(",share_no_grasp,share_no_grasp_ci_low,share_no_grasp_ci_high\n"),
+            std::string::npos);
+  const std::string attempts = readText(dir.path() / "attempts.csv");
+  EXPECT_EQ(attempts.substr(0, attempts.find('\n')),
+            "group,method,attempts,exact,exact_ci_low,exact_ci_high,randomized");
+  // n = 2: (5/6 + 2/3) / 2 = 0.75 in [2/3, 5/6] (1 - 1/3 and 1 - 1/6 in doubles).
+  EXPECT_NE(attempts.find("\noverall,M,2,0.75,0.6666666666666667,0.8333333333333334,"),
+            std::string::npos)
+      << attempts;
+  const std::string objects = readText(dir.path() / "objects.csv");
+  EXPECT_NE(objects.find(",grasps,successes,percent,percent_ci_low,percent_ci_high,"
+                         "successes_first,successes_second\n"),
+            std::string::npos);
+  EXPECT_NE(objects.find("\ntextured,M,single,5,cocacola,standing,4,2,50,50,50,,\n"),
+            std::string::npos)
+      << objects;
+  const std::string success = readText(dir.path() / "success.csv");
+  EXPECT_NE(success.find("\noverall,M,2,7,3,0.42857142857142855,0.3333333333333333,0.5\n"),
+            std::string::npos)
+      << success;
+}
+
+TEST_F(ReportIntervalsTest, MarkdownAndHtmlShowTheIntervalBesideTheNumber) {
+  const std::string md = readText(dir.path() / "report.md");
+  EXPECT_NE(md.find("Intervals: 95 % percentile intervals of a scene bootstrap (2000 resamples, "
+                    "seed 20120601)"),
+            std::string::npos);
+  EXPECT_NE(md.find("\n## Overall success rate\n"), std::string::npos);
+  EXPECT_NE(md.find("| overall | M | 2 | 7 | 3 | 0.429 [0.333, 0.500] |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| overall | M | 1.00 [1.00, 1.00] | 1.83 [1.67, 2.00] | 1."),
+            std::string::npos);
+  EXPECT_NE(md.find("| overall | M | 3 | 0.60 [0.40, 0.70] | 0.40 [0.30, 0.60] |"),
+            std::string::npos);
+  EXPECT_NE(md.find("| 5 cocacola | 50 % [50, 50] | – |"), std::string::npos);
+  // One column: nothing to compare.
+  EXPECT_EQ(md.find("Method against method"), std::string::npos);
+  const std::string html = readText(dir.path() / "report.html");
+  EXPECT_EQ(checkWellFormed(html), "");
+  EXPECT_NE(html.find("<td>0.429 [0.333, 0.500]</td>"), std::string::npos);
+  // Figure 7's band: n = 1..4 along the upper ends, back along the lower ones.
+  EXPECT_NE(html.find("<polygon points=\""), std::string::npos);
+  EXPECT_NE(html.find("class=\"band\"><title>M (95 % interval)</title></polygon>"),
+            std::string::npos);
+}
+
+TEST(ReportLevelTest, TheLevelIsWrittenAsPercent) {
+  EXPECT_EQ(detail::levelText(0.95), "95");
+  EXPECT_EQ(detail::levelText(0.9), "90");
+  EXPECT_EQ(detail::levelText(0.995), "99.5");
 }
 
 }  // namespace

@@ -33,6 +33,31 @@ inline results::TrialRecord trial(const results::RunScene& scene, const std::str
 
 inline results::RunScene scene(const SceneConditions& c) { return {database::sceneIdOf(c), c}; }
 
+/// Repeat `repeat` (> 0: perturbed, with a made-up seed) of `grasp`, ending with `outcome`.
+inline results::TrialRecord repeated(results::TrialRecord grasp, int repeat, GraspOutcome outcome) {
+  grasp.repeat = repeat;
+  grasp.seed = repeat == 0 ? 0 : 1000U + static_cast<unsigned>(repeat);
+  grasp.outcome = outcome;
+  return grasp;
+}
+
+/// A run "label" of method `method` over `scenes`, scene i getting the outcomes outcomes[i] as
+/// its grasps (rank order).
+inline results::RunResults outcomesRun(const std::string& label, const std::string& method,
+                                       const std::vector<results::RunScene>& scenes,
+                                       const std::vector<std::vector<GraspOutcome>>& outcomes) {
+  results::RunResults run;
+  run.label = label;
+  run.scenes = scenes;
+  run.methods = {method};
+  for (std::size_t s = 0; s < scenes.size(); ++s) {
+    for (std::size_t g = 0; g < outcomes[s].size(); ++g) {
+      run.trials.push_back(trial(scenes[s], method, static_cast<int>(g), outcomes[s][g]));
+    }
+  }
+  return run;
+}
+
 /// Run "runA", method "A":
 /// (successes as (Q_lift, Q_GWS, Q_GWS,unit))
 ///  S1 textured single cocacola(5) pose 1 (standing): missed, stable(0.9, 0.4, 0.04), in
@@ -76,6 +101,27 @@ inline results::RunResults runA() {
   run.trials[5].detail = "no hand contact on x after lifting [closing hit the cap: ...]";
   run.trials[2].closingCapped = true;
   run.trials[5].closingCapped = true;
+  return run;
+}
+
+/// Method "M" on two textured single standing scenes:
+///  S1 (cocacola, pose 1): stable (Q_lift 0.9, Q_GWS 0.4), missed, slipped (0.5, 0.2), in
+///     collision: n = 4, k = 2, first success at attempt 1 in the given order;
+///  S2 (greencup, pose 2): missed, stable (0.4, 0.6), missed: n = 3, k = 1, first success at 2.
+inline results::RunResults twoSceneRun() {
+  const auto s1 = scene(SceneConditions::single(Texture::kTextured, 5, 1));
+  const auto s2 = scene(SceneConditions::single(Texture::kTextured, 8, 2));
+  results::RunResults run;
+  run.label = "two";
+  run.scenes = {s1, s2};
+  run.methods = {"M"};
+  run.trials = {trial(s1, "M", 0, GraspOutcome::kStable, 0.9, 0.4, 5),
+                trial(s1, "M", 1, GraspOutcome::kMissed),
+                trial(s1, "M", 2, GraspOutcome::kSlipped, 0.5, 0.2, 5),
+                trial(s1, "M", 3, GraspOutcome::kInCollision),
+                trial(s2, "M", 0, GraspOutcome::kMissed),
+                trial(s2, "M", 1, GraspOutcome::kStable, 0.4, 0.6, 8),
+                trial(s2, "M", 2, GraspOutcome::kMissed)};
   return run;
 }
 

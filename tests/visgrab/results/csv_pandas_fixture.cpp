@@ -234,11 +234,22 @@ int main(int argc, char** argv) {
     }
     tables.push_back(trialsTruth(run));
     tables.push_back(runTruth(run));
-    // The report of that run, read back as `visgrab analyze` reads it.
-    visgrab::analysis::writeReport({visgrab::results::readResults(dir / "results")},
-                                   dir / "report");
-    for (const char* file :
-         {"distribution.csv", "quality.csv", "attempts.csv", "first_success.csv", "objects.csv"}) {
+    // The report of that run, read back as `visgrab analyze` reads it, with a perturbed repeat
+    // of every trial added (each flips held and not held), so that the report also has its
+    // robust rates.
+    RunResults analysed = visgrab::results::readResults(dir / "results");
+    const std::size_t unperturbed = analysed.trials.size();
+    for (std::size_t i = 0; i < unperturbed; ++i) {
+      TrialRecord t = analysed.trials[i];
+      t.repeat = 1;
+      t.seed = 1000 + i;
+      t.outcome = visgrab::results::isSuccess(t.outcome) ? rwsim::trial::GraspOutcome::kDropped
+                                                         : rwsim::trial::GraspOutcome::kStable;
+      analysed.trials.push_back(t);
+    }
+    visgrab::analysis::writeReport({analysed}, dir / "report");
+    for (const char* file : {"distribution.csv", "quality.csv", "attempts.csv", "first_success.csv",
+                             "objects.csv", "success.csv", "comparisons.csv", "robust.csv"}) {
       Table t = parsedTable(dir / "report", file);
       t.file = "report/" + t.file;
       tables.push_back(std::move(t));

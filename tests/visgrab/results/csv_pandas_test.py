@@ -89,7 +89,8 @@ def main(argv):
         files = [t["file"] for t in truth["files"]]
         expected = {"results/trials.csv", "results/run.csv", "report/distribution.csv",
                     "report/quality.csv", "report/attempts.csv", "report/first_success.csv",
-                    "report/objects.csv", "stages.csv"}
+                    "report/objects.csv", "report/success.csv", "report/comparisons.csv",
+                    "report/robust.csv", "stages.csv"}
         if set(files) != expected:
             print(f"the fixture wrote {sorted(files)}, expected {sorted(expected)}")
             return 1
