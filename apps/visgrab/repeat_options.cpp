@@ -3,6 +3,9 @@
 #include <cstdint>
 #include <filesystem>
 
+#include "visgrab/results/statistics.hpp"
+#include "visgrab/runner/noise_model.hpp"
+
 namespace visgrab::app {
 
 void addRepeatOptions(CLI::App& command) {
@@ -51,6 +54,15 @@ void readRepeatOptions(const Arguments& a, runner::RunOptions& options) {
   if (!options.adaptive && (a.option("adaptive-alpha") || a.option("adaptive-margin"))) {
     throw UsageError("--adaptive-alpha and --adaptive-margin need --adaptive");
   }
+  if (options.adaptive) {
+    const int k = results::repeatsToDecide(options.adaptiveAlpha, options.adaptiveMargin);
+    if (k >= options.repeats - 1) {
+      throw UsageError("--adaptive decides a grasp after the unperturbed and " + std::to_string(k) +
+                       " agreeing perturbed trials: --repeats " + std::to_string(options.repeats) +
+                       " never stops one early (give " + std::to_string(k + 2) +
+                       " or more, or a larger --adaptive-margin)");
+    }
+  }
 }
 
 std::vector<std::string> repeatArguments(const Arguments& a) {
@@ -60,6 +72,7 @@ std::vector<std::string> repeatArguments(const Arguments& a) {
   std::vector<std::string> words = {"--repeats", std::to_string(options.repeats), "--seed",
                                     std::to_string(options.noiseSeed)};
   if (!options.noise.empty()) {
+    runner::loadNoiseModel(options.noise);  // a bad file fails here, not in every array task
     words.insert(words.end(), {"--noise", std::filesystem::absolute(options.noise).string()});
   }
   if (options.adaptive) {

@@ -87,6 +87,10 @@ int runRun(const Arguments& a) {
   if (const auto dt = a.option("dt")) {
     options.timeStep = parseNumber("dt", *dt);
     if (!(*options.timeStep > 0.0)) throw UsageError("--dt must be > 0, got " + *dt);
+    if (options.engine != "ode") {
+      throw UsageError("--dt sets ODE's time step; the " + options.engine +
+                       " engine has its own (docs/validation.md)");
+    }
   }
   const auto shard = a.option("shard");
   const auto of = a.option("of");

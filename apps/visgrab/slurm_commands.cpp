@@ -1,7 +1,5 @@
 #include "slurm_commands.hpp"
 
-#include "repeat_options.hpp"
-
 #include <sys/wait.h>
 #include <unistd.h>
 

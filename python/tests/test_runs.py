@@ -273,6 +273,9 @@ def test_repeats_run_as_the_cli_runs_them(runs, binary, test_db_path, tmp_path):
     with pytest.raises(ValueError, match="needs repeats"):
         visgrab.run(visgrab.Database(test_db_path), runs["grasps"], out=tmp_path / "x",
                     noise=tmp_path / "none.xml")
+    with pytest.raises(TypeError, match="repeats must be an int"):
+        visgrab.run(visgrab.Database(test_db_path), runs["grasps"], out=tmp_path / "z",
+                    repeats=2.5)
     bad = tmp_path / "bad.xml"
     bad.write_text("<NoiseModel>\n  <Mass sigma=\"-1\"/>\n</NoiseModel>\n")
     with pytest.raises(OSError, match=r"bad\.xml:2"):

@@ -325,6 +325,9 @@ def run(db, grasps, hand=None, threads=None, out=None, scenes=None, resume=False
     """
     if not isinstance(db, Database):
         db = Database(os.fspath(db))
+    for name, value in (("repeats", repeats), ("seed", seed)):
+        if isinstance(value, bool) or not isinstance(value, int):
+            raise TypeError(f"{name} must be an int, not {type(value).__name__}")
     hand = _as_hand(hand)
     threads = _default_threads(threads)
     grasps = list(grasps)

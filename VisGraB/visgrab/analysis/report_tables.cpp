@@ -442,7 +442,8 @@ Table winnersTable(const Analysis& a) {
       "that succeeds more often first; differences in percentage points with their " +
       levelText(a.options.ciLevel) +
       " % paired bootstrap intervals, p from the paired permutation test; \"yes\" where the "
-      "interval excludes 0.";
+      "interval excludes 0 and the permutation test agrees (p below 1 - the level): with few "
+      "shared scenes a bootstrap interval can exclude 0 where the test cannot.";
   t.intervals = a.intervals;
   t.columns = {
       textColumn("", "better", kDisplayFormats),
@@ -455,8 +456,11 @@ Table winnersTable(const Analysis& a) {
       numberColumn("", "p-value", CellKind::kNumber, 4, kDisplayFormats),
       textColumn("", "excludes 0", kDisplayFormats),
       textColumn("", "runs differ in", kDisplayFormats)};
-  const auto excludesZero = [](const results::Interval& i) {
-    return i.defined() && (i.low > 0.0 || i.high < 0.0) ? "yes" : "no";
+  // Both tools must agree: a bootstrap over a handful of scenes is degenerate (every resample the
+  // same) or too narrow where the exact permutation test is not.
+  const double alpha = 1.0 - a.options.ciLevel;
+  const auto excludesZero = [alpha](const results::Interval& i, double pValue) {
+    return i.defined() && (i.low > 0.0 || i.high < 0.0) && pValue < alpha ? "yes" : "no";
   };
   for (const Oriented& o : overallComparisons(a)) {
     const Comparison& c = *o.comparison;
@@ -464,9 +468,9 @@ Table winnersTable(const Analysis& a) {
     t.addRow({textCell(a.columns[o.better].label), textCell(a.columns[o.worse].label),
               integerCell(c.scenes),
               estimateCell(f * c.rate.difference + 0.0, scaled(c.rate.differenceCi, f)),
-              numberCell(c.rate.pValue), textCell(excludesZero(c.rate.differenceCi)),
+              numberCell(c.rate.pValue), textCell(excludesZero(c.rate.differenceCi, c.rate.pValue)),
               estimateCell(f * c.p.difference + 0.0, scaled(c.p.differenceCi, f)),
-              numberCell(c.p.pValue), textCell(excludesZero(c.p.differenceCi)),
+              numberCell(c.p.pValue), textCell(excludesZero(c.p.differenceCi, c.p.pValue)),
               textCell(joined(c.runDifferences, ", "))});
   }
   return t;

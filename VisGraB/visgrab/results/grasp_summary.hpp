@@ -43,8 +43,6 @@ struct GraspSummary {
   double probability() const;
   /// Wilson interval of P at kGraspIntervalLevel.
   Interval interval() const;
-  /// 0 < P < 1: the grasp's verdict depends on the perturbation.
-  bool borderline() const { return held > 0 && held < repeats; }
 };
 
 /// The grasps of `trials` (any order), each with its repeats counted, in canonical order

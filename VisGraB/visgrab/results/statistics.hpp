@@ -136,13 +136,13 @@ Interval pairedBootstrapInterval(const std::vector<PairedUnit>& units,
 double pairedPermutationPValue(const std::vector<PairedUnit>& units, int permutations,
                                std::uint64_t seed);
 
-/// The adaptive repeats' stopping rule: a grasp whose first k repeats all agree (all held or all
-/// not held) is declared decided (P = 1 or P = 0), k the smallest integer >= 2 with
-/// (1 - margin)^k <= alpha. Its stated error rate, one-sided: a grasp whose true P is at most
-/// 1 - margin is declared always held with probability at most alpha (P^k <= (1 - margin)^k), and
-/// likewise one whose P is at least margin declared never held. Returns k.
-/// @throws std::invalid_argument unless 0 < alpha < 1 and 0 < margin < 1, or when k would not fit
-/// an int (margin below about 1e-9).
+/// The adaptive repeats' stopping rule: a grasp whose unperturbed trial (repeat 0) and first k
+/// perturbed trials all agree (all held or all not held) is declared decided (P = 1 or P = 0), k
+/// the smallest integer >= 2 with (1 - margin)^k <= alpha. Its stated error rate, one-sided, over
+/// the perturbed trials (repeat 0 is no random draw, so it does not count): a grasp whose P over
+/// perturbations is at most 1 - margin is declared always held with probability at most alpha
+/// (P^k <= (1 - margin)^k), and likewise one whose P is at least margin declared never held.
+/// Returns k.
 int repeatsToDecide(double alpha, double margin);
 
 }  // namespace visgrab::results

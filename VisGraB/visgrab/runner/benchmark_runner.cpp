@@ -64,7 +64,8 @@ struct RepeatPlan {
   NoiseModel noise;
   /// RunOptions::noiseSeed.
   std::uint64_t seed = 1;
-  /// Adaptive: a grasp whose first decideAfter trials agree is decided; 0: every grasp runs all.
+  /// Adaptive: a grasp whose unperturbed trial and first decideAfter perturbed trials agree is
+  /// decided; 0: every grasp runs all.
   int decideAfter = 0;
   /// What run.csv records.
   results::RunRepeats record;
@@ -91,17 +92,43 @@ RepeatPlan planRepeats(const RunOptions& options) {
   plan.record.noise = describe(plan.noise) + "; seed " + std::to_string(options.noiseSeed);
   if (options.adaptive) {
     plan.decideAfter = results::repeatsToDecide(options.adaptiveAlpha, options.adaptiveMargin);
-    plan.record.adaptive = "stop after " + std::to_string(plan.decideAfter) +
-                           " agreeing trials (alpha " +
+    if (plan.decideAfter >= options.repeats - 1) {
+      throw std::invalid_argument(
+          "the adaptive rule (alpha " + results::formatDouble(options.adaptiveAlpha) + ", margin " +
+          results::formatDouble(options.adaptiveMargin) + ") decides after " +
+          std::to_string(plan.decideAfter) + " agreeing perturbed trials, so with " +
+          std::to_string(options.repeats) + " repeats it never stops a grasp early: give " +
+          "--repeats " + std::to_string(plan.decideAfter + 2) + " or more, or a larger margin");
+    }
+    plan.record.adaptive = "stop when the unperturbed and " + std::to_string(plan.decideAfter) +
+                           " perturbed trials agree (alpha " +
                            results::formatDouble(options.adaptiveAlpha) + ", margin " +
                            results::formatDouble(options.adaptiveMargin) + ")";
   }
   return plan;
 }
 
-/// True when the adaptive rule has decided a grasp whose first trials held as `held` says.
+/// A run with repeats writes out/grasps.csv at its end: refuses a grasp file of that path, which
+/// the summary would overwrite (the run's own input, named in run.csv).
+void checkSummaryIsNoInput(const RunOptions& options, const RepeatPlan& plan) {
+  if (!plan.record.repeated()) return;
+  std::error_code ec;
+  const fs::path summary = fs::weakly_canonical(options.out / results::kGraspsFileName, ec);
+  for (const fs::path& source : options.grasps) {
+    if (!ec && fs::weakly_canonical(source, ec) == summary && !ec) {
+      throw std::runtime_error("the grasp file " + source.string() + " is where a run with " +
+                               "repeats writes its per-grasp summary (" +
+                               std::string(results::kGraspsFileName) +
+                               "): move the grasps or choose another --out folder");
+    }
+  }
+}
+
+/// True when the adaptive rule has decided a grasp whose first trials held as `held` says: the
+/// unperturbed trial (repeat 0, not a random draw) and decideAfter perturbed ones all agree, so
+/// that the rule's error rate is that of the perturbed trials alone (repeatsToDecide).
 bool decided(const RepeatPlan& plan, const std::vector<bool>& held) {
-  if (plan.decideAfter == 0 || static_cast<int>(held.size()) < plan.decideAfter) return false;
+  if (plan.decideAfter == 0 || static_cast<int>(held.size()) < 1 + plan.decideAfter) return false;
   return std::all_of(held.begin(), held.end(), [&](bool h) { return h == held.front(); });
 }
 
@@ -582,6 +609,7 @@ RunSummary runBenchmark(const RunOptions& options,
                              " --of " + std::to_string(s.count));
   }
   const RepeatPlan repeats = planRepeats(options);
+  checkSummaryIsNoInput(options, repeats);
   const RunInputs in = openInputs(options);
   // After openInputs: the loader keeps the address of in.db.
   session::SceneLoader loader(in.db, *in.hand, options.engine);

@@ -70,7 +70,10 @@ std::vector<SceneGrasp> sceneGrasps(const database::Database& db, const database
   if (results != nullptr) {
     std::map<std::pair<std::string, std::string>, const results::TrialRecord*> byKey;
     for (const auto& t : results->trials) {
-      if (t.sceneId == entry.id) byKey.emplace(std::make_pair(t.method, t.graspId), &t);
+      // The unperturbed trial of a run with repeats (the one a plain run has).
+      if (t.sceneId == entry.id && t.repeat == 0) {
+        byKey.emplace(std::make_pair(t.method, t.graspId), &t);
+      }
     }
     for (auto& g : out) {
       const auto it = byKey.find({g.request.method, g.request.id});

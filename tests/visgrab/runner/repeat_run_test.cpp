@@ -213,7 +213,8 @@ TEST_F(RepeatedRun, AdaptiveTrialsAreAPrefixOfTheFixedRunsAndStopOnlyWhenAgreed)
   visgrab::runner::runBenchmark(fixed);
   RunOptions adaptive = options(tmp_.path() / "adaptive", 6);
   adaptive.adaptive = true;
-  adaptive.adaptiveMargin = 0.7;  // stops after 3 agreeing trials (0.3^3 <= 0.05 < 0.3^2)
+  // Stops once repeat 0 and 3 perturbed trials agree (0.3^3 <= 0.05 < 0.3^2).
+  adaptive.adaptiveMargin = 0.7;
   ASSERT_EQ(visgrab::results::repeatsToDecide(0.05, 0.7), 3);
   visgrab::runner::runBenchmark(adaptive);
   const auto all = visgrab::results::readResults(fixed.out);
@@ -230,15 +231,29 @@ TEST_F(RepeatedRun, AdaptiveTrialsAreAPrefixOfTheFixedRunsAndStopOnlyWhenAgreed)
   }
   int stopped = 0;
   for (const auto& [key, h] : held) {
-    const bool agree = std::all_of(h.begin(), h.begin() + 3, [&](bool x) { return x == h[0]; });
-    // Three agreeing trials stop the grasp; a disagreement in them runs all six.
-    EXPECT_EQ(h.size(), agree ? 3u : 6u) << key;
+    const bool agree = std::all_of(h.begin(), h.begin() + 4, [&](bool x) { return x == h[0]; });
+    // The unperturbed and three perturbed trials agreeing stop the grasp; a disagreement in them
+    // runs all six.
+    EXPECT_EQ(h.size(), agree ? 4u : 6u) << key;
     stopped += agree ? 1 : 0;
   }
   EXPECT_GT(stopped, 0);
   EXPECT_NE(fileBytes(adaptive.out / "run.csv")
-                .find("adaptive,\"stop after 3 agreeing trials (alpha 0.05, margin 0.7)\""),
+                .find("adaptive,\"stop when the unperturbed and 3 perturbed trials agree (alpha "
+                      "0.05, margin 0.7)\""),
             std::string::npos);
+  // A rule that could never stop a grasp within the repeats is refused.
+  RunOptions never = options(tmp_.path() / "never", 4);
+  never.adaptive = true;
+  never.adaptiveMargin = 0.7;
+  try {
+    visgrab::runner::runBenchmark(never);
+    ADD_FAILURE() << "an adaptive rule that never stops was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("never stops a grasp early: give --repeats 5 or more"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 TEST_F(RepeatedRun, AKilledRepeatedRunResumesToTheSameBytes) {
@@ -310,6 +325,15 @@ TEST_F(RepeatedRun, BadRepeatOptionsAreClearErrors) {
   EXPECT_NE(bad.exitCode, 0);
   EXPECT_NE(bad.output.find(negative.string() + ":2"), std::string::npos) << bad.output;
   EXPECT_FALSE(fs::exists(tmp_.path() / "bad" / "trials.csv"));
+  // A grasp file where the run would write its per-grasp summary is refused, untouched.
+  const fs::path folder = tmp_.path() / "own";
+  fs::create_directories(folder);
+  fs::copy_file(graspFile(), folder / "grasps.csv");
+  RunOptions own = options(folder, 2);
+  own.grasps = {folder / "grasps.csv"};
+  EXPECT_THROW(visgrab::runner::runBenchmark(own), std::runtime_error);
+  EXPECT_EQ(fileBytes(folder / "grasps.csv"), fileBytes(graspFile()));
+  EXPECT_FALSE(fs::exists(folder / "trials.csv"));
 }
 
 }  // namespace
