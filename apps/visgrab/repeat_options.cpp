@@ -34,7 +34,8 @@ void addRepeatOptions(CLI::App& command) {
       ->type_name("A");
   command
       .add_option("--adaptive-margin",
-                  "The adaptive rule's margin (default 0.65: decided after 3 agreeing trials)")
+                  "The adaptive rule's margin (default 0.65: a grasp is decided when its "
+                  "unperturbed and 3 perturbed trials agree)")
       ->type_name("M");
 }
 
