@@ -137,11 +137,9 @@ class SceneRunner {
  public:
   SceneRunner(const SceneGraspList& work, const session::SceneLoader& loader)
       : work_(&work), session_(loader, *work.entry) {
-    const auto& bodies = session_.dynamicWorkcell().bodies();
-    for (std::size_t b = 0; b < bodies.size(); ++b) {
-      if (bodies[b].kind != rwsim::dynamics::BodyKind::kRigid) continue;
-      if (session_.trial().isHandBody(rwsim::dynamics::BodyId(b))) continue;
-      objects_.push_back(bodies[b].frame);
+    // The bodies the physics variation's mass scale applies to: the same objects move.
+    for (const auto& body : session_.dynamicWorkcell().bodies()) {
+      if (rwsim::trial::isVariedObject(body)) objects_.push_back(body.frame);
     }
   }
 

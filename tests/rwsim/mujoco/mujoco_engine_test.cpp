@@ -13,6 +13,7 @@
 #include "rw/math/rpy.hpp"
 #include "rwsim/loaders/dynamic_workcell_loader.hpp"
 #include "rwsim/mujoco/mujoco_engine.hpp"
+#include "rwsim/simulator/engine_steps.hpp"
 #include "rwsim/simulator/grasp_trial.hpp"
 #include "rwsim/simulator/sim_test_scenes.hpp"
 #include "support/test_support.hpp"
@@ -32,24 +33,8 @@ Transform3D at(double x, double y, double z) {
   return rw::math::makeTranslation(Vector3D(x, y, z));
 }
 
-void runUntil(PhysicsEngine& engine, double t) {
-  while (engine.time() < t - 1e-9) {
-    const StepStatus s = engine.step();
-    ASSERT_EQ(s, StepStatus::kOk) << engine.failureDetail();
-  }
-}
-
-// Sum of the contact forces on body `b` in the last step.
-Vector3D forceOn(const PhysicsEngine& engine, BodyId b) {
-  Vector3D f = Vector3D::Zero();
-  for (const auto& bc : engine.contacts()) {
-    for (const auto& p : bc.points) {
-      if (bc.bodyB == b) f += p.force;
-      if (bc.bodyA == b) f -= p.force;
-    }
-  }
-  return f;
-}
+using visgrab::test::sim::forceOn;
+using visgrab::test::sim::runUntil;
 
 TEST(MujocoEngine, FactoryNamesItselfAndItsSettings) {
   SceneBuilder scene("names");

@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "engine_steps.hpp"
 #include "rwsim/simulator/simulator.hpp"
 #include "sim_test_scenes.hpp"
 #include "support/test_support.hpp"
@@ -29,24 +30,8 @@ using visgrab::test::sim::kG;
 
 constexpr double kDeg = std::numbers::pi / 180.0;
 
-void runUntil(PhysicsEngine& engine, double t) {
-  while (engine.time() < t - 1e-9) {
-    const StepStatus s = engine.step();
-    ASSERT_EQ(s, StepStatus::kOk) << engine.failureDetail();
-  }
-}
-
-// Sum of the contact forces on body `b` in the last step.
-Vector3D forceOn(const PhysicsEngine& engine, BodyId b) {
-  Vector3D f = Vector3D::Zero();
-  for (const auto& bc : engine.contacts()) {
-    for (const auto& p : bc.points) {
-      if (bc.bodyB == b) f += p.force;
-      if (bc.bodyA == b) f -= p.force;
-    }
-  }
-  return f;
-}
+using visgrab::test::sim::forceOn;
+using visgrab::test::sim::runUntil;
 
 PhysicsVariation friction(double scale) {
   PhysicsVariation v;
