@@ -46,7 +46,9 @@ Eigen::Vector4d quaternionOf(const rw::math::Transform3D& X) {
   return {q.w(), q.x(), q.y(), q.z()};
 }
 
-bool hasPose(const GraspRequest& g) { return g.kind != GraspKind::kContacts; }
+bool hasPose(const GraspRequest& g) {
+  return g.kind != GraspKind::kContacts && g.kind != GraspKind::kJaw;
+}
 
 // One number in a Python literal (repr of a float: shortest round trip).
 std::string number(double v) { return py::repr(py::float_(v)).cast<std::string>(); }
@@ -88,6 +90,11 @@ std::string graspRepr(const GraspRequest& g) {
       out += "], approach=" + listText(g.approach);
       break;
     }
+    case GraspKind::kJaw:
+      out += ", position=" + listText(g.X_W_jaw.translation()) +
+             ", quaternion=" + listText(quaternionOf(g.X_W_jaw)) + ", width=" + number(g.width);
+      if (g.score) out += ", score=" + number(*g.score);
+      break;
   }
   return out + ")";
 }

@@ -86,6 +86,27 @@ ResolvedGrasp resolveContacts(const GraspRequest& r, const HandGraspSetup& setup
   return out;
 }
 
+// A parallel-jaw grasp through the hand's jaw frame: X_W_tcp = X_W_jaw * X_tcp_jaw^-1, the
+// configuration of the jaw frame's pre-shape.
+ResolvedGrasp resolveJaw(const GraspRequest& r, const HandGraspSetup& setup) {
+  const JawFrame* jaw = setup.jawFrame();
+  if (jaw == nullptr) {
+    return inputError(r, "hand \"" + setup.deviceName() +
+                             "\" declares no jaw frame (<JawFrame> in its grasp description), "
+                             "which parallel-jaw grasps need");
+  }
+  if (!r.X_W_jaw.matrix().allFinite()) return inputError(r, "the jaw pose has a non-finite value");
+  if (!std::isfinite(r.width) || r.width < 0.0 || r.width > jaw->stroke) {
+    char buffer[160];
+    std::snprintf(buffer, sizeof(buffer),
+                  "width %.4g m is outside what hand \"%s\" opens to (0 to its stroke %.4g m)",
+                  r.width, setup.deviceName().c_str(), jaw->stroke);
+    return inputError(r, buffer);
+  }
+  const PreShape& p = setup.preshapes()[jaw->preshape];
+  return ok(r.X_W_jaw * jaw->X_tcp_jaw.inverse(), p.qOpen, p.qClosed, p.tauMax);
+}
+
 ResolvedGrasp resolveRequest(const GraspRequest& r, const HandGraspSetup& setup,
                              const PlacementTest* scene, const PlacementOptions& options) {
   if (r.kind != GraspKind::kContacts && !r.X_W_tcp.matrix().allFinite()) {
@@ -127,6 +148,8 @@ ResolvedGrasp resolveRequest(const GraspRequest& r, const HandGraspSetup& setup,
     }
     case GraspKind::kContacts:
       return resolveContacts(r, setup, scene, options);
+    case GraspKind::kJaw:
+      return resolveJaw(r, setup);
   }
   return inputError(r, "unknown grasp kind");
 }

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstddef>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -109,6 +110,22 @@ struct ContactIkSettings {
   std::vector<IkGrasp> grasps;
 };
 
+/// A hand's parallel-jaw frame (GraspDescription::jawFrame checked against the model): how a
+/// hand-independent jaw grasp (GraspKind::kJaw) places this hand.
+struct JawFrame {
+  /// The jaw frame in the hand's TCP frame: origin at the centre between the finger pads (with
+  /// the jaws open at `preshape`), z the approach axis, x the closing axis, y = z x x.
+  rw::math::Transform3D X_tcp_jaw = rw::math::Transform3D::Identity();
+  /// Largest opening between the pads (at `preshape`), m.
+  double stroke = 0.0;
+  /// Distance from the pad centre to the fingertips' front along the approach axis, m (where a
+  /// GraspNet grasp's depth is measured to).
+  double tipDepth = 0.0;
+  /// Index in HandGraspSetup::preshapes() of the pre-shape that opens the jaws (q_open, q_closed,
+  /// tau_max of a jaw grasp).
+  std::size_t preshape = 0;
+};
+
 /// A hand's grasp description checked against its kinematic model, prepared once and then used
 /// const (from any number of threads): what resolve() and the contact IK need.
 class HandGraspSetup {
@@ -159,6 +176,9 @@ class HandGraspSetup {
   const TauRule& tauRule() const { return tauRule_; }
   /// Contact IK settings, or nullptr if the hand has none.
   const ContactIkSettings* contactIk() const { return contactIk_ ? &*contactIk_ : nullptr; }
+  /// The hand's jaw frame, or nullptr if its description declares none (not a parallel-jaw
+  /// hand: jaw grasps cannot run on it).
+  const JawFrame* jawFrame() const { return jawFrame_ ? &*jawFrame_ : nullptr; }
   /// The workcell's default state (a copy is the starting point of every computation).
   const rw::kinematics::State& defaultState() const { return defaultState_; }
 
@@ -180,6 +200,7 @@ class HandGraspSetup {
   bool hasClosingRule_ = true;
   TauRule tauRule_;
   std::optional<ContactIkSettings> contactIk_;
+  std::optional<JawFrame> jawFrame_;
   rw::kinematics::State defaultState_;
   std::filesystem::path workcellFile_;
   std::filesystem::path dynamicsFile_;

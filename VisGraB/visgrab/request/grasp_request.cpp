@@ -12,6 +12,8 @@ const char* kindName(GraspKind kind) {
       return "pose_q";
     case GraspKind::kContacts:
       return "contacts";
+    case GraspKind::kJaw:
+      return "jaw";
   }
   return "raw";
 }

@@ -16,6 +16,8 @@ enum class GraspKind {
   kPoseAndQ,  ///< X_hand + one configuration q (q_open = q, q_closed and tau_max by the hand's
               ///< rule)
   kContacts,  ///< 2 or 3 desired contacts (position, push direction) + approach, solved by IK
+  kJaw,       ///< a parallel-jaw grasp: the jaw frame's pose + the opening it needs, placed
+              ///< through the hand's declared jaw frame (any parallel-jaw hand)
 };
 
 /// A desired finger contact, in the scene's world (table) frame.
@@ -51,13 +53,21 @@ struct GraspRequest {
   /// kContacts: desired direction of travel of the hand towards the object (its approach
   /// axis), world frame; need not be unit.
   rw::math::Vector3D approach = -rw::math::Vector3D::UnitZ();
+  /// kJaw: pose of the jaw frame in the world: origin at the centre between the two finger
+  /// pads, z the approach (direction of travel towards the object), x the closing axis (from
+  /// one jaw towards the other), y = z x x (docs/grasp-format.md, "Parallel-jaw grasps").
+  rw::math::Transform3D X_W_jaw = rw::math::Transform3D::Identity();
+  /// kJaw: the opening between the pads the grasp needs, m (at most the hand's stroke).
+  double width = 0.0;
+  /// The method's score of the grasp, when it gave one (imported grasps keep it).
+  std::optional<double> score;
   /// Where the request was read from (for messages), and its line (0 if unknown).
   std::string sourceFile;
   /// See sourceFile.
   int sourceLine = 0;
 };
 
-/// Name used in files: "raw", "preshape", "pose_q", "contacts".
+/// Name used in files: "raw", "preshape", "pose_q", "contacts", "jaw".
 const char* kindName(GraspKind kind);
 
 /// A two-contact grasp as a pre-shape grasp for any two-finger hand: the TCP midway between the

@@ -80,6 +80,8 @@ class LineReader {
 
   int column() const { return at_ < fields_.size() ? fields_[at_].column : endColumn_; }
 
+  bool atEnd() const { return at_ >= fields_.size(); }
+
   void finish(std::string_view kind) const {
     if (at_ < fields_.size()) {
       throw LineError{fields_[at_].column, "too many fields for kind " + std::string(kind) +
@@ -112,7 +114,7 @@ std::vector<Field> splitFields(std::string_view line) {
   return fields;
 }
 
-void readPose(LineReader& in, GraspRequest& r) {
+rw::math::Transform3D readTransform(LineReader& in) {
   const Vector3D p = in.vector("position");
   const int column = in.column();
   std::array<double, 4> q{};
@@ -120,8 +122,10 @@ void readPose(LineReader& in, GraspRequest& r) {
   std::string error;
   const auto R = detail::quaternionRotation(q[0], q[1], q[2], q[3], error);
   if (!error.empty()) throw LineError{column, error};
-  r.X_W_tcp = rw::math::makeTransform(R, p);
+  return rw::math::makeTransform(R, p);
 }
+
+void readPose(LineReader& in, GraspRequest& r) { r.X_W_tcp = readTransform(in); }
 
 Q readList(LineReader& in, std::string_view what, int low, int high) {
   const int n = in.count(std::string("number of ") + std::string(what) + " values", low, high);
@@ -142,7 +146,7 @@ GraspRequest readLine(LineReader& in) {
   const auto kind = kindFromName(kindField.text);
   if (!kind) {
     throw LineError{kindField.column, "unknown kind \"" + std::string(kindField.text) +
-                                          "\", expected raw, preshape, pose_q or contacts"};
+                                          "\", expected raw, preshape, pose_q, contacts or jaw"};
   }
   r.kind = *kind;
   switch (r.kind) {
@@ -189,6 +193,14 @@ GraspRequest readLine(LineReader& in) {
       if (r.approach.norm() < 1e-12) throw LineError{column, "approach direction is zero"};
       break;
     }
+    case GraspKind::kJaw: {
+      r.X_W_jaw = readTransform(in);
+      const int column = in.column();
+      r.width = in.number("width");
+      if (r.width < 0.0) throw LineError{column, "width is negative, expected an opening in m"};
+      if (!in.atEnd()) r.score = in.number("score");
+      break;
+    }
   }
   in.finish(grasp::kindName(r.kind));
   return r;
@@ -224,8 +236,8 @@ void appendPose(std::string& line, const rw::math::Transform3D& X) {
 }  // namespace
 
 std::optional<GraspKind> kindFromName(std::string_view name) {
-  for (GraspKind k :
-       {GraspKind::kRaw, GraspKind::kPreshape, GraspKind::kPoseAndQ, GraspKind::kContacts}) {
+  for (GraspKind k : {GraspKind::kRaw, GraspKind::kPreshape, GraspKind::kPoseAndQ,
+                      GraspKind::kContacts, GraspKind::kJaw}) {
     if (name == grasp::kindName(k)) return k;
   }
   return std::nullopt;
@@ -279,7 +291,8 @@ std::string formatGraspList(const std::vector<GraspRequest>& requests) {
       "# raw:      x,y,z, qw,qx,qy,qz, n,q_open(n), n,q_closed(n), k,tau_max(k)\n"
       "# preshape: x,y,z, qw,qx,qy,qz, name\n"
       "# pose_q:   x,y,z, qw,qx,qy,qz, n,q(n)\n"
-      "# contacts: c, c x (px,py,pz, dx,dy,dz), ax,ay,az\n";
+      "# contacts: c, c x (px,py,pz, dx,dy,dz), ax,ay,az\n"
+      "# jaw:      x,y,z, qw,qx,qy,qz, width[, score]\n";
   for (const auto& r : requests) {
     checkText(r.sceneId, "scene id", r.id);
     checkText(r.method, "method", r.id);
@@ -312,6 +325,11 @@ std::string formatGraspList(const std::vector<GraspRequest>& requests) {
           appendNumbers(line, c.direction.data(), 3);
         }
         appendNumbers(line, r.approach.data(), 3);
+        break;
+      case GraspKind::kJaw:
+        appendPose(line, r.X_W_jaw);
+        appendNumbers(line, &r.width, 1);
+        if (r.score) appendNumbers(line, &*r.score, 1);
         break;
     }
     out += line + "\n";
