@@ -182,6 +182,9 @@ void MujocoEngine::Impl::vary(const trial::PhysicsVariation& variation) {
       for (int k = 0; k < 3; ++k) m->body_inertia[3 * id + k] *= variation.objectMassScale;
     }
   }
+  if (!variation.gravity) {
+    for (int k = 0; k < 3; ++k) m->opt.gravity[k] = 0.0;
+  }
   // The compiler's constants at qpos0 from the scaled values (kinematic bodies are not yet
   // moved: this model copy is as compiled).
   mj_setConst(m.get(), d.get());

@@ -44,8 +44,9 @@ struct CompiledModel;
 /// material table's mu; torsional and rolling values are unused at condim 3), and the mass and
 /// principal inertia of each object's body (trial::isVariedObject()); MuJoCo's constants
 /// derived from them (mj_setConst: the inverse weights behind the constraints' softness, the
-/// mean inertia, subtree masses) are then recomputed, as compiling the scaled MJCF would. The
-/// identity leaves the copy as compiled.
+/// mean inertia, subtree masses) are then recomputed, as compiling the scaled MJCF would. A
+/// variation without gravity zeroes the copy's opt.gravity. The identity leaves the copy as
+/// compiled.
 class MujocoEngine final : public trial::PhysicsEngine {
  public:
   /// An engine on `model` (compiled from `dwc`), at the dwc's default state, with friction and

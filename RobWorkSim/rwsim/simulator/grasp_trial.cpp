@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <numbers>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -209,6 +210,14 @@ PlacementCheck checkPlacement(const dynamics::DynamicWorkCell& dwc, const detail
   return out;
 }
 
+// The trial's variation with the protocol's gravity (on: `variation` as it is).
+trial::PhysicsVariation withProtocolGravity(const trial::PhysicsVariation& variation,
+                                            const trial::TrialProtocol& protocol) {
+  trial::PhysicsVariation out = variation;
+  if (!protocol.gravity) out.gravity = false;
+  return out;
+}
+
 // One trial: the phases of reference §4.3 as adapted in the module's documentation.
 class TrialRun {
  public:
@@ -221,7 +230,7 @@ class TrialRun {
         grasp_(grasp),
         observer_(observer),
         frictionScale_(variation.frictionScale),
-        engine_(data.engine->create(variation)),
+        engine_(data.engine->create(withProtocolGravity(variation, setup.protocol))),
         sim_(*engine_),
         pd_(data.controller->p, data.controller->d),
         dt_(sim_.timeStep()) {}
@@ -232,8 +241,13 @@ class TrialRun {
   bool inCollision(const rw::kinematics::State& state);
   bool advance(std::string_view phase);
   bool close();
+  bool gripForceReached() const;
   void noteClosingCap(const Q& v, const Q& restSpeed);
-  bool lift(const Transform3D& X_W_base);
+  bool runPhases();
+  bool lift(const trial::ProtocolPhase& phase, const Transform3D& X_W_base);
+  bool pull(const trial::ProtocolPhase& phase);
+  bool shake(const trial::ProtocolPhase& phase);
+  bool settle(double time);
   void finish(GraspOutcome outcome, std::string detail = {}) {
     result_.outcome = outcome;
     result_.detail = std::move(detail);
@@ -301,6 +315,7 @@ bool TrialRun::close() {
     if (!advance("close")) return false;
     const double t = sim_.time();
     if (t < setup_.minCloseTime) continue;
+    if (setup_.protocol.closing == trial::ClosingRule::kForceThreshold && gripForceReached()) break;
     const Q q = sim_.jointPositions(data_.hand);
     if ((q - grasp_.qClosed).cwiseAbs().maxCoeff() <= setup_.closedTolerance) break;
     const Q v = sim_.jointVelocities(data_.hand);
@@ -316,6 +331,14 @@ bool TrialRun::close() {
     }
   }
   return true;
+}
+
+bool TrialRun::gripForceReached() const {
+  const std::vector<double> force =
+      detail::handNormalForces(sim_.contacts(), data_.isHandBody, setup_.contactForceThreshold);
+  return std::any_of(data_.objects.begin(), data_.objects.end(), [&](dynamics::BodyId o) {
+    return force[o.index()] > setup_.protocol.gripForce;
+  });
 }
 
 void TrialRun::noteClosingCap(const Q& v, const Q& restSpeed) {
@@ -336,12 +359,31 @@ void TrialRun::noteClosingCap(const Q& v, const Q& restSpeed) {
   closingNote_ = std::string(kClosingCapNote) + text;
 }
 
-bool TrialRun::lift(const Transform3D& X_W_base) {
+bool TrialRun::runPhases() {
+  for (const trial::ProtocolPhase& phase : setup_.protocol.phases) {
+    bool ok = false;
+    switch (phase.kind) {
+      case trial::PhaseKind::kLift:
+        ok = lift(phase, sim_.bodyPose(data_.baseBody));
+        break;
+      case trial::PhaseKind::kPull:
+        ok = pull(phase);
+        break;
+      case trial::PhaseKind::kShake:
+        ok = shake(phase);
+        break;
+    }
+    if (!ok) return false;
+  }
+  return true;
+}
+
+bool TrialRun::lift(const trial::ProtocolPhase& phase, const Transform3D& X_W_base) {
   Transform3D X_end = X_W_base;
-  X_end.translation().z() += setup_.liftHeight;
+  X_end.translation().z() += phase.distance;
   control::RampLimits limits;
-  limits.linearVelocity = setup_.liftSpeed;
-  limits.linearAcceleration = setup_.liftAcceleration;
+  limits.linearVelocity = phase.speed;
+  limits.linearAcceleration = phase.acceleration;
   const control::RampTrajectory trajectory(X_W_base, X_end, limits);
   const double t0 = sim_.time();
   while (sim_.time() - t0 < trajectory.duration() - 1e-9) {
@@ -351,11 +393,77 @@ bool TrialRun::lift(const Transform3D& X_W_base) {
     if (!advance("lift")) return false;
   }
   sim_.setKinematicVelocity(data_.baseBody, Vector3D::Zero(), Vector3D::Zero());
+  return settle(phase.settle);
+}
+
+bool TrialRun::settle(double time) {
   const double t1 = sim_.time();
-  while (sim_.time() - t1 < setup_.settleTime - 1e-9) {
+  while (sim_.time() - t1 < time - 1e-9) {
     if (!advance("settle")) return false;
   }
   return true;
+}
+
+// The phase's axis in world coordinates (unit length).
+Vector3D worldAxis(const trial::ProtocolPhase& phase, const Transform3D& X_W_tcp) {
+  const Vector3D axis =
+      phase.frame == trial::AxisFrame::kTcp ? X_W_tcp.linear() * phase.axis : phase.axis;
+  return axis.normalized();
+}
+
+bool TrialRun::pull(const trial::ProtocolPhase& phase) {
+  const Transform3D X_W_base = sim_.bodyPose(data_.baseBody);
+  const Transform3D X_W_tcp =
+      rw::kinematics::worldTransform(dwc_.workcell().frames(), sim_.state(), data_.tcp);
+  Transform3D X_end = X_W_base;
+  X_end.translation() += phase.distance * worldAxis(phase, X_W_tcp);
+  control::RampLimits limits;
+  limits.linearVelocity = phase.speed;
+  limits.linearAcceleration = phase.acceleration;
+  const control::RampTrajectory trajectory(X_W_base, X_end, limits);
+  const double t0 = sim_.time();
+  while (sim_.time() - t0 < trajectory.duration() - 1e-9) {
+    const Transform3D next = trajectory.pose(sim_.time() - t0 + dt_);
+    const control::Twist twist = control::twistToReach(sim_.bodyPose(data_.baseBody), next, dt_);
+    sim_.setKinematicVelocity(data_.baseBody, twist.linear, twist.angular);
+    if (!advance("pull")) return false;
+  }
+  sim_.setKinematicVelocity(data_.baseBody, Vector3D::Zero(), Vector3D::Zero());
+  return settle(phase.settle);
+}
+
+// The base follows X_W_base0 moved by s(t) = A (1 - cos(2 pi f t)) along the axis, or turned by
+// s(t) about the axis through the TCP origin: at rest at the start and after every period, peak
+// acceleration A (2 pi f)^2.
+bool TrialRun::shake(const trial::ProtocolPhase& phase) {
+  const Transform3D X_W_base0 = sim_.bodyPose(data_.baseBody);
+  const Transform3D X_W_tcp0 =
+      rw::kinematics::worldTransform(dwc_.workcell().frames(), sim_.state(), data_.tcp);
+  const Vector3D u = worldAxis(phase, X_W_tcp0);
+  const Vector3D centre = X_W_tcp0.translation();
+  const double omega = 2.0 * std::numbers::pi * phase.frequency;
+  const double duration = phase.cycles / phase.frequency;
+  const auto pose = [&](double t) {
+    const double s = phase.amplitude * (1.0 - std::cos(omega * std::min(t, duration)));
+    Transform3D X = X_W_base0;
+    if (phase.rotation) {
+      const rw::math::Rotation3D R(Eigen::AngleAxisd(s, u));
+      X.linear() = R * X_W_base0.linear();
+      X.translation() = centre + R * (X_W_base0.translation() - centre);
+    } else {
+      X.translation() += s * u;
+    }
+    return X;
+  };
+  const double t0 = sim_.time();
+  while (sim_.time() - t0 < duration - 1e-9) {
+    const Transform3D next = pose(sim_.time() - t0 + dt_);
+    const control::Twist twist = control::twistToReach(sim_.bodyPose(data_.baseBody), next, dt_);
+    sim_.setKinematicVelocity(data_.baseBody, twist.linear, twist.angular);
+    if (!advance("shake")) return false;
+  }
+  sim_.setKinematicVelocity(data_.baseBody, Vector3D::Zero(), Vector3D::Zero());
+  return settle(phase.settle);
 }
 
 void TrialRun::evaluate(const Transform3D& X_h0, const Transform3D& X_o0) {
@@ -366,16 +474,35 @@ void TrialRun::evaluate(const Transform3D& X_h0, const Transform3D& X_o0) {
   const Transform3D X_o1 = sim_.bodyPose(object);
   result_.handLift = X_h1.translation() - X_h0.translation();
   result_.objectLift = X_o1.translation() - X_o0.translation();
+  const bool lifted = setup_.protocol.phases.size() == 1 &&
+                      setup_.protocol.phases.front().kind == trial::PhaseKind::kLift;
   if (counts[object.index()] == 0) {
-    finish(GraspOutcome::kDropped,
-           "no hand contact on " + dwc_.body(object).name + " after lifting");
+    finish(GraspOutcome::kDropped, "no hand contact on " + dwc_.body(object).name +
+                                       (lifted ? " after lifting" : " after the phases"));
     return;
+  }
+  std::vector<TrialContact> contacts =
+      detail::objectContacts(dwc_, sim_.contacts(), data_.isHandBody, object, X_o1,
+                             setup_.contactForceThreshold, frictionScale_);
+  if (setup_.protocol.success == trial::SuccessRule::kTwoFingers) {
+    std::vector<dynamics::BodyId> fingers;
+    for (const TrialContact& c : contacts) {
+      if (c.handBody != data_.baseBody &&
+          std::find(fingers.begin(), fingers.end(), c.handBody) == fingers.end()) {
+        fingers.push_back(c.handBody);
+      }
+    }
+    if (fingers.size() < 2) {
+      finish(GraspOutcome::kDropped, dwc_.body(object).name + " touches " +
+                                         std::to_string(fingers.size()) +
+                                         " finger link(s) after the phases, not two");
+      return;
+    }
   }
   const double drift = (result_.objectLift - result_.handLift).norm();
   const double h = result_.handLift.norm();
   result_.qLift = h > 0.0 ? std::max(0.0, 1.0 - drift / h) : 0.0;
-  result_.contacts = detail::objectContacts(dwc_, sim_.contacts(), data_.isHandBody, object, X_o1,
-                                            setup_.contactForceThreshold, frictionScale_);
+  result_.contacts = std::move(contacts);
   const auto& body = dwc_.body(object);
   if (setup_.computeGws) {
     GwsQualityOptions options;
@@ -385,9 +512,10 @@ void TrialRun::evaluate(const Transform3D& X_h0, const Transform3D& X_o0) {
     result_.qGws = q.qGws;
     result_.qGwsUnit = q.qGwsUnit;
   }
-  finish(
-      drift < setup_.slipThreshold ? GraspOutcome::kStable : GraspOutcome::kSlipped,
-      "object drift " + std::to_string(drift) + " m during a lift of " + std::to_string(h) + " m");
+  finish(drift < setup_.slipThreshold ? GraspOutcome::kStable : GraspOutcome::kSlipped,
+         "object drift " + std::to_string(drift) + " m during " +
+             (lifted ? "a lift of " + std::to_string(h) + " m"
+                     : "the phases (hand moved " + std::to_string(h) + " m)"));
 }
 
 /// `initial` with the hand at qOpen and its base placed so that the TCP is at X_W_tcp.
@@ -436,7 +564,7 @@ GraspTrialResult TrialRun::run(const rw::kinematics::State& initial) {
   }
   const Transform3D X_h0 = sim_.bodyPose(data_.baseBody);
   const Transform3D X_o0 = sim_.bodyPose(result_.object);
-  if (lift(X_h0)) evaluate(X_h0, X_o0);
+  if (runPhases()) evaluate(X_h0, X_o0);
   return withMessages();
 }
 
@@ -445,6 +573,7 @@ GraspTrialResult TrialRun::run(const rw::kinematics::State& initial) {
 GraspTrial::GraspTrial(const dynamics::DynamicWorkCell& dwc, GraspTrialSetup setup,
                        std::shared_ptr<const trial::EngineFactory> engine)
     : dwc_(&dwc), setup_(std::move(setup)) {
+  trial::checkProtocol(setup_.protocol);
   auto data = prepare(dwc, setup_);
   classifyBodies(dwc, *data);
   data->detector = std::make_shared<contacts::ContactDetector>(

@@ -49,23 +49,29 @@ using trial::TrialContact;
 ///     the motors' torque limited by tauMax (empty: the dwc's ForceLimits). It ends, not before
 ///     minCloseTime, when every joint is within closedTolerance of qClosed, or every active
 ///     joint stays slower than restSpeedRevolute / restSpeedPrismatic for restTime ("the
-///     fingers are static"), or at closeTimeLimit.
+///     fingers are static"), or at closeTimeLimit; under the protocol's force rule also as soon
+///     as the hand's total normal force on one object exceeds TrialProtocol::gripForce.
 ///  3. No hand-object contact with a normal force above contactForceThreshold: kMissed. The
 ///     grasped object is the rigid non-hand body with most such contact points (ties: the lower
 ///     body index).
-///  4. Lifting: the base moves liftHeight straight up (world z) on a ramp (liftSpeed,
-///     liftAcceleration) with the controller still closing, then settles for settleTime.
-///  5. No hand contact on the object: kDropped. Else, with h and o the hand's and the object's
-///     displacement during lifting, drift = |o - h|, Q_lift = max(0, 1 - drift / |h|) (paper
-///     eq. 5), kStable if drift < slipThreshold, else kSlipped; Q_GWS and Q_GWS,unit from the
-///     contacts after lifting (gwsQualities(): gwsConeEdges edges, torques about the object's
-///     COG over r, the largest distance of its collision geometry from the COG).
+///  4. The protocol's phases (setup.protocol; the paper's: the base moves 10 cm straight up
+///     (world z) on a ramp of 0.5 m/s and 1 m/s^2, then settles for 0.2 s), driven as kinematic
+///     velocities of the base with the controller still closing. Without the protocol's gravity
+///     the engine has none (PhysicsVariation::gravity).
+///  5. No hand contact on the object (success rule "two fingers": fewer than two finger links,
+///     hand bodies other than the base, touch it): kDropped. Else, with h and o the hand's and
+///     the object's displacement during the phases, drift = |o - h|, Q_lift = max(0, 1 - drift /
+///     |h|) (paper eq. 5; 0 when the hand ends where it started, as after a shake), kStable if
+///     drift < slipThreshold, else kSlipped; Q_GWS and Q_GWS,unit from the contacts after the
+///     phases (gwsQualities(): gwsConeEdges edges, torques about the object's COG over r, the
+///     largest distance of its collision geometry from the COG).
 /// A failing step gives kSimulationFailure, passing timeLimit kTimeout (detail says why).
 class GraspTrial {
  public:
   /// Trials on the engine `engine` makes (null: ODE with setup.simulator, the benchmark's engine).
   /// @throws std::invalid_argument if the hand, controller or TCP frame is unknown, the hand's
-  /// base is not a kinematic body, or the controller drives another device.
+  /// base is not a kinematic body, the controller drives another device, or the protocol is
+  /// invalid (trial::checkProtocol()).
   GraspTrial(const dynamics::DynamicWorkCell& dwc, GraspTrialSetup setup,
              std::shared_ptr<const trial::EngineFactory> engine = nullptr);
   /// Places the hand, closes, lifts and classifies. `initial` gives the objects' poses.

@@ -415,7 +415,8 @@ void Simulator::reset(const rw::kinematics::State& state) {
   detail::prepareOdeForThisThread();
   impl_->ode.reset();
   impl_->ode = std::make_unique<detail::OdeWorld>(*impl_->dwc, state, impl_->options,
-                                                  impl_->variation.objectMassScale);
+                                                  impl_->variation.objectMassScale,
+                                                  impl_->variation.gravity);
   impl_->state = state;
   impl_->time = 0.0;
   impl_->status = StepStatus::kOk;

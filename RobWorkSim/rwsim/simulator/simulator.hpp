@@ -40,8 +40,8 @@ using trial::StepStatus;
 /// global random generator and is only deterministic single-threaded).
 ///
 /// A PhysicsVariation scales every pair's mu (before the contact joints get it) and the mass
-/// and inertia given ODE for each object (trial::isVariedObject()); the identity leaves every
-/// value as the dwc has it.
+/// and inertia given ODE for each object (trial::isVariedObject()); one without gravity gives the
+/// ODE world none; the identity leaves every value as the dwc has it.
 class Simulator final : public trial::PhysicsEngine {
  public:
   /// Creates the world, bodies, joints and motors, with the dwc's friction and object masses

@@ -13,10 +13,13 @@ struct PhysicsVariation {
   /// The mass and inertia tensor of every object (isVariedObject()) times this (> 0); the
   /// centre of mass stays where it is.
   double objectMassScale = 1.0;
+  /// False: the world has no gravity (a trial protocol's choice, e.g. ACRONYM's shake; the dwc's
+  /// gravity is not edited, each engine zeroes its own copy).
+  bool gravity = true;
 
-  /// True when both scales are exactly 1: the engine then runs on the dwc's own values, with
-  /// bitwise the results of an engine made without a variation.
-  bool isIdentity() const { return frictionScale == 1.0 && objectMassScale == 1.0; }
+  /// True when both scales are exactly 1 and gravity is on: the engine then runs on the dwc's
+  /// own values, with bitwise the results of an engine made without a variation.
+  bool isIdentity() const { return frictionScale == 1.0 && objectMassScale == 1.0 && gravity; }
   /// @throws std::invalid_argument naming the scale and its value unless both scales are
   /// finite and > 0.
   void check() const;

@@ -10,6 +10,7 @@
 #include "rwsim/dynamics/dynamic_workcell.hpp"
 #include "rwsim/trial/grasp_outcome.hpp"
 #include "rwsim/trial/physics_engine.hpp"
+#include "rwsim/trial/trial_protocol.hpp"
 
 namespace rwsim::trial {
 
@@ -60,8 +61,9 @@ struct GraspTrialSetup {
   std::string controller = "GraspController";
   /// TCP frame (full name); empty: "<hand>.TCP" if it exists, else the hand's base frame.
   std::string tcpFrame;
-  /// Lift height, m (paper: 10 cm).
-  double liftHeight = 0.10;
+  /// What the trial does after placing the hand and how it judges the grasp (gravity, closing
+  /// rule, motion phases, success rule); default: the paper's lift of 10 cm.
+  TrialProtocol protocol;
   /// Drift of the object in the hand above which a held grasp is "slipped", m (RobWork: 1 cm).
   double slipThreshold = 0.01;
   /// Simulated-time limit, s.
@@ -81,12 +83,6 @@ struct GraspTrialSetup {
   /// Clamp the PD commands to the joint velocity limits (RobWork does not; clamping lets fingers
   /// lose contact when a held object shifts, so it is off by default).
   bool clampToVelocityLimits = false;
-  /// Lift ramp: top speed (m/s) and acceleration (m/s^2); RobWork's body controller defaults.
-  double liftSpeed = 0.5;
-  /// See liftSpeed.
-  double liftAcceleration = 1.0;
-  /// Time after the lift before judging it, s.
-  double settleTime = 0.2;
   /// A contact counts when its normal force exceeds this, N (the legacy plugin's filter).
   double contactForceThreshold = 1e-4;
   /// Cone edges for Q_GWS and Q_GWS,unit (RobWork: 10).
@@ -97,7 +93,7 @@ struct GraspTrialSetup {
   /// The ODE engine's settings (the default engine; another engine brings its own).
   SimulatorOptions simulator;
   /// Called after every successful step with the engine and the phase ("close", "lift",
-  /// "settle"), e.g. to record a trajectory. Runs on the thread that runs the trial.
+  /// "shake", "pull", "settle"), e.g. to record a trajectory. Runs on the thread that runs the trial.
   std::function<void(const PhysicsEngine&, std::string_view phase)> observer;
 };
 
@@ -146,9 +142,9 @@ struct GraspTrialResult {
   /// The closing phase ran into GraspTrialSetup::closeTimeLimit with the fingers still moving
   /// (the rest test not met): the grasp was judged as it stood.
   bool closingCapped = false;
-  /// Hand displacement during the lift (paper eq. 5, h), m.
+  /// Hand displacement during the protocol's phases (paper eq. 5, h: the lift), m.
   rw::math::Vector3D handLift = rw::math::Vector3D::Zero();
-  /// Object displacement during the lift (paper eq. 5, o), m.
+  /// Object displacement during the protocol's phases (paper eq. 5, o), m.
   rw::math::Vector3D objectLift = rw::math::Vector3D::Zero();
 };
 

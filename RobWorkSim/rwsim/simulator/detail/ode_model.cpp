@@ -263,7 +263,7 @@ Transform3D odePose(dBodyID body) {
 }
 
 OdeWorld::OdeWorld(const dynamics::DynamicWorkCell& dwc, const rw::kinematics::State& state,
-                   const SimulatorOptions& options, double objectMassScale) {
+                   const SimulatorOptions& options, double objectMassScale, bool gravity) {
   world_ = dWorldCreate();
   // ODE's default threading implementation is one global object; worlds stepped in parallel
   // threads must each have their own, or their islands get mixed up.
@@ -271,7 +271,7 @@ OdeWorld::OdeWorld(const dynamics::DynamicWorkCell& dwc, const rw::kinematics::S
   dWorldSetStepThreadingImplementation(world_, dThreadingImplementationGetFunctions(threading_),
                                        threading_);
   contactGroup_ = dJointGroupCreate(0);
-  const Vector3D& g = dwc.gravity();
+  const Vector3D g = gravity ? dwc.gravity() : Vector3D::Zero();
   dWorldSetGravity(world_, g.x(), g.y(), g.z());
   dWorldSetCFM(world_, options.worldCfm);
   dWorldSetERP(world_, options.worldErp);

@@ -113,12 +113,13 @@ struct SimConstraint {
 class OdeWorld {
  public:
   /// Builds the world with bodies where `state` puts them, at rest; each object's
-  /// (trial::isVariedObject()) mass and inertia times `objectMassScale` (1: the dwc's values).
+  /// (trial::isVariedObject()) mass and inertia times `objectMassScale` (1: the dwc's values);
+  /// the dwc's gravity, or none when `gravity` is false.
   /// @throws std::invalid_argument for bodies or devices ODE cannot simulate (mass <= 0,
   /// inertia not positive definite, a joint link that is not a rigid body, a constraint with a
   /// spring, ...).
   OdeWorld(const dynamics::DynamicWorkCell& dwc, const rw::kinematics::State& state,
-           const SimulatorOptions& options, double objectMassScale);
+           const SimulatorOptions& options, double objectMassScale, bool gravity = true);
   ~OdeWorld();
   OdeWorld(const OdeWorld&) = delete;
   OdeWorld& operator=(const OdeWorld&) = delete;

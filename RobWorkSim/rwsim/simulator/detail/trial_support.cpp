@@ -46,6 +46,22 @@ std::vector<int> handContactCounts(const std::vector<SolvedBodyContact>& contact
   return counts;
 }
 
+std::vector<double> handNormalForces(const std::vector<SolvedBodyContact>& contacts,
+                                     const std::vector<bool>& isHandBody, double threshold) {
+  std::vector<double> forces(isHandBody.size(), 0.0);
+  for (const auto& bc : contacts) {
+    const bool handA = isHand(isHandBody, bc.bodyA);
+    const bool handB = isHand(isHandBody, bc.bodyB);
+    if (handA == handB) continue;
+    const dynamics::BodyId other = handA ? bc.bodyB : bc.bodyA;
+    for (const auto& p : bc.points) {
+      const double f = loadOn(p, handA).normalForce;
+      if (f > threshold) forces[other.index()] += f;
+    }
+  }
+  return forces;
+}
+
 std::vector<TrialContact> objectContacts(const dynamics::DynamicWorkCell& dwc,
                                          const std::vector<SolvedBodyContact>& contacts,
                                          const std::vector<bool>& isHandBody,

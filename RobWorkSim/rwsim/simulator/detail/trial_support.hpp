@@ -15,6 +15,11 @@ namespace rwsim::simulator::detail {
 std::vector<int> handContactCounts(const std::vector<SolvedBodyContact>& contacts,
                                    const std::vector<bool>& isHandBody, double threshold);
 
+/// Total normal force of the hand on each body (index like bodies()), N, over the contact points
+/// whose normal force exceeds `threshold`.
+std::vector<double> handNormalForces(const std::vector<SolvedBodyContact>& contacts,
+                                     const std::vector<bool>& isHandBody, double threshold);
+
 /// The loaded contacts between the hand and `object`, in the object's frame (X_W_object is the
 /// object's pose), normals pointing into the object, mu from the pair's materials times
 /// `frictionScale` (the trial's PhysicsVariation).
