@@ -1,0 +1,44 @@
+#pragma once
+
+#include <map>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace visgrab::importers {
+
+/// A JSON value as the strict reader (parseJson) gives it.
+struct JsonValue {
+  /// What the value is.
+  enum class Kind { kNull, kBool, kNumber, kString, kArray, kObject };
+  /// Its kind.
+  Kind kind = Kind::kNull;
+  /// kBool: the value.
+  bool flag = false;
+  /// kNumber: the value.
+  double number = 0.0;
+  /// kString: the text (UTF-8).
+  std::string text;
+  /// kArray: the elements.
+  std::vector<JsonValue> items;
+  /// kObject: the members by name.
+  std::map<std::string, JsonValue, std::less<>> members;
+  /// 1-based line and column where the value starts (for messages).
+  int line = 0;
+  /// See line.
+  int column = 0;
+
+  /// The member `key` of an object, or nullptr (also when this is not an object).
+  const JsonValue* find(std::string_view key) const;
+};
+
+/// The kind's name in messages: "null", "true/false", "number", "string", "array", "object".
+const char* jsonKindName(JsonValue::Kind kind);
+
+/// Reads RFC 8259 JSON strictly (no comments, no trailing commas, no duplicate keys, nesting at
+/// most 64 deep). `name` names the text in messages.
+/// @throws ImportError "NAME:LINE:COLUMN: what was expected".
+JsonValue parseJson(std::string_view text, const std::string& name);
+
+}  // namespace visgrab::importers
