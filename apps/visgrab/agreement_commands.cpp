@@ -6,6 +6,9 @@
 #include <vector>
 
 #include "visgrab/analysis/agreement.hpp"
+#include "visgrab/analysis/label_agreement.hpp"
+#include "visgrab/database/database.hpp"
+#include "visgrab/importers/acronym.hpp"
 
 namespace visgrab::app {
 
@@ -13,8 +16,49 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// The scene of `run` made from `labels` (its database's <Source file>), else --scene, else the
+// run's only scene.
+std::string labelledScene(const Arguments& a, const analysis::AgreementRun& run,
+                          const fs::path& labels) {
+  if (const auto scene = a.option("scene")) return *scene;
+  const fs::path& database = run.results.sources.database;
+  std::error_code ec;
+  if (!database.empty() && fs::exists(database, ec)) {
+    const database::Database db = database::Database::openAny(database);
+    for (const database::SceneEntry& s : db.list()) {
+      if (s.source && s.source->file == labels.filename().string()) return s.id;
+    }
+  }
+  if (run.results.scenes.size() == 1) return run.results.scenes.front().id;
+  throw UsageError("no scene of " + run.dir.string() + "'s database was made from " +
+                   labels.filename().string() + ", and the run has " +
+                   std::to_string(run.results.scenes.size()) +
+                   " scenes: name the labelled one with --scene");
+}
+
+int runLabelAgreement(const Arguments& a, const std::string& dir, const fs::path& labels) {
+  std::vector<rw::common::Diagnostic> warnings;
+  const analysis::AgreementRun run = analysis::readAgreementRun(dir, &warnings);
+  for (const auto& w : warnings) std::cerr << w.format() << "\n";
+  const std::vector<int> values = importers::readAcronymLabels(labels);
+  const analysis::LabelAgreement agreement =
+      analysis::compareWithLabels(run, values, labels, labelledScene(a, run, labels));
+  std::cout << analysis::labelAgreementSummary(agreement);
+  if (const auto out = a.option("out")) {
+    analysis::writeLabelAgreement(agreement, *out);
+    std::cout << "written to " << *out
+              << " (label-agreement.csv, label-confusion.csv, label-disagreements.csv)\n";
+  }
+  return 0;
+}
+
 int runAgreement(const Arguments& a) {
   const std::vector<std::string> dirs = a.positionals();
+  if (const auto labels = a.option("labels")) {
+    if (dirs.size() != 1) throw UsageError("with --labels, expected one result folder, RUN");
+    return runLabelAgreement(a, dirs.front(), *labels);
+  }
+  if (a.option("scene")) throw UsageError("--scene needs --labels");
   if (dirs.size() != 2) throw UsageError("expected two result folders, RUN_A and RUN_B");
   std::vector<analysis::AgreementRun> runs;
   for (const std::string& dir : dirs) {
@@ -41,14 +85,26 @@ void addAgreementCommands(CommandLine& cli) {
       "confusion matrix and, over the trials simulated in both, held vs not held agreement with "
       "Cohen's kappa, per condition and per object; trials decided before simulation counted "
       "apart; the disagreeing trials with their `visgrab render` commands "
-      "(docs/validation.md).",
+      "(docs/validation.md). With --labels, one run against published labels.",
       guarded(runAgreement));
   agreement.add_option("RUN_A", "The first run's result folder (`visgrab run --out`)")
       ->required()
       ->type_name("");
-  agreement.add_option("RUN_B", "The second run's result folder, on the same database")
-      ->required()
+  agreement
+      .add_option("RUN_B",
+                  "The second run's result folder, on the same database (not with --labels)")
       ->type_name("");
+  agreement
+      .add_option("--labels",
+                  "Compare RUN_A with published labels instead: an ACRONYM .h5 (or GraspGen "
+                  ".json) whose grasps RUN_A ran (`visgrab import acronym`); held (stable or "
+                  "slipped) against grasps/qualities/flex/object_in_gripper, with Cohen's kappa")
+      ->type_name("FILE");
+  agreement
+      .add_option("--scene",
+                  "With --labels: the scene the labelled grasps ran in (default: the scene of "
+                  "the run's database made from the labels' file)")
+      ->type_name("ID");
   agreement
       .add_option("--out",
                   "A folder to write agreement.csv, confusion.csv, disagreements.csv and "

@@ -21,8 +21,10 @@
 #include "visgrab/database/scene_filter.hpp"
 #include "visgrab/database/scene_set.hpp"
 #include "visgrab/database/stereo_accuracy.hpp"
+#include "visgrab/generator/acronym_database.hpp"
 #include "visgrab/generator/generator.hpp"
 #include "visgrab/generator/scene_model.hpp"
+#include "visgrab/importers/acronym.hpp"
 #include "visgrab/objects/object_spec.hpp"
 
 namespace visgrab::app {
@@ -94,6 +96,51 @@ int runGenerate(const Arguments& a) {
             << report.failures.size() << " failed\n";
   for (const auto& f : report.failures) std::cerr << "failed: " << f << "\n";
   return report.failures.empty() ? 0 : 1;
+}
+
+int runFromAcronym(const Arguments& a) {
+  const std::vector<std::string> files = a.positionals();
+  if (files.empty()) throw UsageError("expected one or more ACRONYM files (FILE.h5)");
+  const fs::path meshRoot = a.option("mesh-root").value();
+  std::vector<generator::AcronymObjectSource> sources;
+  for (const std::string& file : files) {
+    const importers::AcronymObject object = importers::readAcronymObject(file);
+    generator::AcronymObjectSource s;
+    s.file = fs::path(file).filename().string();
+    s.mesh = meshRoot / object.file;
+    std::error_code ec;
+    if (!fs::is_regular_file(s.mesh, ec)) {
+      throw std::runtime_error(file + ": its mesh object/file = \"" + object.file +
+                               "\" is not under --mesh-root " + meshRoot.string() + " (no file " +
+                               s.mesh.string() + ")");
+    }
+    s.scale = object.scale;
+    s.mass = object.mass;
+    s.friction = object.friction;
+    s.com = object.com;
+    s.inertia = object.inertia;
+    sources.push_back(std::move(s));
+  }
+  const fs::path data = dataFolder(a);
+  generator::AcronymDatabaseOptions options;
+  options.handFolder = data / "hands" / "sdh";
+  options.materials = data / "materials.xml";
+  std::optional<ProgressReporter> reporter;
+  if (!a.flag("quiet")) reporter.emplace("db from-acronym", "scenes");
+  long done = 0;
+  options.onScene = [&](const std::string& id) {
+    if (reporter) reporter->update(++done, static_cast<long>(sources.size()), id);
+  };
+  const fs::path out = a.option("out").value();
+  const generator::AcronymDatabaseReport report =
+      generator::generateAcronymDatabase(sources, out, options);
+  reporter.reset();
+  for (const std::string& note : report.notes) std::cerr << "note: " << note << "\n";
+  std::cout << report.scenes.size() << " scenes in " << out.string() << ":\n";
+  for (std::size_t i = 0; i < report.scenes.size(); ++i) {
+    std::cout << "  " << report.scenes[i] << "  (" << sources[i].file << ")\n";
+  }
+  return 0;
 }
 
 database::Database openDatabase(const Arguments& a) {
@@ -278,6 +325,26 @@ void addDatabaseCommands(CommandLine& cli) {
       ->default_str("realistic");
   addDataOption(generate);
   addQuietFlag(generate);
+
+  CLI::App& fromAcronym = cli.addCommand(
+      &db, "from-acronym",
+      "A database of one scene per ACRONYM grasp file: the object floating where its mesh frame "
+      "says (no table), its scale, mass, centre of mass, inertia and friction from the file, its "
+      "collision pieces by convex decomposition; no images (docs/database-format.md, \"Scenes "
+      "from objects alone\"). Import the file's grasps with `visgrab import acronym`.",
+      guarded(runFromAcronym));
+  fromAcronym.add_option("FILES", "ACRONYM grasp files (.h5)")->required()->type_name("FILE.h5...");
+  fromAcronym
+      .add_option("--mesh-root",
+                  "The folder the files' object/file paths are relative to (ACRONYM's data "
+                  "folder, which holds meshes/)")
+      ->required()
+      ->type_name("DIR");
+  fromAcronym.add_option("--out", "The database folder to write (or complete)")
+      ->required()
+      ->type_name("DIR");
+  addDataOption(fromAcronym);
+  addQuietFlag(fromAcronym);
 
   CLI::App& list = cli.addCommand(
       &db, "list", "List the scenes of a generated database or an original VisGraB manifest.",

@@ -203,16 +203,6 @@ std::string percentText(double fraction) {
   return std::isnan(fraction) ? std::string("–") : detail::fixed(100.0 * fraction, 1) + " %";
 }
 
-std::string kappaText(const HeldAgreement& h) {
-  if (std::isnan(h.kappa)) return "–";
-  std::string text = detail::fixed(h.kappa, 3);
-  if (!std::isnan(h.kappaStandardError)) {
-    text += " (SE " + detail::fixed(h.kappaStandardError, 3) + ", 95 % " +
-            detail::fixed(h.kappaLow, 3) + " to " + detail::fixed(h.kappaHigh, 3) + ")";
-  }
-  return text;
-}
-
 std::string kindName(const Disagreement& d) { return d.heldDiffers ? "held" : "outcome"; }
 
 /// The Markdown cell of `text` (pipes escaped).
@@ -411,6 +401,60 @@ std::string renderCommand(const fs::path& dir, const Disagreement& d, const std:
          shellWord(d.graspId) + " --out " + shellWord(out);
 }
 
+std::string kappaText(const HeldAgreement& h) {
+  if (std::isnan(h.kappa)) return "–";
+  std::string text = detail::fixed(h.kappa, 3);
+  if (!std::isnan(h.kappaStandardError)) {
+    text += " (SE " + detail::fixed(h.kappaStandardError, 3) + ", 95 % " +
+            detail::fixed(h.kappaLow, 3) + " to " + detail::fixed(h.kappaHigh, 3) + ")";
+  }
+  return text;
+}
+
+std::vector<std::string> heldAgreementCsvHeader() {
+  return {"kind",
+          "key",
+          "name",
+          "trials",
+          "both_held",
+          "only_a_held",
+          "only_b_held",
+          "neither_held",
+          "observed_agreement",
+          "expected_agreement",
+          "kappa",
+          "kappa_se",
+          "kappa_low",
+          "kappa_high",
+          "held_share_a",
+          "held_share_b",
+          "same_outcome",
+          "decided_before_simulation",
+          "decided_same"};
+}
+
+std::vector<std::string> heldAgreementCsvFields(const HeldAgreement& h) {
+  return {h.kind,
+          h.key,
+          h.name,
+          std::to_string(h.trials),
+          std::to_string(h.bothHeld),
+          std::to_string(h.onlyAHeld),
+          std::to_string(h.onlyBHeld),
+          std::to_string(h.neitherHeld),
+          fractionField(h.observedAgreement),
+          fractionField(h.expectedAgreement),
+          fractionField(h.kappa),
+          fractionField(h.kappaStandardError),
+          fractionField(h.kappaLow),
+          fractionField(h.kappaHigh),
+          fractionField(h.heldShareA),
+          fractionField(h.heldShareB),
+          std::to_string(h.sameOutcome),
+          std::to_string(h.decidedBeforeSimulation),
+          std::to_string(h.decidedSame)};
+}
+
 std::string agreementSummary(const Agreement& g) {
   std::ostringstream s;
   const HeldAgreement& all = g.groups.front();
@@ -443,21 +487,8 @@ std::string agreementSummary(const Agreement& g) {
 }
 
 std::string agreementCsv(const Agreement& g) {
-  std::string text = results::csvRecord(
-      {"kind", "key", "name", "trials", "both_held", "only_a_held", "only_b_held", "neither_held",
-       "observed_agreement", "expected_agreement", "kappa", "kappa_se", "kappa_low", "kappa_high",
-       "held_share_a", "held_share_b", "same_outcome", "decided_before_simulation",
-       "decided_same"});
-  for (const HeldAgreement& h : g.groups) {
-    text += results::csvRecord(
-        {h.kind, h.key, h.name, std::to_string(h.trials), std::to_string(h.bothHeld),
-         std::to_string(h.onlyAHeld), std::to_string(h.onlyBHeld), std::to_string(h.neitherHeld),
-         fractionField(h.observedAgreement), fractionField(h.expectedAgreement),
-         fractionField(h.kappa), fractionField(h.kappaStandardError), fractionField(h.kappaLow),
-         fractionField(h.kappaHigh), fractionField(h.heldShareA), fractionField(h.heldShareB),
-         std::to_string(h.sameOutcome), std::to_string(h.decidedBeforeSimulation),
-         std::to_string(h.decidedSame)});
-  }
+  std::string text = results::csvRecord(heldAgreementCsvHeader());
+  for (const HeldAgreement& h : g.groups) text += results::csvRecord(heldAgreementCsvFields(h));
   return text;
 }
 

@@ -158,6 +158,17 @@ bool sameDatabase(const results::RunSources& a, const results::RunSources& b);
 std::string renderCommand(const std::filesystem::path& dir, const Disagreement& d,
                           const std::string& out);
 
+/// Kappa with its standard error and 95 % interval, e.g. "0.727 (SE 0.016, 95 % 0.697 to
+/// 0.758)"; "–" when undefined.
+std::string kappaText(const HeldAgreement& h);
+
+/// The column names of one HeldAgreement in agreement.csv.
+std::vector<std::string> heldAgreementCsvHeader();
+
+/// One HeldAgreement as agreement.csv's fields (heldAgreementCsvHeader's order; undefined
+/// figures empty).
+std::vector<std::string> heldAgreementCsvFields(const HeldAgreement& h);
+
 /// The readable summary `visgrab agreement` prints: counts, agreement, kappa, held shares, and
 /// one line per condition group.
 std::string agreementSummary(const Agreement& agreement);

@@ -122,15 +122,16 @@ Database Database::open(const fs::path& dir) {
     e.conditions = r.conditions;
     // Your own objects have no scene in the original database's layout.
     e.originalId = index.catalog.isBenchmark() ? originalIdOf(r.conditions) : r.id;
-    e.leftImage = dir / r.files.left;
-    e.rightImage = dir / r.files.right;
-    e.calibration = dir / r.files.calibration;
-    e.workcell = dir / r.files.workcell;
-    e.dynamicWorkcell = dir / r.files.dynamicWorkcell;
-    // The files of index format 2: empty paths stay empty (the scene has no such file).
+    // Files a scene may lack (those of index format 2; the images and calibration of a
+    // database without images): empty paths stay empty.
     const auto optional = [&](const std::string& relative) {
       return relative.empty() ? fs::path() : dir / relative;
     };
+    e.leftImage = optional(r.files.left);
+    e.rightImage = optional(r.files.right);
+    e.calibration = optional(r.files.calibration);
+    e.workcell = dir / r.files.workcell;
+    e.dynamicWorkcell = dir / r.files.dynamicWorkcell;
     e.rawLeftImage = optional(r.files.rawLeft);
     e.rawRightImage = optional(r.files.rawRight);
     e.disparity = optional(r.files.disparity);
@@ -139,6 +140,7 @@ Database Database::open(const fs::path& dir) {
     e.mask = optional(r.files.mask);
     e.poses = optional(r.files.poses);
     e.groundTruth = r.objects;
+    e.source = r.source;
     db.scenes_.push_back(std::move(e));
   }
   std::stable_sort(db.scenes_.begin(), db.scenes_.end(), [&index](const auto& a, const auto& b) {
@@ -322,8 +324,12 @@ std::string Database::details(const SceneEntry& s, const ObjectCatalog& catalog)
   } else {
     out += "conditions:       unknown (not derivable from the manifest)\n";
   }
-  out += fileLine("left image:       ", s.leftImage);
-  out += fileLine("right image:      ", s.rightImage);
+  if (s.leftImage.empty() && s.rightImage.empty() && s.calibration.empty() && s.source) {
+    out += "images:           none (a scene made from " + s.source->file + ")\n";
+  } else {
+    out += fileLine("left image:       ", s.leftImage);
+    out += fileLine("right image:      ", s.rightImage);
+  }
   if (!s.calibration.empty()) out += fileLine("calibration:      ", s.calibration);
   out += fileLine("workcell:         ", s.workcell);
   out += fileLine("dynamic workcell: ", s.dynamicWorkcell);

@@ -81,6 +81,7 @@ class IndexParser {
     index.seed = std::stoull(root.attributeOr("seed", "0"));
     index.generator = root.attributeOr("generator", "");
     index.camera = root.attributeOr("camera", "");
+    camera_ = index.camera;
     const auto catalog = readCatalog(root);
     if (!catalog) return std::nullopt;
     index.catalog = *catalog;
@@ -188,6 +189,18 @@ class IndexParser {
         } else {
           ok = false;
         }
+      } else if (child.name == "Source") {
+        SceneSource source;
+        source.file = child.attributeOr("file", "");
+        if (source.file.empty() || source.file.find_first_of("/\\") != std::string::npos) {
+          sink_.error(child.location, child.describe() + ": file=\"" + source.file +
+                                          "\": expected a file name without folders");
+          ok = false;
+        } else if (parsePose(child, source.X_W_source)) {
+          record.source = std::move(source);
+        } else {
+          ok = false;
+        }
       }
     }
     if (!ok) return std::nullopt;
@@ -209,6 +222,13 @@ class IndexParser {
     for (const SceneFileField& field : sceneFileFields()) {
       std::string& target = files.*field.member;
       if (!field.required && !e.has(field.attribute)) continue;  // none: empty
+      if (field.required && !e.has(field.attribute)) {
+        if (fileMayBeAbsent(field, camera_)) continue;  // a database without images
+        sink_.error(e.location, "<Files>: " + std::string(field.attribute) +
+                                    " is missing (only a database with camera=\"" +
+                                    std::string(kNoCamera) + "\" has no images)");
+        return false;
+      }
       if (!field.required && version_ < 2) {
         sink_.error(e.location, "<Files>: " + std::string(field.attribute) +
                                     " needs index format version 2 (this index says version " +
@@ -239,6 +259,12 @@ class IndexParser {
                                   "\", not \"" + name + "\"");
       return std::nullopt;
     }
+    if (!parsePose(e, pose.X_WO)) return std::nullopt;
+    return pose;
+  }
+
+  // The <Pos> and <RPY> children of `e` as a pose; false after reporting a bad number.
+  bool parsePose(const rw::common::XmlElement& e, rw::math::Transform3D& X) {
     Eigen::Vector3d position = Eigen::Vector3d::Zero();
     Eigen::Vector3d rpy = Eigen::Vector3d::Zero();
     bool ok = true;
@@ -246,13 +272,13 @@ class IndexParser {
       if (child.name == "Pos") ok = vector3(child, sink_, position) && ok;
       if (child.name == "RPY") ok = vector3(child, sink_, rpy) && ok;
     }
-    if (!ok) return std::nullopt;
-    pose.X_WO = rw::math::rpyTransform(rpy * kDeg2Rad, position);
-    return pose;
+    if (ok) X = rw::math::rpyTransform(rpy * kDeg2Rad, position);
+    return ok;
   }
 
   rw::common::DiagnosticSink& sink_;
   int version_ = kIndexFormatVersion;
+  std::string camera_;
   const ObjectCatalog* catalog_ = nullptr;
 };
 
@@ -289,6 +315,12 @@ const std::vector<SceneFileField>& sceneFileFields() {
       {"mask", &SceneFiles::mask, false},
       {"poses", &SceneFiles::poses, false}};
   return fields;
+}
+
+bool fileMayBeAbsent(const SceneFileField& field, std::string_view camera) {
+  if (!field.required) return true;
+  return camera == kNoCamera && field.member != &SceneFiles::workcell &&
+         field.member != &SceneFiles::dynamicWorkcell;
 }
 
 SceneFiles defaultSceneFiles(std::string_view id) {
@@ -342,6 +374,26 @@ DatabaseIndex readIndex(const std::filesystem::path& file) {
   return parseIndex(text, file.string());
 }
 
+std::string poseXml(const rw::math::Transform3D& X, const std::string& what,
+                    const std::string& indent) {
+  const Eigen::Vector3d p = X.translation();
+  const Eigen::Vector3d rpy = rw::math::rotationToRpy(X.linear()) * kRad2Deg;
+  if (!p.allFinite() || !rpy.allFinite()) throw std::invalid_argument(what + ": non-finite pose");
+  return indent + "<Pos>" + fixed(p.x()) + " " + fixed(p.y()) + " " + fixed(p.z()) + "</Pos>\n" +
+         indent + "<RPY>" + fixed(rpy.x()) + " " + fixed(rpy.y()) + " " + fixed(rpy.z()) +
+         "</RPY>\n";
+}
+
+std::string sourceXml(const SceneRecord& s) {
+  if (s.source->file.empty() || s.source->file.find_first_of("/\\") != std::string::npos) {
+    throw std::invalid_argument("scene \"" + s.id + "\": source \"" + s.source->file +
+                                "\" is not a file name without folders");
+  }
+  return "    <Source file=\"" + rw::common::escapeXml(s.source->file) + "\">\n" +
+         poseXml(s.source->X_W_source, "scene \"" + s.id + "\" source", "      ") +
+         "    </Source>\n";
+}
+
 std::string indexToXml(const DatabaseIndex& index) {
   std::vector<const SceneRecord*> ordered;
   for (const SceneRecord& s : index.scenes) {
@@ -352,7 +404,7 @@ std::string indexToXml(const DatabaseIndex& index) {
     }
     for (const SceneFileField& field : sceneFileFields()) {
       const std::string& path = s.files.*field.member;
-      if (!field.required && path.empty()) continue;
+      if (fileMayBeAbsent(field, index.camera) && path.empty()) continue;
       const std::string why = checkRelativePath(path);
       if (!why.empty()) {
         throw std::invalid_argument("scene \"" + s.id + "\": file \"" + path + "\": " + why);
@@ -398,18 +450,12 @@ std::string indexToXml(const DatabaseIndex& index) {
                                     std::to_string(o.object) + " is not object " +
                                     std::to_string(c.objects[i]) + " of the scene");
       }
-      const Eigen::Vector3d p = o.X_WO.translation();
-      const Eigen::Vector3d rpy = rw::math::rotationToRpy(o.X_WO.linear()) * kRad2Deg;
-      if (!p.allFinite() || !rpy.allFinite()) {
-        throw std::invalid_argument("scene \"" + s->id + "\": non-finite object pose");
-      }
+      const std::string pose = poseXml(o.X_WO, "scene \"" + s->id + "\" object", "      ");
       out += "    <Object id=\"" + std::to_string(o.object) + "\" name=\"" +
-             rw::common::escapeXml(std::string(index.catalog.name(o.object))) + "\">\n";
-      out += "      <Pos>" + fixed(p.x()) + " " + fixed(p.y()) + " " + fixed(p.z()) + "</Pos>\n";
-      out +=
-          "      <RPY>" + fixed(rpy.x()) + " " + fixed(rpy.y()) + " " + fixed(rpy.z()) + "</RPY>\n";
-      out += "    </Object>\n";
+             rw::common::escapeXml(std::string(index.catalog.name(o.object))) + "\">\n" + pose +
+             "    </Object>\n";
     }
+    if (s->source) out += sourceXml(*s);
     out += "  </Scene>\n";
   }
   out += "</VisGraBDatabase>\n";

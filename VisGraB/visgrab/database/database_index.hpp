@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -78,6 +79,28 @@ struct SceneFileField {
 /// rawLeft, rawRight, disparity, pointCloud, depth, mask, poses.
 const std::vector<SceneFileField>& sceneFileFields();
 
+/// The camera profile name of a database whose scenes have no images and no calibration (made
+/// from objects alone, `visgrab db from-acronym`): `left`, `right` and `calibration` may then be
+/// absent.
+inline constexpr std::string_view kNoCamera = "none";
+
+/// Where a scene was made from when it is not one of the generator's (`db from-acronym`): the
+/// source file's name and the pose of its frame in the scene's world (for an ACRONYM file: the
+/// frame of its scaled mesh, in which its grasps are given).
+struct SceneSource {
+  /// The file's name, without folders (e.g. "Table_99cf..._0.0097.h5").
+  std::string file;
+  /// Pose of the source's frame in the table (world) frame.
+  rw::math::Transform3D X_W_source = rw::math::Transform3D::Identity();
+  /// Equal when both fields are.
+  bool operator==(const SceneSource& other) const = default;
+};
+
+/// True when a scene of a database made with camera profile `camera` may lack `field`'s file:
+/// the files of format version 2, and in a database without images (kNoCamera) also the images
+/// and the calibration (never the workcell and dynamic workcell).
+bool fileMayBeAbsent(const SceneFileField& field, std::string_view camera);
+
 /// One scene of a generated database.
 struct SceneRecord {
   /// Scene id (sceneIdOf(conditions)).
@@ -88,6 +111,8 @@ struct SceneRecord {
   SceneFiles files;
   /// Ground-truth poses, one per object, in the order of conditions.objects.
   std::vector<ObjectPose> objects;
+  /// The file the scene was made from (<Source>), when not generated from a spec.
+  std::optional<SceneSource> source;
 };
 
 /// The content of DIR/index.xml.

@@ -59,7 +59,7 @@ DatabaseIndex DatabaseWriter::index() const {
 bool DatabaseWriter::filesExist(const SceneFiles& files) const {
   for (const SceneFileField& field : sceneFileFields()) {
     const std::string& f = files.*field.member;
-    if (f.empty() && !field.required) continue;
+    if (f.empty() && fileMayBeAbsent(field, index_.camera)) continue;
     std::error_code ec;
     const fs::path p = dir_ / f;
     if (!fs::is_regular_file(p, ec) || fs::file_size(p, ec) == 0 || ec) return false;
@@ -92,7 +92,7 @@ void DatabaseWriter::addScene(SceneRecord record) {
   }
   for (const SceneFileField& field : sceneFileFields()) {
     const std::string& f = record.files.*field.member;
-    if (f.empty() && !field.required) continue;
+    if (f.empty() && fileMayBeAbsent(field, index_.camera)) continue;
     const std::string why = checkRelativePath(f);
     if (!why.empty()) {
       throw std::invalid_argument("scene " + record.id + ": file \"" + f + "\": " + why);

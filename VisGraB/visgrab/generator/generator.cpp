@@ -48,15 +48,6 @@ struct Assets {
   std::map<std::string, std::shared_ptr<const visual::VisualMesh>> tableMeshes;
 };
 
-void copyFile(const fs::path& from, const fs::path& to) {
-  std::error_code ec;
-  fs::create_directories(to.parent_path(), ec);
-  fs::copy_file(from, to, fs::copy_options::overwrite_existing, ec);
-  if (ec)
-    throw std::runtime_error("cannot copy " + from.string() + " to " + to.string() + ": " +
-                             ec.message());
-}
-
 Assets prepareAssets(const std::vector<database::SceneConditions>& scenes,
                      const GeneratorOptions& options, const AssetLayout& layout) {
   const objects::ObjectDatabaseSpec spec = objects::loadObjectSpecs(options.objectSpec);
@@ -97,18 +88,7 @@ Assets prepareAssets(const std::vector<database::SceneConditions>& scenes,
       assets.tables.emplace(texture, std::move(table));
     }
   }
-  // The hand's folder as it is (its workcell includes its collision setup and meshes).
-  std::error_code ec;
-  fs::directory_iterator it(options.handFolder, ec);
-  if (ec) {
-    throw std::runtime_error("cannot read the hand folder " + options.handFolder.string() + ": " +
-                             ec.message());
-  }
-  for (const auto& entry : it) {
-    if (entry.is_regular_file()) {
-      copyFile(entry.path(), options.out / layout.hand / entry.path().filename());
-    }
-  }
+  copyHandFolder(options.handFolder, options.out / layout.hand);
   copyFile(options.materials, options.out / layout.materials);
   return assets;
 }

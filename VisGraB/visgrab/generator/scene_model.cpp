@@ -1,6 +1,8 @@
 #include "visgrab/generator/scene_model.hpp"
 
 #include <cstdio>
+#include <stdexcept>
+#include <system_error>
 
 #include "rw/math/rpy.hpp"
 #include "visgrab/generator/placement.hpp"
@@ -67,12 +69,39 @@ std::string sceneWorkcellXml(const database::SceneConditions& scene,
     const std::string prefix = base + layout.objects + "/" + models[i]->name + "/";
     text += objects::objectFrameXml(*models[i], prefix, "WORLD", objectPoses.at(i));
   }
+  text += handMountXml(X_W_handMount, base + layout.hand + "/sdh.wc.xml");
+  return text + "</WorkCell>\n";
+}
+
+std::string handMountXml(const rw::math::Transform3D& X_W_handMount,
+                         const std::string& handWorkcell) {
   const rw::math::Vector3D rpy =
       rw::math::rotationToRpy(X_W_handMount.linear()) * (180.0 / 3.14159265358979323846);
-  text += "<Frame name=\"HandMount\" refframe=\"WORLD\">\n  <RPY>" + triple(rpy) + "</RPY><Pos>" +
-          triple(X_W_handMount.translation()) + "</Pos>\n</Frame>\n";
-  text += "<Include file=\"" + base + layout.hand + "/sdh.wc.xml\"/>\n";
-  return text + "</WorkCell>\n";
+  return "<Frame name=\"HandMount\" refframe=\"WORLD\">\n  <RPY>" + triple(rpy) + "</RPY><Pos>" +
+         triple(X_W_handMount.translation()) + "</Pos>\n</Frame>\n<Include file=\"" + handWorkcell +
+         "\"/>\n";
+}
+
+void copyFile(const std::filesystem::path& from, const std::filesystem::path& to) {
+  std::error_code ec;
+  std::filesystem::create_directories(to.parent_path(), ec);
+  std::filesystem::copy_file(from, to, std::filesystem::copy_options::overwrite_existing, ec);
+  if (ec) {
+    throw std::runtime_error("cannot copy " + from.string() + " to " + to.string() + ": " +
+                             ec.message());
+  }
+}
+
+void copyHandFolder(const std::filesystem::path& handFolder, const std::filesystem::path& to) {
+  std::error_code ec;
+  std::filesystem::directory_iterator it(handFolder, ec);
+  if (ec) {
+    throw std::runtime_error("cannot read the hand folder " + handFolder.string() + ": " +
+                             ec.message());
+  }
+  for (const auto& entry : it) {
+    if (entry.is_regular_file()) copyFile(entry.path(), to / entry.path().filename());
+  }
 }
 
 std::string sceneDynamicsXml(const database::SceneConditions& scene,

@@ -66,6 +66,19 @@ std::string sceneDynamicsXml(const database::SceneConditions& scene,
 /// GeneratorOptions::catalog. @throws std::invalid_argument as ObjectCatalog::make does.
 database::ObjectCatalog objectCatalog(const objects::ObjectDatabaseSpec& spec);
 
+/// Copies `from` to `to` (creating its folder), replacing it.
+/// @throws std::runtime_error naming both files.
+void copyFile(const std::filesystem::path& from, const std::filesystem::path& to);
+
+/// Copies the regular files of a hand's folder (its workcell includes its collision setup and
+/// meshes) into `to`. @throws std::runtime_error naming the folder or file.
+void copyHandFolder(const std::filesystem::path& handFolder, const std::filesystem::path& to);
+
+/// The text of a workcell's HandMount frame at `X_W_handMount` and the Include of the hand's
+/// workcell `handWorkcell` (a path as the scene file writes it), which hangs from it.
+std::string handMountXml(const rw::math::Transform3D& X_W_handMount,
+                         const std::string& handWorkcell);
+
 /// The relative path from folder `from` to folder `to` with '/' separators ("." if equal).
 std::string relativeFolder(const std::filesystem::path& from, const std::filesystem::path& to);
 

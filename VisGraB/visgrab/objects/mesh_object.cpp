@@ -391,6 +391,9 @@ ObjectModel generateMeshObject(const ObjectSpec& spec) {
   for (Vector3D& v : mesh.vertices) v += shift;
   Transform3D X_OF = X_file;  // file coordinates -> object frame
   X_OF.pretranslate(shift);
+  model.X_O_mesh.linear() =
+      rw::math::rpyToRotation(spec.meshShape->rpyDegrees * (std::numbers::pi / 180.0));
+  model.X_O_mesh.translation() = shift;
   model.mass.mass = mass;
   model.mass.cog = solid.centroid + shift;
   model.mass.inertia = solid.inertia * (mass / solid.volume);

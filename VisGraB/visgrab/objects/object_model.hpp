@@ -71,6 +71,9 @@ struct ObjectModel {
   rw::geometry::BodyMassProperties mass;
   /// Standing first, then the lying poses.
   std::vector<RestingPose> restingPoses;
+  /// Mesh objects: the pose of the mesh file's frame, scaled to metres, in the object frame
+  /// (a point p of the file is at X_O_mesh * (scale p)); identity for the other objects.
+  rw::math::Transform3D X_O_mesh = rw::math::Transform3D::Identity();
   /// Mesh objects: what was done to the input (holes filled, pieces replaced by their hulls,
   /// the automatic decomposition's piece count and volume), one line each.
   std::vector<std::string> notes;
