@@ -9,9 +9,9 @@
 # (OUT/<hand>), then `visgrab analyze` writes OUT/report/report.html with the hands side by side.
 #
 # Environment: VISGRAB (the binary, default build/apps/visgrab/visgrab), VISGRAB_DATABASE
-# (default database/, generated there when absent), HANDS (default "sdh pg70 robotiq2f85", and
-# robwork-robotiq when RW_COMPAT_DATA is set: folders of scenes/hands/ or paths), SCENES (a scene
-# filter, default the ten scenes below), JOBS.
+# (default database/, generated there when absent), HANDS (default "sdh pg70 robotiq2f85
+# franka", and robwork-robotiq when RW_COMPAT_DATA is set: folders of scenes/hands/ or paths),
+# SCENES (a scene filter, default the ten scenes below), JOBS.
 set -euo pipefail
 
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -20,7 +20,7 @@ visgrab=${VISGRAB:-$here/build/apps/visgrab/visgrab}
 db=${VISGRAB_DATABASE:-database}
 jobs=${JOBS:-$(nproc)}
 # RobWork's own Robotiq model joins when its files are at hand (scenes/hands/robwork-robotiq).
-default_hands="sdh pg70 robotiq2f85"
+default_hands="sdh pg70 robotiq2f85 franka"
 [[ -n "${RW_COMPAT_DATA:-}" ]] && default_hands+=" robwork-robotiq"
 hands=${HANDS:-$default_hands}
 scenes=${SCENES:-"plain/single/cocacola/01;plain/single/saltbox/01;plain/single/marmelade/03;\

@@ -50,7 +50,7 @@ void writePlan(const std::filesystem::path& file) {
 }
 
 TEST(HandCli, GraspRunsEachHandInADatabaseScene) {
-  for (const char* name : {"pg70", "robotiq2f85", "sdh"}) {
+  for (const char* name : {"franka", "pg70", "robotiq2f85", "sdh"}) {
     const RunResult r = visgrab(graspArgs(name));
     ASSERT_EQ(r.exitCode, 0) << name << "\n" << r.output;
     const bool held = r.output.find("outcome: stable") != std::string::npos ||
@@ -92,6 +92,23 @@ TEST(HandCli, GraspAndRunTakeTheSameDoor) {
   // leaves sin(pi) = 1.2e-16 in the rotation, which the lift carries into the last digits.
   EXPECT_NEAR(t.qLift, number("q_lift"), 1e-6);
   EXPECT_NEAR(t.qGws, number("q_gws"), 1e-6);
+}
+
+// `run --hand franka`: the Franka Hand by name (the data folder's hands/franka), the plan's
+// pre-shape "wide" (fully open, 80 mm) from above holds the can.
+TEST(HandCli, RunTakesTheFrankaByName) {
+  visgrab::test::TempDir dir;
+  writePlan(dir.path() / "plan.csv");
+  const RunResult run = visgrab("run --db " + shellQuoted(visgrab::test::testDatabasePath()) +
+                                " --grasps " + shellQuoted(dir.path() / "plan.csv") + " --out " +
+                                shellQuoted(dir.path() / "out") + " --hand franka --quiet");
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  const auto results = visgrab::results::readResults(dir.path() / "out");
+  ASSERT_EQ(results.trials.size(), 1u);
+  const auto outcome = results.trials.front().outcome;
+  EXPECT_TRUE(outcome == rwsim::trial::GraspOutcome::kStable ||
+              outcome == rwsim::trial::GraspOutcome::kSlipped)
+      << rwsim::trial::outcomeName(outcome);
 }
 
 TEST(HandCli, RenderDrawsTheGivenHand) {
@@ -163,7 +180,8 @@ TEST(HandCli, RunTakesAHandByName) {
   r = visgrab(common + shellQuoted(tmp.path() / "b") + " --hand pg7");
   EXPECT_EQ(r.exitCode, 1) << r.output;
   EXPECT_NE(r.output.find("unknown hand \"pg7\""), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("(known: pg70, robotiq2f85, robwork-robotiq, sdh)"), std::string::npos)
+  EXPECT_NE(r.output.find("(known: franka, pg70, robotiq2f85, robwork-robotiq, sdh)"),
+            std::string::npos)
       << r.output;
   EXPECT_FALSE(std::filesystem::exists(tmp.path() / "b"));
 }

@@ -23,7 +23,7 @@ using rw::common::AttributeRule;
 using rw::common::ValueKind;
 
 // Typed attributes, for a precise message on a schema datatype error.
-constexpr std::array<AttributeRule, 19> kValueRules{{
+constexpr std::array<AttributeRule, 24> kValueRules{{
     {"value"},
     {"atLeast"},
     {"below"},
@@ -43,6 +43,11 @@ constexpr std::array<AttributeRule, 19> kValueRules{{
     {"approachAxis", ValueKind::kNumbers, 3, "x y z"},
     {"point", ValueKind::kNumbers, 3, "x y z"},
     {"normal", ValueKind::kNumbers, 3, "x y z"},
+    {"position", ValueKind::kNumbers, 3, "x y z"},
+    {"approach", ValueKind::kNumbers, 3, "x y z"},
+    {"closing", ValueKind::kNumbers, 3, "x y z"},
+    {"stroke"},
+    {"tipDepth"},
 }};
 
 std::string explainValueError(const XmlElement& element) {
@@ -146,6 +151,19 @@ class DescriptionReader {
     return ik;
   }
 
+  JawFrameSpec readJawFrame(const XmlElement& e) const {
+    JawFrameSpec jaw;
+    jaw.preshape = e.attributeOr("preshape", "");
+    jaw.frame = e.attributeOr("frame", "");
+    jaw.position = vector3(e, "position");
+    if (e.has("approach")) jaw.approach = vector3(e, "approach");
+    if (e.has("closing")) jaw.closing = vector3(e, "closing");
+    jaw.stroke = number(e, "stroke");
+    jaw.tipDepth = number(e, "tipDepth");
+    jaw.where = e.location;
+    return jaw;
+  }
+
   rw::common::XmlValueReader read_;
 };
 
@@ -176,6 +194,8 @@ GraspDescription DescriptionReader::readRoot(const XmlElement& root,
       d.tauRule = readTauRule(c);
     } else if (c.name == "ContactIK") {
       d.contactIk = readContactIk(c);
+    } else if (c.name == "JawFrame") {
+      d.jawFrame = readJawFrame(c);
     }
   }
   return d;

@@ -135,6 +135,27 @@ struct ContactIkSpec {
   SourceLocation where;
 };
 
+/// A parallel-jaw frame as written (<JawFrame>): where a hand's pads are, so that a
+/// hand-independent jaw grasp can place it (docs/grasp-format.md, "Parallel-jaw grasps").
+struct JawFrameSpec {
+  /// Name or alias of the pre-shape that opens the jaws.
+  std::string preshape;
+  /// Frame that position and the axes are written in; empty: the description's tcp.
+  std::string frame;
+  /// The centre between the pads with the jaws open at the pre-shape, m, in `frame`.
+  rw::math::Vector3D position = rw::math::Vector3D::Zero();
+  /// Direction of travel towards the object (the jaw frame's z), in `frame`; need not be unit.
+  rw::math::Vector3D approach = rw::math::Vector3D::UnitZ();
+  /// The axis the pads close along (the jaw frame's x), in `frame`; need not be unit.
+  rw::math::Vector3D closing = rw::math::Vector3D::UnitX();
+  /// Opening between the pads at the pre-shape, m.
+  double stroke = 0.0;
+  /// Distance from the pad centre along the approach to the fingertips' front, m.
+  double tipDepth = 0.0;
+  /// Where it was written.
+  SourceLocation where;
+};
+
 /// A hand's grasp description file (`<hand>.grasp.xml`) as written: the first pass of the
 /// loader, names not yet checked against the hand's model.
 struct GraspDescription {
@@ -161,6 +182,8 @@ struct GraspDescription {
   TauRuleSpec tauRule;
   /// Contact IK settings (nullopt: the hand cannot solve contact grasps).
   std::optional<ContactIkSpec> contactIk;
+  /// The parallel-jaw frame (nullopt: the hand runs no jaw grasps).
+  std::optional<JawFrameSpec> jawFrame;
   /// Where the root element was written.
   SourceLocation where;
 };

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <exception>
 #include <map>
 #include <utility>
 
@@ -19,6 +21,13 @@ using rw::kinematics::FrameId;
 using rw::math::Q;
 
 std::string inQuotes(std::string_view s) { return "\"" + std::string(s) + "\""; }
+
+// A number as a message shows it ("0.08", "-0.01", "1e-07").
+std::string shortNumber(double value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof(buffer), "%.6g", value);
+  return buffer;
+}
 
 Q toQ(const std::vector<double>& v) {
   return Eigen::Map<const Q>(v.data(), static_cast<Eigen::Index>(v.size()));
@@ -73,6 +82,7 @@ class SetupBuilder {
     s_.closeOffset_ = closing(d.closing.value_or(std::vector<CloseOffsetSpec>{}));
     for (const PreShapeSpec& p : d.preshapes) buildPreshape(p);
     if (d.contactIk) buildContactIk(*d.contactIk);
+    if (d.jawFrame) buildJawFrame(*d.jawFrame);
     return !sink_.hasErrors();
   }
 
@@ -306,6 +316,109 @@ class SetupBuilder {
     }
     for (const IkGraspSpec& g : spec.grasps) buildIkGrasp(g, ik);
     s_.contactIk_ = std::move(ik);
+  }
+
+  // The jaw frame's rotation in the frame it is written in: x = closing, z = approach, y = z x x.
+  // Both axes are normalised first; they must be at right angles within kJawAxisTolerance (the
+  // cosine of the angle between them): axes written to six digits pass, a wrong axis does not.
+  bool jawRotation(const JawFrameSpec& spec, rw::math::Rotation3D& out) {
+    constexpr double kJawAxisTolerance = 1e-6;
+    bool ok = true;
+    if (!(spec.approach.norm() > 1e-9)) {
+      error(spec.where, "<JawFrame> approach must not be zero");
+      ok = false;
+    }
+    if (!(spec.closing.norm() > 1e-9)) {
+      error(spec.where, "<JawFrame> closing must not be zero");
+      ok = false;
+    }
+    if (!ok) return false;
+    const rw::math::Vector3D z = spec.approach.normalized();
+    const rw::math::Vector3D x = spec.closing.normalized();
+    const double cosine = x.dot(z);
+    if (std::abs(cosine) > kJawAxisTolerance) {
+      error(spec.where,
+            "<JawFrame> approach and closing must be at right angles, but they are " +
+                shortNumber(std::acos(std::clamp(cosine, -1.0, 1.0)) * rw::math::kRad2Deg) +
+                " deg apart (the cosine of the angle is " + shortNumber(cosine) +
+                "; at most 1e-06 is accepted)");
+      return false;
+    }
+    out.col(0) = x;
+    out.col(1) = z.cross(x);
+    out.col(2) = z;
+    return true;
+  }
+
+  void buildJawFrame(const JawFrameSpec& spec) {
+    bool ok = true;
+    if (!(spec.stroke > 0.0)) {
+      error(spec.where,
+            "<JawFrame> stroke must be greater than 0 (the opening between the pads "
+            "at the pre-shape, m), not " +
+                shortNumber(spec.stroke));
+      ok = false;
+    }
+    if (!(spec.tipDepth >= 0.0)) {
+      error(spec.where,
+            "<JawFrame> tipDepth must be at least 0 (the fingertips' front lies beyond the pad "
+            "centre along the approach), not " +
+                shortNumber(spec.tipDepth));
+      ok = false;
+    }
+    rw::math::Rotation3D R = rw::math::Rotation3D::Identity();
+    ok = jawRotation(spec, R) && ok;
+    std::size_t index = s_.preshapes_.size();
+    for (std::size_t i = 0; i < s_.preshapes_.size(); ++i) {
+      const PreShape& p = s_.preshapes_[i];
+      if (p.name == spec.preshape ||
+          std::find(p.aliases.begin(), p.aliases.end(), spec.preshape) != p.aliases.end()) {
+        index = i;
+        break;
+      }
+    }
+    if (index == s_.preshapes_.size()) {
+      std::string known;
+      for (const PreShape& p : s_.preshapes_) known += (known.empty() ? "" : ", ") + p.name;
+      error(spec.where, "<JawFrame> names unknown pre-shape " + inQuotes(spec.preshape) +
+                            " (the description's pre-shapes: " + (known.empty() ? "none" : known) +
+                            ")");
+      ok = false;
+    }
+    const FrameId frame = spec.frame.empty() ? s_.tcp_ : findFrame(spec.frame);
+    if (!frame.valid() || (!s_.device_->contains(frame) && !rigidOnPlacement(frame))) {
+      error(spec.where, "<JawFrame> names unknown frame " + inQuotes(spec.frame) +
+                            " (no such frame in device " + inQuotes(s_.device_->name()) +
+                            " or rigidly attached to it)");
+      ok = false;
+    }
+    if (!ok) return;
+    rw::kinematics::State state = s_.defaultState_;
+    try {
+      s_.device_->setQ(s_.preshapes_[index].qOpen, state);
+    } catch (const std::exception& e) {
+      error(spec.where, "<JawFrame>: the pre-shape " + inQuotes(spec.preshape) +
+                            "'s qOpen cannot be set: " + e.what());
+      return;
+    }
+    const rw::math::Transform3D X_tcp_frame =
+        rw::kinematics::relativeTransform(s_.workcell_->frames(), state, s_.tcp_, frame);
+    JawFrame jaw;
+    jaw.X_tcp_jaw = X_tcp_frame * rw::math::makeTransform(R, spec.position);
+    jaw.stroke = spec.stroke;
+    jaw.tipDepth = spec.tipDepth;
+    jaw.preshape = index;
+    s_.jawFrame_ = jaw;
+  }
+
+  // True if `frame` is held by the placement frame through fixed frames only.
+  bool rigidOnPlacement(FrameId frame) const {
+    const auto& tree = s_.workcell_->frames();
+    while (frame.valid() && frame != s_.placement_ &&
+           tree.frame(frame).type() == rw::kinematics::FrameType::kFixed) {
+      frame = tree.frame(frame).parent();
+    }
+    return frame == s_.placement_;
   }
 
   HandGraspSetup& s_;
