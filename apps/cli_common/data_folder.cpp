@@ -50,4 +50,23 @@ std::filesystem::path handPath(const std::string& text, const std::filesystem::p
                               " has no hand of that name (known: " + list + ")");
 }
 
+std::filesystem::path protocolPath(const std::string& text, const std::filesystem::path& data) {
+  std::error_code error;
+  const bool looksLikePath = text.find('/') != std::string::npos || text.ends_with(".xml");
+  if (text.empty() || looksLikePath || std::filesystem::is_regular_file(text, error)) return text;
+  const std::filesystem::path folder = data / "protocols";
+  const std::filesystem::path file = folder / (text + ".xml");
+  if (std::filesystem::is_regular_file(file, error)) return file;
+  std::vector<std::string> known;
+  for (const auto& entry : std::filesystem::directory_iterator(folder, error)) {
+    if (entry.path().extension() == ".xml") known.push_back(entry.path().stem().string());
+  }
+  std::sort(known.begin(), known.end());
+  std::string list;
+  for (const auto& p : known) list += (list.empty() ? "" : ", ") + p;
+  throw std::invalid_argument("unknown protocol \"" + text + "\": not a file, and " +
+                              folder.string() + " has no protocol of that name (known: " + list +
+                              ")");
+}
+
 }  // namespace visgrab::cli

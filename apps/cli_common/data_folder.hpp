@@ -26,4 +26,10 @@ std::vector<std::string> knownHands(const std::filesystem::path& data);
 /// @throws std::invalid_argument for an unknown name, listing the known ones.
 std::filesystem::path handPath(const std::string& text, const std::filesystem::path& data);
 
+/// The trial protocol `text` names (`--protocol`, Python's run(protocol=)): an existing file, or
+/// text that looks like a path (holds '/' or ends in ".xml"), as it is; otherwise a protocol's
+/// name, `data`/protocols/`text`.xml ("lift", "shake").
+/// @throws std::invalid_argument for an unknown name, listing the known ones.
+std::filesystem::path protocolPath(const std::string& text, const std::filesystem::path& data);
+
 }  // namespace visgrab::cli

@@ -14,6 +14,7 @@
 #include "baseline_commands.hpp"
 #include "cli_common/data_folder.hpp"
 #include "progress_reporter.hpp"
+#include "protocol_option.hpp"
 #include "repeat_options.hpp"
 #include "rw/common/diagnostic.hpp"
 #include "rw/common/stop_signals.hpp"
@@ -30,6 +31,15 @@
 namespace visgrab::app {
 
 namespace {
+
+// True (with a message) when the run rejected every grasp it read and ran none: a script must
+// notice (exit 1). Some rejected grasps beside trials keep exit 0.
+bool everyGraspRejected(const runner::RunSummary& summary, const char* command) {
+  if (summary.rejected.empty() || summary.trials > 0 || summary.resumed > 0) return false;
+  std::cerr << "visgrab " << command << ": every grasp (" << summary.rejected.size()
+            << ") was rejected; no trial ran\n";
+  return true;
+}
 
 namespace fs = std::filesystem;
 
@@ -83,6 +93,7 @@ int runRun(const Arguments& a) {
   options.scenes = scenesFilter(a);
   options.threads = threadsOption(a);
   options.resume = a.flag("resume");
+  options.protocol = protocolOption(a).value_or(fs::path());
   readRepeatOptions(a, options);
   if (const auto dt = a.option("dt")) {
     options.timeStep = parseNumber("dt", *dt);
@@ -122,7 +133,7 @@ int runRun(const Arguments& a) {
   std::cout << "results in " << options.out.string();
   if (options.shard) std::cout << " (" << runner::describe(*options.shard) << ")";
   std::cout << "\n";
-  return 0;
+  return everyGraspRejected(summary, "run") ? 1 : 0;
 }
 
 // The report's pictures (a few trials per method and condition, simulated again and drawn),
@@ -221,6 +232,7 @@ int runBenchmarkCommand(const Arguments& a) {
   const int threads = threadsOption(a);
   const bool quiet = a.flag("quiet");
   const std::string scenes = scenesFilter(a);
+  const std::optional<fs::path> protocol = protocolOption(a);  // a bad file fails before any work
   StageTimes times;
   times.start("database");
   try {
@@ -256,6 +268,7 @@ int runBenchmarkCommand(const Arguments& a) {
   options.scenes = scenes;
   options.threads = threads;
   options.resume = a.flag("resume");
+  options.protocol = protocol.value_or(fs::path());
   times.start("trials");
   const auto done = runStoppable(options, quiet, "benchmark");
   if (!done) return rw::common::stopExitCode(rw::common::stopSignal());
@@ -265,6 +278,7 @@ int runBenchmarkCommand(const Arguments& a) {
   for (const auto& d : summary.rejected) std::cerr << d.format() << "\n";
   std::cout << summary.trials << " trials run, " << summary.resumed << " resumed, "
             << summary.rejected.size() << " grasps rejected\n";
+  if (everyGraspRejected(summary, "benchmark")) return 1;
   const fs::path reportDir = fs::path(*out) / "report";
   times.start("report");
   analysis::AnalysisOptions reportOptions;  // intervals with the default 2,000 resamples
@@ -316,6 +330,7 @@ void addRunCommands(CommandLine& cli) {
       ->type_name("N")
       ->check(integerAtLeast(1));
   addRepeatOptions(run);
+  addProtocolOption(run);
   run.add_option("--dt",
                  "ODE's time step in s for every scene instead of the scene's own (default: the "
                  "scenes' engine properties, 0.005); recorded in run.csv's engine settings")
@@ -345,6 +360,7 @@ void addRunCommands(CommandLine& cli) {
   addFlag(benchmark, "--resume", kResumeHelp);
   benchmark.add_option("--hand", kHandHelp)->type_name("NAME|DIR|GRASP.xml");
   addEngineOption(benchmark);
+  addProtocolOption(benchmark);
   addScenesOption(benchmark);
   addDataOption(benchmark);
   addFlag(benchmark, "--no-pictures", "Leave the report's pictures out");

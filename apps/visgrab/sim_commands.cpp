@@ -14,6 +14,7 @@
 #include <string>
 
 #include "json_writer.hpp"
+#include "protocol_option.hpp"
 #include "rw/common/diagnostic.hpp"
 #include "rw/math/rpy.hpp"
 #include "rwsim/engines/engine_registry.hpp"
@@ -443,7 +444,10 @@ int runGrasp(const Arguments& a) {
   if (command.preshape && !scene.description) {
     throw UsageError("--preshape needs --hand DIR|GRASP.xml (a hand description with pre-shapes)");
   }
-  const rwsim::simulator::GraspTrialSetup setup = graspTrialSetup(command, scene);
+  rwsim::simulator::GraspTrialSetup setup = graspTrialSetup(command, scene);
+  if (const auto protocol = protocolOption(a)) {
+    setup.protocol = rwsim::trial::loadTrialProtocol(*protocol);
+  }
   const std::string engineName = engineOption(a);
   std::unique_ptr<rwsim::simulator::GraspTrial> trial;
   try {
@@ -534,6 +538,7 @@ void addSimulationCommands(CommandLine& cli) {
       ->type_name("SECONDS")
       ->check(positiveNumber());
   addEngineOption(grasp);
+  addProtocolOption(grasp);
   addDataOption(grasp);
   addFlag(grasp, "--json", "Print JSON instead (docs/schemas/grasp.schema.json; SI units)");
 }

@@ -13,6 +13,7 @@
 #include <string>
 
 #include "cli_common/data_folder.hpp"
+#include "protocol_option.hpp"
 #include "repeat_options.hpp"
 #include "visgrab/database/atomic_file.hpp"
 
@@ -251,6 +252,10 @@ int runSlurm(const Arguments& a) {
     plan.hands.push_back(abs((dataFolder(a) / "hands/sdh/sdh.grasp.xml").string()));
   plan.scenes = scenesFilter(a);
   plan.runArguments = repeatArguments(a);
+  if (const auto protocol = protocolOption(a)) {
+    plan.runArguments.insert(plan.runArguments.end(),
+                             {"--protocol", abs(protocol->string()).string()});
+  }
   plan.shards = integerOption(a, "shards", 1, 1);
   plan.cpusPerTask = integerOption(a, "cpus-per-task", 1, 1);
   plan.out = abs(a.option("out").value());
@@ -386,6 +391,7 @@ void addSlurmCommands(CommandLine& cli) {
       ->default_str("sbatch");
   addScenesOption(slurm);
   addRepeatOptions(slurm);
+  addProtocolOption(slurm);
   addDataOption(slurm);
 }
 

@@ -74,7 +74,8 @@ py::dict summaryDict(const runner::RunSummary& s) {
 py::dict runBenchmark(const fs::path& database, const fs::path& grasps, const fs::path& out,
                       const fs::path& hand, const std::string& scenes, int threads, bool resume,
                       const std::string& engine, const py::object& progress, int repeats,
-                      const fs::path& noise, long long seed, bool adaptive) {
+                      const fs::path& noise, long long seed, bool adaptive,
+                      const fs::path& protocol) {
   if (threads < 1) throw py::value_error("threads must be >= 1, got " + std::to_string(threads));
   if (repeats < 1) throw py::value_error("repeats must be >= 1, got " + std::to_string(repeats));
   if (seed < 0) throw py::value_error("seed must be >= 0, got " + std::to_string(seed));
@@ -100,6 +101,7 @@ py::dict runBenchmark(const fs::path& database, const fs::path& grasps, const fs
   options.noise = noise;
   options.noiseSeed = static_cast<std::uint64_t>(seed);
   options.adaptive = adaptive;
+  options.protocol = protocol;
   std::mutex mutex;
   runner::RunProgress latest;
   bool fresh = false;
@@ -217,11 +219,14 @@ input files. Iterating or indexing goes over the trials.
             d["hand"] = r.sources.hand.string();
             d["engine"] = r.sources.engine.empty() ? std::string("ode") : r.sources.engine;
             d["engine_settings"] = r.sources.engineSettings;
+            d["protocol"] = r.sources.protocol.empty() ? std::string("lift") : r.sources.protocol;
+            d["protocol_hash"] = r.sources.protocolHash;
             return d;
           },
           "The run's inputs (run.csv): database, database_hash (its index's hash; empty for "
           "runs older than the record), grasps, hand, engine (\"ode\" for runs older than the "
-          "record) and engine_settings.")
+          "record) and engine_settings, protocol (\"lift\" when run.csv has no protocol record) "
+          "and protocol_hash (empty for the lift).")
       .def_readonly("label", &results::RunResults::label, "The folder's name.")
       .def("__len__", [](const results::RunResults& r) { return r.trials.size(); })
       .def(
@@ -258,7 +263,7 @@ input files. Iterating or indexing goes over the trials.
   m.def("_run", &runBenchmark, py::arg("database"), py::arg("grasps"), py::arg("out"),
         py::arg("hand"), py::arg("scenes"), py::arg("threads"), py::arg("resume"),
         py::arg("engine"), py::arg("progress"), py::arg("repeats"), py::arg("noise"),
-        py::arg("seed"), py::arg("adaptive"),
+        py::arg("seed"), py::arg("adaptive"), py::arg("protocol"),
         "run's C++ side: runner::runBenchmark; returns its summary.");
   m.def("engines", &rwsim::engines::availableEngines,
         "The physics engines this build has: [\"ode\"], and \"mujoco\" when it was built with "

@@ -321,6 +321,10 @@ std::string formatRunFile(const RunResults& run) {
   if (!run.sources.engineSettings.empty()) {
     text += "engine_settings," + csvField(run.sources.engineSettings) + ",,,,,,\n";
   }
+  if (!run.sources.protocol.empty()) {
+    text += "protocol," + csvField(run.sources.protocol) + ",,,,,,\n";
+    text += "protocol_hash," + csvField(run.sources.protocolHash) + ",,,,,,\n";
+  }
   if (run.repeats.repeated()) {
     text += "repeats," + std::to_string(run.repeats.count) + ",,,,,,\n";
     text += "noise," + csvField(run.repeats.noise) + ",,,,,,\n";
@@ -456,6 +460,10 @@ RunResults parseRunFile(std::string_view text, const std::string& file) {
       run.sources.engine = f[1];
     } else if (f[0] == "engine_settings") {
       run.sources.engineSettings = f[1];
+    } else if (f[0] == "protocol") {
+      run.sources.protocol = f[1];
+    } else if (f[0] == "protocol_hash") {
+      run.sources.protocolHash = f[1];
     } else if (f[0] == "repeats") {
       try {
         run.repeats.count = parseInt(f[1]);
@@ -475,7 +483,7 @@ RunResults parseRunFile(std::string_view text, const std::string& file) {
       fail(file, lineNo,
            "unknown record '" + f[0] +
                "' (expected scene, method, rejected, database, database_hash, grasps, hand, "
-               "engine, engine_settings, repeats, noise or adaptive)");
+               "engine, engine_settings, protocol, protocol_hash, repeats, noise or adaptive)");
     }
   }
   if (!run.repeats.repeated() && (!run.repeats.noise.empty() || !run.repeats.adaptive.empty())) {

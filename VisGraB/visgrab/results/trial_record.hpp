@@ -84,6 +84,11 @@ struct RunSources {
   std::string engine;
   /// The engine's version and settings (EngineFactory::settings()); empty if unknown.
   std::string engineSettings;
+  /// The trial protocol's name (`visgrab run --protocol`); empty for the paper's lift (the
+  /// default: run.csv then has no protocol records).
+  std::string protocol;
+  /// rwsim::trial::protocolHash of the protocol (16 hex digits); empty for the lift.
+  std::string protocolHash;
 };
 
 /// How a run repeated its grasps (`visgrab run --repeats N`; run.csv's repeats, noise and

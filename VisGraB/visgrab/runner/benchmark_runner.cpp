@@ -418,6 +418,41 @@ void checkSameEngine(const RunOptions& options, const std::optional<results::Run
   }
 }
 
+/// The run's protocol (RunOptions::protocol loaded; the lift without one), and its run.csv record
+/// in `sources` (none for the lift).
+rwsim::trial::TrialProtocol loadProtocol(const RunOptions& options, results::RunSources& sources) {
+  if (options.protocol.empty()) return rwsim::trial::TrialProtocol::lift();
+  rwsim::trial::TrialProtocol protocol = rwsim::trial::loadTrialProtocol(options.protocol);
+  try {
+    rwsim::trial::checkProtocol(protocol);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(options.protocol.string() + ": " + e.what());
+  }
+  if (!protocol.isLift()) {
+    sources.protocol = protocol.name;
+    sources.protocolHash = rwsim::trial::protocolHash(protocol);
+  }
+  return protocol;
+}
+
+/// A resumed folder's trials must come from the same protocol (run.csv's protocol records; none:
+/// the lift).
+void checkSameProtocol(const RunOptions& options,
+                       const std::optional<results::RunSources>& previous,
+                       const results::RunSources& current) {
+  if (!previous ||
+      (previous->protocol == current.protocol && previous->protocolHash == current.protocolHash)) {
+    return;
+  }
+  const auto what = [](const results::RunSources& s) {
+    return s.protocol.empty() ? std::string("the lift protocol (the default)")
+                              : "protocol '" + s.protocol + "' (hash " + s.protocolHash + ")";
+  };
+  throw std::runtime_error(options.out.string() + " holds trials of " + what(*previous) +
+                           "; this run has " + what(current) +
+                           ": resume it with the same --protocol or choose another folder");
+}
+
 /// Writes run.csv with the plan's scenes, methods and rejected counts so far.
 void writeRunFile(RunPlan& plan, results::ResultsWriter& writer) {
   plan.run.rejected.clear();
@@ -612,12 +647,16 @@ RunSummary runBenchmark(const RunOptions& options,
   // After openInputs: the loader keeps the address of in.db.
   session::SceneLoader loader(in.db, *in.hand, options.engine);
   loader.setTimeStep(options.timeStep);
+  results::RunSources protocolRecord;
+  loader.setProtocol(loadProtocol(options, protocolRecord));
   const std::optional<results::RunResults> previousRecord = previousRun(options);
   checkSameRepeats(options, previousRecord, repeats.record);
   const std::optional<results::RunSources> previous =
       previousRecord ? std::optional(previousRecord->sources) : std::nullopt;
   RunPlan plan = planRun(options, in);
   plan.run.repeats = repeats.record;
+  plan.run.sources.protocol = protocolRecord.protocol;
+  plan.run.sources.protocolHash = protocolRecord.protocolHash;
   std::optional<ShardRecord> shard;
   if (options.shard) {
     restrictToShard(plan, *options.shard);
@@ -630,6 +669,7 @@ RunSummary runBenchmark(const RunOptions& options,
   plan.run.sources.engineSettings = checkHandFits(pending, plan, loader, options.hand);
   checkSameDatabase(options, previous, plan.run.sources);
   checkSameEngine(options, previous, plan.run.sources);
+  checkSameProtocol(options, previous, plan.run.sources);
   writeRunFile(plan, writer);
   runScenes(options, loader, repeats, pending, plan, writer, [&] {
     pending.progress.elapsed =

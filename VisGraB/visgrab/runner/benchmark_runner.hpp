@@ -37,6 +37,10 @@ struct RunOptions {
   /// ODE's integration step instead of each scene's own (`--dt`; session::SceneLoader::
   /// setTimeStep), for the time-step study; recorded in run.csv's engine settings.
   std::optional<double> timeStep;
+  /// The trial protocol's XML file (`--protocol`; rwsim::trial::loadTrialProtocol); empty: the
+  /// paper's lift. A protocol other than the lift is recorded in run.csv (its name and hash);
+  /// resuming a folder of another protocol is an error.
+  std::filesystem::path protocol;
   /// Only the scenes this filter selects (docs/database-format.md); empty: all.
   std::string scenes;
   /// Worker threads (each runs whole scenes; the results do not depend on the count).

@@ -151,6 +151,12 @@ MergeSummary mergeShards(const std::vector<fs::path>& shardDirs, const fs::path&
           "shard folders " + shards.front().dir.string() + " and " + s.dir.string() +
           " ran on different engines: " + engineOf(merged.sources) + " and " +
           engineOf(part.sources) + "; a run's shards must all run on one engine with one setting");
+    } else if (part.sources.protocol != merged.sources.protocol ||
+               part.sources.protocolHash != merged.sources.protocolHash) {
+      throw std::runtime_error("shard folders " + shards.front().dir.string() + " and " +
+                               s.dir.string() +
+                               " ran other trial protocols (run.csv's protocol records differ); "
+                               "run every shard with the same --protocol");
     } else if (part.sources.database != merged.sources.database ||
                part.sources.databaseHash != merged.sources.databaseHash ||
                part.sources.grasps != merged.sources.grasps ||

@@ -61,6 +61,10 @@ class SceneLoader {
   void setTimeStep(std::optional<double> dt);
   /// See setTimeStep.
   std::optional<double> timeStep() const { return timeStep_; }
+  /// The trial protocol of every scene's trials (`--protocol`; default: the paper's lift).
+  void setProtocol(rwsim::trial::TrialProtocol protocol) { protocol_ = std::move(protocol); }
+  /// See setProtocol.
+  const rwsim::trial::TrialProtocol& protocol() const { return protocol_; }
 
   /// The scene's dynamic workcell with the hand in it, hanging from the scene's HandMount frame
   /// as the generated one. A scene that does not include the database's hand (an original or
@@ -76,6 +80,7 @@ class SceneLoader {
   std::string engine_;
   rw::loaders::IncludeRedirects redirects_;
   std::optional<double> timeStep_;
+  rwsim::trial::TrialProtocol protocol_;
 };
 
 }  // namespace visgrab::session

@@ -9,6 +9,7 @@ SceneSession::SceneSession(const SceneLoader& loader, const database::SceneEntry
   dwc_ = loader.load(entry);
   rwsim::simulator::GraspTrialSetup setup = trialSetup(*hand_, *dwc_);
   if (loader.timeStep()) setup.simulator.timeStep = *loader.timeStep();
+  setup.protocol = loader.protocol();
   auto engine = rwsim::engines::engineFactory(loader.engine(), *dwc_, setup);
   trial_ =
       std::make_unique<rwsim::simulator::GraspTrial>(*dwc_, std::move(setup), std::move(engine));

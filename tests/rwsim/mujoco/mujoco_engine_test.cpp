@@ -485,4 +485,23 @@ TEST(MujocoEngine, TheSdhTrialHoldsTheBoxWithTheHandTurned) {
       << rwsim::simulator::outcomeName(result.outcome) << ", " << result.detail;
 }
 
+TEST(MujocoEngine, WithoutGravityAFloatingBoxStaysPutAndWithItFalls) {
+  // A 0.1 m box floating at z = 1, nothing else: without gravity (a trial protocol's choice,
+  // PhysicsVariation::gravity) it stays where it is; with it, it falls g t^2 / 2 in 1 s.
+  SceneBuilder scene("float");
+  scene.addBox("Box", rw::math::makeTranslation(Vector3D(0, 0, 1)), Vector3D(0.1, 0.1, 0.1), 0.5);
+  const auto dwc = scene.build();
+  const BodyId box = dwc->findBody("Box");
+  const auto factory = rwsim::mujoco::mujocoEngineFactory(*dwc);
+  rwsim::trial::PhysicsVariation off;
+  off.gravity = false;
+  const auto still = factory->create(off);
+  runUntil(*still, 1.0);
+  EXPECT_NEAR(still->bodyPose(box).translation().z(), 1.0, 1e-9);
+  const auto falling = factory->create();
+  runUntil(*falling, 1.0);
+  // Semi-implicit Euler: g dt^2 n (n + 1) / 2 after n steps, within 1 % of g / 2 at dt 5 ms.
+  EXPECT_NEAR(1.0 - falling->bodyPose(box).translation().z(), kG / 2, 0.03);
+}
+
 }  // namespace

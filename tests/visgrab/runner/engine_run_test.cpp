@@ -291,4 +291,49 @@ TEST(EngineRunMujoco, EveryTestDatabaseSceneRunsToAnOutcome) {
   std::printf("%d of %d simulated trials held, %d closings capped\n", held, simulated, capped);
 }
 
+// --- The trial protocol's record --------------------------------------------------------------
+
+TEST_F(EngineRun, TheLiftLeavesNoProtocolRecordAndAnotherProtocolIsRecordedAndChecked) {
+  // The default and --protocol lift: no record (run.csv as before protocols existed).
+  visgrab::runner::runBenchmark(options_);
+  const std::string plain = readFile(options_.out / "run.csv");
+  EXPECT_EQ(plain.find("protocol"), std::string::npos) << plain;
+  const std::string plainTrials = readFile(options_.out / "trials.csv");
+  auto lift = options_;
+  lift.out = tmp_.path() / "lift";
+  lift.protocol = visgrab::test::sourceDir() / "scenes/protocols/lift.xml";
+  visgrab::runner::runBenchmark(lift);
+  EXPECT_EQ(readFile(lift.out / "run.csv"), plain);
+  EXPECT_EQ(readFile(lift.out / "trials.csv"), plainTrials);
+
+  // The shake: its name and hash (16 hex digits) in run.csv.
+  auto shake = options_;
+  shake.out = tmp_.path() / "shake";
+  shake.protocol = visgrab::test::sourceDir() / "scenes/protocols/shake.xml";
+  visgrab::runner::runBenchmark(shake);
+  const auto run = visgrab::results::readResults(shake.out);
+  EXPECT_EQ(run.sources.protocol, "shake");
+  EXPECT_EQ(run.sources.protocolHash.size(), 16u);
+  const std::string text = readFile(shake.out / "run.csv");
+  EXPECT_NE(text.find("\nprotocol,shake,,,,,,\n"), std::string::npos) << text;
+
+  // Resuming the shake's folder with the lift (or the lift's with the shake) is refused.
+  for (auto [dir, protocol] :
+       {std::pair{shake.out, fs::path()}, std::pair{lift.out, shake.protocol}}) {
+    auto resume = options_;
+    resume.out = dir;
+    resume.protocol = protocol;
+    resume.resume = true;
+    try {
+      visgrab::runner::runBenchmark(resume);
+      ADD_FAILURE() << dir << " was resumed with another protocol";
+    } catch (const std::runtime_error& e) {
+      const std::string m = e.what();
+      EXPECT_NE(m.find(dir.string()), std::string::npos) << m;
+      EXPECT_NE(m.find("protocol 'shake'"), std::string::npos) << m;
+      EXPECT_NE(m.find("the lift protocol"), std::string::npos) << m;
+    }
+  }
+}
+
 }  // namespace
