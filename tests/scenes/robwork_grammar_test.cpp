@@ -225,7 +225,8 @@ TEST(RobWorkGrammar, TheCheckerSeesABodyElementAfterAJunction) {
 TEST(RobWorkGrammar, ProjectHandsFollowRobWorksGrammar) {
   for (const fs::path& file :
        {visgrab::test::scenes::projectSdhFile(), visgrab::test::scenes::projectPg70File(),
-        visgrab::test::sourceDir() / "scenes/hands/robotiq2f85/robotiq2f85.wc.xml"}) {
+        visgrab::test::sourceDir() / "scenes/hands/robotiq2f85/robotiq2f85.wc.xml",
+        visgrab::test::sourceDir() / "scenes/hands/franka/franka.wc.xml"}) {
     EXPECT_EQ(joined(grammarProblems(readText(file))), "") << file;
   }
 }
