@@ -2,6 +2,7 @@
 #include "baseline_commands.hpp"
 #include "command_line.hpp"
 #include "db_commands.hpp"
+#include "import_commands.hpp"
 #include "merge_commands.hpp"
 #include "render_commands.hpp"
 #include "run_commands.hpp"
@@ -22,6 +23,7 @@ std::unique_ptr<CommandLine> makeCommandLine() {
   addBaselineCommands(*cli);
   addRenderCommands(*cli);
   addAgreementCommands(*cli);
+  addImportCommands(*cli);
   return cli;
 }
 

@@ -1,6 +1,7 @@
 #include "visgrab/importers/grasp_import.hpp"
 
 #include <array>
+#include <vector>
 
 namespace visgrab::importers {
 
@@ -46,13 +47,12 @@ ImportTarget importTarget(ImportFormat format, const database::Database& db,
   target.context.jaw = *jaw;
   target.context.hand = hand.deviceName();
   if (format == ImportFormat::kAcronym) {
-    const auto& objects = db.groundTruth(entry.id);
-    if (objects.size() != 1) {
-      throw ImportError("scene " + entry.id + " has " + std::to_string(objects.size()) +
-                        " objects; acronym grasps are placed through the pose of a scene's one "
-                        "object (a scene made by visgrab db from-acronym)");
+    if (!entry.source) {
+      throw ImportError("scene " + entry.id +
+                        " records no source file, so no mesh frame for acronym grasps (a scene "
+                        "made by visgrab db from-acronym records it)");
     }
-    target.X_W_frame = objects.front().X_WO;
+    target.X_W_frame = entry.source->X_W_source;
   } else {
     if (entry.calibration.empty()) {
       throw ImportError("scene " + entry.id + " has no calibration, so no camera frame for " +
@@ -61,6 +61,24 @@ ImportTarget importTarget(ImportFormat format, const database::Database& db,
     target.X_W_frame = db.calibration(entry.id).rectifiedLeftPose();
   }
   return target;
+}
+
+std::string sceneMadeFrom(const database::Database& db, const std::filesystem::path& file) {
+  const std::string name = file.filename().string();
+  std::vector<std::string> found;
+  for (const database::SceneEntry& scene : db.list()) {
+    if (scene.source && scene.source->file == name) found.push_back(scene.id);
+  }
+  if (found.size() == 1) return found.front();
+  if (found.empty()) {
+    throw ImportError("no scene of database " + db.root().string() + " was made from " + name +
+                      " (visgrab db from-acronym records each scene's file); give the scene "
+                      "with --scene");
+  }
+  std::string ids;
+  for (const auto& id : found) ids += (ids.empty() ? "" : ", ") + id;
+  throw ImportError("several scenes of database " + db.root().string() + " were made from " + name +
+                    " (" + ids + "); choose one with --scene");
 }
 
 ImportResult importGraspFile(ImportFormat format, const std::filesystem::path& file,

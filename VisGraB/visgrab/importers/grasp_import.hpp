@@ -37,13 +37,17 @@ struct ImportTarget {
 
 /// The target of `format`'s grasps in scene `scene` of `db` for `hand` (method: the format's
 /// name when empty). The camera is the scene's calibration's rectifiedLeftPose(); the mesh frame
-/// of an acronym scene is the model frame of its one object (a scene made by `visgrab db
-/// from-acronym` places the object so).
+/// of an acronym scene is its recorded source's frame (SceneEntry::source, as `visgrab db
+/// from-acronym` records it).
 /// @throws ImportError when the hand declares no jaw frame, the scene has no calibration
-/// (camera formats) or not exactly one object (acronym); UnknownSceneError for an unknown scene.
+/// (camera formats) or records no source (acronym); UnknownSceneError for an unknown scene.
 ImportTarget importTarget(ImportFormat format, const database::Database& db,
                           const std::string& scene, const grasp::HandGraspSetup& hand,
                           const std::string& method);
+
+/// The id of the one scene of `db` made from a file named as `file` (its name without folders,
+/// SceneEntry::source). @throws ImportError when none or several are.
+std::string sceneMadeFrom(const database::Database& db, const std::filesystem::path& file);
 
 /// Imports `file` of `format` for `target` (the importers of grasp_importers.hpp).
 /// @throws ImportError for a file that cannot be read as a whole.
