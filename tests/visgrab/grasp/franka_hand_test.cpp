@@ -2,9 +2,14 @@
 // of the hand, and a jaw grasp of a standing box that holds through the lift.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <numbers>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "grasp_test_support.hpp"
 #include "rw/geometry/mesh_loader.hpp"
