@@ -30,7 +30,7 @@ std::string formatGraspList(const std::vector<grasp::GraspRequest>& requests);
 void writeGraspList(const std::vector<grasp::GraspRequest>& requests,
                     const std::filesystem::path& file);
 
-/// The kind called `name` in files ("raw", "preshape", "pose_q", "contacts"), if any.
+/// The kind called `name` in files ("raw", "preshape", "pose_q", "contacts", "jaw"), if any.
 std::optional<grasp::GraspKind> kindFromName(std::string_view name);
 
 }  // namespace visgrab::taskio
