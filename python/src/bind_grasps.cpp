@@ -179,6 +179,21 @@ Raises ValueError for an unknown name, OSError (file:line:column) for a missing 
           "tcp_frame", [](const Hand& h) { return h.setup->tcpFrameName(); },
           "The TCP frame: grasp poses are poses of this frame in the table frame.")
       .def_property_readonly(
+          "jaw_frame",
+          [](const Hand& h) -> py::object {
+            const grasp::JawFrame* jaw = h.setup->jawFrame();
+            if (jaw == nullptr) return py::none();
+            py::dict d;
+            d["X_tcp_jaw"] = poseOf(jaw->X_tcp_jaw);
+            d["stroke"] = jaw->stroke;
+            d["tip_depth"] = jaw->tipDepth;
+            d["preshape"] = h.setup->preshapes()[jaw->preshape].name;
+            return d;
+          },
+          "The hand's parallel-jaw frame (docs/grasp-format.md, \"Parallel-jaw grasps\"): dict "
+          "X_tcp_jaw (4x4), stroke (m), tip_depth (pad centre to the fingertips' front, m), "
+          "preshape; None when the hand declares none.")
+      .def_property_readonly(
           "preshapes",
           [](const Hand& h) {
             std::vector<std::string> names;
@@ -210,9 +225,11 @@ Raises ValueError for an unknown name, OSError (file:line:column) for a missing 
 
   py::class_<Grasp>(m, "Grasp", R"doc(
 One grasp hypothesis for one scene, as a line of the grasp list (docs/grasp-format.md). Make one
-with Grasp.preshape, Grasp.pose_q, Grasp.raw or Grasp.contacts; the values are checked by the
+with Grasp.preshape, Grasp.pose_q, Grasp.raw, Grasp.contacts or Grasp.jaw; the values are checked by the
 grasp list's own reader (the CLI's rules and messages: ValueError on a bad value). Poses are
-the hand's TCP frame in the table (world) frame, metres; quaternions [w, x, y, z] (unit).
+the hand's TCP frame in the table (world) frame, metres; quaternions [w, x, y, z] (unit). A jaw
+grasp (Grasp.jaw, visgrab.import_grasps) gives the jaw frame's pose instead (jaw_pose), placed
+through the hand's declared jaw frame.
 )doc")
       .def_property_readonly(
           "scene", [](const Grasp& g) { return g.request.sceneId; }, "The scene id.")
@@ -224,7 +241,7 @@ the hand's TCP frame in the table (world) frame, metres; quaternions [w, x, y, z
           "The grasp id, unique per (scene, method).")
       .def_property_readonly(
           "kind", [](const Grasp& g) { return std::string(grasp::kindName(g.request.kind)); },
-          R"("preshape", "pose_q", "raw" or "contacts".)")
+          R"("preshape", "pose_q", "raw", "contacts" or "jaw".)")
       .def_property_readonly(
           "position",
           [](const Grasp& g) -> py::object {
@@ -306,6 +323,42 @@ the hand's TCP frame in the table (world) frame, metres; quaternions [w, x, y, z
             return vectorOf(g.request.approach);
           },
           "The approach direction (contacts grasps), else None.")
+      .def_property_readonly(
+          "width",
+          [](const Grasp& g) -> py::object {
+            if (g.request.kind != GraspKind::kJaw) return py::none();
+            return py::float_(g.request.width);
+          },
+          "The opening between the pads the grasp needs, m (jaw grasps), else None.")
+      .def_property_readonly(
+          "score",
+          [](const Grasp& g) -> py::object {
+            if (!g.request.score) return py::none();
+            return py::float_(*g.request.score);
+          },
+          "The method's score of the grasp (imported grasps keep it), else None.")
+      .def_property_readonly(
+          "jaw_pose",
+          [](const Grasp& g) -> py::object {
+            if (g.request.kind != GraspKind::kJaw) return py::none();
+            return poseOf(g.request.X_W_jaw);
+          },
+          "The jaw frame's pose as a 4x4 matrix in the table frame (jaw grasps: origin between "
+          "the pads, z the approach, x the closing axis), else None.")
+      .def_property_readonly(
+          "jaw_position",
+          [](const Grasp& g) -> py::object {
+            if (g.request.kind != GraspKind::kJaw) return py::none();
+            return vectorOf(g.request.X_W_jaw.translation());
+          },
+          "The jaw frame's origin (3,), metres (jaw grasps), else None.")
+      .def_property_readonly(
+          "jaw_quaternion",
+          [](const Grasp& g) -> py::object {
+            if (g.request.kind != GraspKind::kJaw) return py::none();
+            return vectorOf(quaternionOf(g.request.X_W_jaw));
+          },
+          "The jaw frame's rotation [w, x, y, z], w >= 0 (jaw grasps), else None.")
       .def("__repr__", [](const Grasp& g) { return graspRepr(g.request); })
       .def("__eq__",
            [](const Grasp& a, const Grasp& b) {

@@ -58,6 +58,8 @@ void bindDatabase(py::module_& m);
 void bindGrasps(py::module_& m);
 /// Registers TrialResult, Results, run, read_results and analyze.
 void bindRuns(py::module_& m);
+/// Registers the grasp importers' functions (import_grasps's C++ side).
+void bindImporters(py::module_& m);
 
 /// Runs `work(stop)` on a worker thread while the calling thread, without the GIL, looks at
 /// Python's signals every 100 ms (PyErr_CheckSignals) and calls `tick` (with the GIL; e.g. a

@@ -65,4 +65,5 @@ PYBIND11_MODULE(_visgrab, m) {
   visgrab::python::bindDatabase(m);
   visgrab::python::bindGrasps(m);
   visgrab::python::bindRuns(m);
+  visgrab::python::bindImporters(m);
 }

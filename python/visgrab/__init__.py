@@ -491,3 +491,86 @@ def import_grasps(format, file, db, scene=None, hand="franka", method=None, stri
 
 
 __all__ += ["import_grasps"]
+
+
+# --- Imported grasps (docs/grasp-format.md, "Importing grasps") -------------------------------
+
+def _jaw(scene, method, id, width, position=None, quaternion=None, pose=None, score=None):
+    """A parallel-jaw grasp: the jaw frame's pose in the table frame (origin between the finger
+    pads, z the approach, x the closing axis) and the opening it needs (width, m), with the
+    method's score if any. Any hand that declares a jaw frame runs it (e.g. "franka").
+    Raises ValueError for bad values.
+    """
+    values = _pose_fields(position, quaternion, pose) + _numbers("width", width, ())
+    if score is not None:
+        values += _numbers("score", score, ())
+    return _grasp("jaw", scene, method, id, values)
+
+
+Grasp.jaw = staticmethod(_jaw)
+
+
+def _contact_graspnet_arrays(file, allow_pickle):
+    """(grasps, scores, widths or None) of a Contact-GraspNet .npz: the plain arrays, or the
+    inference script's pickled dicts (pred_grasps_cam, scores per segment) when allow_pickle."""
+    import numpy as np
+    with np.load(file, allow_pickle=False) as data:
+        names = set(data.files)
+    if "pred_grasps_cam" not in names or "grasps" in names:
+        return None
+    if not allow_pickle:
+        raise ValueError(f"{file}: Contact-GraspNet's pickled output (pred_grasps_cam); "
+                         "allow_pickle=True reads it (trusted files only)")
+    with np.load(file, allow_pickle=True) as data:
+        grasps = data["pred_grasps_cam"].item()
+        scores = data["scores"].item()
+    keys = sorted(grasps)
+    if not keys:
+        return np.zeros((0, 4, 4)), np.zeros((0,)), None
+    return (np.concatenate([np.asarray(grasps[k], dtype=np.float64).reshape(-1, 4, 4)
+                            for k in keys]),
+            np.concatenate([np.asarray(scores[k], dtype=np.float64).reshape(-1) for k in keys]),
+            None)
+
+
+def import_grasps(format, file, db, scene=None, hand="franka", method=None, strict=False,
+                  allow_pickle=True):
+    """The grasps of a method's file as jaw grasps, as `visgrab import` reads them.
+
+    format: "graspnet" (graspnetAPI's GraspGroup .npy), "contact-graspnet" (a .npz) or
+    "acronym" (ACRONYM's .h5 or GraspGen's .json); db: a Database or its path; scene: the scene
+    id (required for the camera-frame formats; acronym: default the scene made from the file);
+    hand: a Hand, name or path whose jaw frame places the grasps; method: their method name
+    (default the format's name). Each grasp's id is its index in the file and its score is kept.
+
+    Contact-GraspNet's inference script saves pickled dicts (pred_grasps_cam, scores per
+    segment): with allow_pickle=True (default) they are read with numpy.load(allow_pickle=True)
+    and concatenated in segment order. Unpickling runs code from the file: use it on trusted
+    files only (allow_pickle=False refuses them; the CLI never unpickles).
+
+    Rejected grasps (a width the hand cannot open, a non-orthonormal rotation, NaN, ...) are
+    warnings ("file: grasp INDEX: why"), or a ValueError listing them with strict=True. OSError:
+    a file that cannot be read (missing key, wrong shape); ValueError: unknown format or scene.
+    """
+    if not isinstance(db, Database):
+        db = Database(os.fspath(db))
+    hand = hand if isinstance(hand, Hand) else Hand("franka" if hand is None else os.fspath(hand))
+    file = os.fspath(file)
+    method = "" if method is None else _text("method", method)
+    arrays = None
+    import zipfile
+    if format == "contact-graspnet" and zipfile.is_zipfile(file):
+        arrays = _contact_graspnet_arrays(file, allow_pickle)  # else the C++ reader says why
+    if arrays is not None:
+        grasps, rejected = _visgrab._import_contact_graspnet_arrays(
+            arrays[0], arrays[1], arrays[2], file, db, scene, hand, method)
+    else:
+        grasps, rejected = _visgrab._import_grasps(format, file, db, scene, hand, method)
+    if rejected and strict:
+        raise ValueError("\n".join(rejected))
+    for message in rejected:
+        warnings.warn(message, stacklevel=2)
+    return grasps
+
+
+__all__ += ["import_grasps"]
