@@ -64,6 +64,19 @@ std::vector<GraspRequest> allKinds() {
   c2.id = "g5";
   c2.contacts.pop_back();
   out.push_back(c2);
+  GraspRequest jaw = rawRequest();
+  jaw.id = "g6";
+  jaw.kind = GraspKind::kJaw;
+  jaw.qOpen = jaw.qClosed = jaw.tauMax = Q();
+  jaw.X_W_jaw = jaw.X_W_tcp;
+  jaw.X_W_tcp = rw::math::Transform3D::Identity();
+  jaw.width = 0.0625;
+  jaw.score = 0.875;
+  out.push_back(jaw);
+  GraspRequest unscored = jaw;
+  unscored.id = "g7";
+  unscored.score.reset();
+  out.push_back(unscored);
   return out;
 }
 
@@ -87,6 +100,11 @@ void expectSame(const GraspRequest& a, const GraspRequest& b) {
   if (a.kind == GraspKind::kContacts) {
     EXPECT_EQ(a.approach, b.approach);
   }
+  if (a.kind == GraspKind::kJaw) {
+    EXPECT_TRANSFORM_NEAR(a.X_W_jaw, b.X_W_jaw, 1e-12);
+    EXPECT_EQ(a.width, b.width);
+    EXPECT_EQ(a.score, b.score);
+  }
 }
 
 TEST(GraspListTest, RoundTripKeepsEveryKind) {
@@ -99,7 +117,7 @@ TEST(GraspListTest, RoundTripKeepsEveryKind) {
     SCOPED_TRACE(requests[i].id);
     expectSame(requests[i], back.requests[i]);
     EXPECT_EQ(back.requests[i].sourceFile, "list.csv");
-    EXPECT_EQ(back.requests[i].sourceLine, static_cast<int>(i) + 6);  // after a 5-line header
+    EXPECT_EQ(back.requests[i].sourceLine, static_cast<int>(i) + 7);  // after a 6-line header
   }
 }
 
