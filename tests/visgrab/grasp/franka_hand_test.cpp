@@ -17,6 +17,7 @@
 #include "rw/math/rpy.hpp"
 #include "rwsim/loaders/dynamic_workcell_loader.hpp"
 #include "rwsim/simulator/grasp_trial.hpp"
+#include "visgrab/grasp/contact_ik.hpp"
 #include "visgrab/grasp/grasp_resolver.hpp"
 #include "visgrab/grasp/hand_grasp_setup.hpp"
 
@@ -157,6 +158,24 @@ TEST(FrankaHand, KinematicsAreFrankaDescriptions) {
     EXPECT_VECTOR_NEAR(at("Franka.LeftPad"), Vector3D(q, 0, 0.1034), 1e-15);
     EXPECT_VECTOR_NEAR(at("Franka.RightPad"), Vector3D(-q, 0, 0.1034), 1e-15);
   }
+}
+
+// Contact IK with the two pads: contacts 50 mm apart on a horizontal line, pushing towards each
+// other, approached from above. The pads' grip faces are 2 q apart, so the contact configuration
+// is q = 0.025; both pads back off 1 cm (q_open 0.035); the TCP (the pads' centre) lands on the
+// contacts' midpoint with z down; the closing rule gives q_closed = q_open - 0.02.
+TEST(FrankaHand, ContactIkPutsThePadsOnTwoContacts) {
+  const std::vector<visgrab::grasp::DesiredContact> contacts{
+      {Vector3D(0.375, 0.1, 0.3), Vector3D(1, 0, 0)},
+      {Vector3D(0.425, 0.1, 0.3), Vector3D(-1, 0, 0)}};
+  const auto r = visgrab::grasp::solveContactIk(frankaHand(), contacts, -Vector3D::UnitZ());
+  ASSERT_TRUE(r.valid) << r.reason;
+  EXPECT_NEAR(r.qContact[0], 0.025, 1e-4);
+  EXPECT_NEAR(r.qOpen[0], 0.035, 1e-4);
+  EXPECT_NEAR(r.qClosed[0], r.qOpen[0] - 0.02, 1e-9);
+  EXPECT_LT((r.X_W_tcp.translation() - Vector3D(0.4, 0.1, 0.3)).norm(), 1e-3);
+  EXPECT_GT(r.X_W_tcp.linear().col(2).dot(-Vector3D::UnitZ()),
+            std::cos(1.0 * std::numbers::pi / 180));
 }
 
 // A jaw grasp from above on a 5 x 5 x 10 cm box of 0.2 kg standing on a table: the jaw frame at
