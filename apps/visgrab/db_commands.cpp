@@ -125,6 +125,13 @@ int runFromAcronym(const Arguments& a) {
   generator::AcronymDatabaseOptions options;
   options.handFolder = data / "hands" / "sdh";
   options.materials = data / "materials.xml";
+  options.maxPieces = integerOption(a, "max-pieces", 64, 1);
+  const std::string collision = a.option("collision").value_or("mesh");
+  if (collision == "pieces") {
+    options.collision = generator::AcronymCollision::kPieces;
+  } else if (collision != "mesh") {
+    throw UsageError("--collision: \"" + collision + "\" is neither mesh nor pieces");
+  }
   std::optional<ProgressReporter> reporter;
   if (!a.flag("quiet")) reporter.emplace("db from-acronym", "scenes");
   long done = 0;
@@ -343,6 +350,19 @@ void addDatabaseCommands(CommandLine& cli) {
   fromAcronym.add_option("--out", "The database folder to write (or complete)")
       ->required()
       ->type_name("DIR");
+  fromAcronym
+      .add_option("--collision",
+                  "The objects' collision geometry: mesh (the mesh itself, non-convex) or pieces "
+                  "(its convex decomposition)")
+      ->type_name("mesh|pieces")
+      ->default_str("mesh");
+  fromAcronym
+      .add_option("--max-pieces",
+                  "With --collision pieces: the convex decomposition's budget of pieces per "
+                  "object")
+      ->type_name("N")
+      ->default_str("64")
+      ->check(integerAtLeast(1));
   addDataOption(fromAcronym);
   addQuietFlag(fromAcronym);
 

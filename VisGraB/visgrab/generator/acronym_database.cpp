@@ -1,7 +1,9 @@
 #include "visgrab/generator/acronym_database.hpp"
 
+#include <array>
 #include <cctype>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <map>
 #include <stdexcept>
@@ -10,6 +12,7 @@
 
 #include "rw/common/strings.hpp"
 #include "rw/common/text_file.hpp"
+#include "rw/geometry/mesh_loader.hpp"
 #include "visgrab/database/atomic_file.hpp"
 #include "visgrab/database/database_writer.hpp"
 #include "visgrab/generator/scene_model.hpp"
@@ -91,7 +94,35 @@ std::string materialsXml(const fs::path& projectMaterials,
   return text;
 }
 
-objects::ObjectModel objectOf(const AcronymObjectSource& s, int id, const std::string& name) {
+// The source's mesh, scaled, its vertices joined by position, in the object frame: one
+// non-convex collision piece.
+objects::CollisionPiece meshPiece(const AcronymObjectSource& s, const objects::ObjectModel& model) {
+  const auto loaded = rw::geometry::loadMesh(s.mesh);
+  auto mesh = std::make_shared<rw::geometry::TriMesh>();
+  std::map<std::array<double, 3>, std::uint32_t> joined;
+  std::vector<std::uint32_t> index(loaded->vertices.size());
+  for (std::size_t i = 0; i < loaded->vertices.size(); ++i) {
+    const rw::math::Vector3D& v = loaded->vertices[i];
+    const auto [it, inserted] = joined.emplace(std::array<double, 3>{v.x(), v.y(), v.z()},
+                                               static_cast<std::uint32_t>(mesh->vertices.size()));
+    if (inserted) mesh->vertices.push_back(model.X_O_mesh * (s.scale * v));
+    index[i] = it->second;
+  }
+  for (const auto& t : loaded->triangles) {
+    const std::array<std::uint32_t, 3> joinedTriangle{index[t[0]], index[t[1]], index[t[2]]};
+    if (joinedTriangle[0] == joinedTriangle[1] || joinedTriangle[1] == joinedTriangle[2] ||
+        joinedTriangle[0] == joinedTriangle[2]) {
+      continue;
+    }
+    mesh->triangles.push_back(joinedTriangle);
+  }
+  std::shared_ptr<const rw::geometry::TriMesh> triangles = std::move(mesh);
+  return {rw::geometry::Geometry::mesh(triangles, model.name + "_hull0.stl"),
+          Transform3D::Identity(), triangles};
+}
+
+objects::ObjectModel objectOf(const AcronymObjectSource& s, int id, const std::string& name,
+                              const AcronymDatabaseOptions& options) {
   objects::ObjectSpec spec;
   spec.id = id;
   spec.name = name;
@@ -104,8 +135,17 @@ objects::ObjectModel objectOf(const AcronymObjectSource& s, int id, const std::s
   shape.mesh.file = s.mesh;
   shape.mesh.written = s.mesh.string();
   shape.scale = s.scale;
+  const bool pieces = options.collision == AcronymCollision::kPieces;
+  shape.maxPieces = pieces ? options.maxPieces : 1;  // the hull alone: replaced below
+  shape.concavity = options.concavity;
   spec.meshShape = shape;
   objects::ObjectModel model = objects::generateMeshObject(spec);
+  if (!pieces) {
+    model.collision = {meshPiece(s, model)};
+    model.notes = {"collision geometry: the mesh itself (" +
+                   std::to_string(model.collision.front().triangles->triangles.size()) +
+                   " triangles)"};
+  }
   // The source's mass properties, not those of a uniform solid of the mesh.
   const Eigen::Matrix3d R = model.X_O_mesh.linear();
   model.mass.mass = s.mass;
@@ -180,7 +220,7 @@ AcronymDatabaseReport generateAcronymDatabase(const std::vector<AcronymObjectSou
       if (options.onScene) options.onScene(id);
       continue;
     }
-    const objects::ObjectModel model = objectOf(s, static_cast<int>(i) + 1, names[i]);
+    const objects::ObjectModel model = objectOf(s, static_cast<int>(i) + 1, names[i], options);
     for (const std::string& note : model.notes) report.notes.push_back(id + ": " + note);
     objects::writeObjectFiles(model, out / layout.objects);
     // The scaled mesh frame is the world frame: the object frame sits at X_O_mesh^-1.

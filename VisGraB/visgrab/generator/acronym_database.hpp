@@ -29,13 +29,26 @@ struct AcronymObjectSource {
   Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();
 };
 
-/// Where `generateAcronymDatabase` reads the project's files from.
+/// What an object of `db from-acronym` collides with.
+enum class AcronymCollision {
+  kMesh,    ///< the mesh itself (one non-convex piece: the simulator's triangle-mesh contacts)
+  kPieces,  ///< the convex decomposition of mesh objects (objects::decomposeConvex)
+};
+
+/// Where `generateAcronymDatabase` reads the project's files from, and how it models objects.
 struct AcronymDatabaseOptions {
   /// The hand copied into the database (scenes/hands/sdh: the database's hand, replaced by
   /// `--hand` when a run loads a scene).
   std::filesystem::path handFolder;
   /// The material map (scenes/materials.xml) the database's own map is made from.
   std::filesystem::path materials;
+  /// The objects' collision geometry. The mesh by default: measured on ACRONYM's table example,
+  /// the convex pieces bulge up to 12 mm past the mesh (docs/validation.md).
+  AcronymCollision collision = AcronymCollision::kMesh;
+  /// Convex decomposition (kPieces): at most this many pieces per object.
+  int maxPieces = 64;
+  /// Convex decomposition: a piece's hull may exceed its part's volume by this fraction.
+  double concavity = 0.03;
   /// Called after each scene with its id (e.g. for progress); may be empty.
   std::function<void(const std::string& id)> onScene;
 };
@@ -57,7 +70,7 @@ std::string acronymObjectName(const std::string& file);
 /// Makes a database of one scene per source in `out` (docs/database-format.md, "Scenes from
 /// objects alone"): the object floating where its mesh frame says (the scaled mesh frame is the
 /// world frame; no table), its mass, centre of mass and inertia from the source, its collision
-/// pieces by the convex decomposition of mesh objects (objects::generateMeshObject), a material
+/// geometry the mesh itself or its convex decomposition (options.collision), a material
 /// of its own whose friction against the fingers is the source's; no images and no calibration
 /// (index camera "none"). Scene ids are `plain/single/<name>/01`; each scene records its source
 /// (<Source file>, with the world pose of the scaled mesh frame: identity). Deterministic. A

@@ -212,6 +212,10 @@ std::string Hdf5File::text(const std::string& path) const {
     throw ImportError(where + " holds " + std::to_string(points) + " values, expected one string");
   }
   Handle memType(H5Tcopy(H5T_C_S1), H5Tclose);
+  // The file's character set (h5py writes UTF-8): HDF5 converts no string between sets.
+  if (H5Tset_cset(memType.get(), H5Tget_cset(type.get())) < 0) {
+    throw ImportError(where + " cannot be read: " + hdf5Reason());
+  }
   if (H5Tis_variable_str(type.get()) > 0) {
     if (H5Tset_size(memType.get(), H5T_VARIABLE) < 0) {
       throw ImportError(where + " cannot be read: " + hdf5Reason());

@@ -253,7 +253,15 @@ ConvexDecomposition decomposeConvex(const rw::geometry::TriMesh& mesh,
     parts.push_back(std::move(upper));
   }
   for (const Part& part : parts) {
-    result.pieces.push_back(convexHull(hullPoints(part.triangles)));
+    try {
+      result.pieces.push_back(convexHull(hullPoints(part.triangles)));
+    } catch (const std::invalid_argument&) {
+      // A sliver whose points span no volume (a cut through a thin wall of a mesh that is not a
+      // clean solid): nothing to collide with.
+      if (part.volume >= minVolume) throw;
+      ++result.flatPartsDropped;
+      continue;
+    }
     result.piecesVolume += meshVolume(result.pieces.back());
   }
   return result;

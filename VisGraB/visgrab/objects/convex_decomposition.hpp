@@ -25,6 +25,9 @@ struct ConvexDecomposition {
   double meshVolume = 0.0;
   /// Sum of the pieces' volumes, m^3 (>= meshVolume up to overlaps of the hulls).
   double piecesVolume = 0.0;
+  /// Parts left out because their points span no volume (slivers of less than 1e-3 of the
+  /// mesh's volume, cut from thin walls).
+  int flatPartsDropped = 0;
 };
 
 /// Splits the solid bounded by a closed, outward-wound mesh into convex pieces by recursive

@@ -86,6 +86,12 @@ rw::geometry::TriMesh convexHull(const std::vector<Vector3D>& input) {
   int curLong = 0;
   int totLong = 0;
   qh_memfreeshort(qh.get(), &curLong, &totLong);
+  if (exitCode == qh_ERRsingular) {
+    // Flat within Qhull's round-off, though thicker than the check above.
+    throw std::invalid_argument("convexHull: the " + std::to_string(points.size()) +
+                                " points do not span a volume (Qhull: the initial simplex is "
+                                "flat)");
+  }
   if (exitCode != qh_ERRnone) {
     throw std::runtime_error("convexHull: Qhull failed (exit code " + std::to_string(exitCode) +
                              "): " + message);

@@ -126,10 +126,13 @@ void addCollision(const ObjectSpec& spec, const Transform3D& X, const rw::geomet
     options.maxPieces = shape.maxPieces;
     options.concavity = shape.concavity;
     ConvexDecomposition d = decomposeConvex(mesh, options);
-    model.notes.push_back("automatic convex decomposition: " + std::to_string(d.pieces.size()) +
-                          " pieces, their volume " +
-                          format(100.0 * (d.piecesVolume / d.meshVolume - 1.0)) +
-                          " % above the mesh's");
+    model.notes.push_back(
+        "automatic convex decomposition: " + std::to_string(d.pieces.size()) +
+        " pieces, their volume " + format(100.0 * (d.piecesVolume / d.meshVolume - 1.0)) +
+        " % above the mesh's" +
+        (d.flatPartsDropped > 0
+             ? ", " + std::to_string(d.flatPartsDropped) + " flat slivers left out"
+             : std::string()));
     for (auto& piece : d.pieces) addPiece(model, std::move(piece));
     return;
   }

@@ -102,6 +102,11 @@ TEST(AcronymDatabase, TheObjectFloatsWhereItsScaledMeshSaysWithTheFilesMassAndFr
   EXPECT_DOUBLE_EQ(dwc->materials().mu("Finger", "Object"), 0.6);
   // No table in the scene.
   EXPECT_FALSE(dwc->findBody("Table").valid());
+  // The collision geometry is the mesh itself (the default): one piece, the box's 8 corners
+  // joined by position and its 12 triangles, at the scaled box's place in the object frame.
+  const std::string hull = rw::common::readTextFileOrThrow(db / "scenes" / id / "scene.wc.xml");
+  EXPECT_NE(hull.find("box_abc123_hull0.stl"), std::string::npos) << hull;
+  EXPECT_EQ(hull.find("box_abc123_hull1.stl"), std::string::npos) << hull;
 
   // Again: the scene is complete, nothing is redone; the index keeps its bytes.
   const std::string before = rw::common::readTextFileOrThrow(db / "index.xml");
