@@ -9,6 +9,8 @@
 # Environment:
 #   FUZZ_BUILD_DIR   build folder (default ${BUILD_DIR:-build}-fuzz)
 #   FUZZ_SECONDS     run time per harness in seconds (default 10)
+#   FUZZ_SHORT_SECONDS  run time of the grasp importers' readers (npy, npz, hdf5; default 5: small
+#                    formats that saturate fast, and CI's time budget is close to its limit)
 #   FUZZ_TIMEOUT     seconds one input may take before it counts as a hang (default 10)
 #   FUZZ_RSS_MB      memory limit in MB, also the largest single allocation (default 2048)
 #   FUZZ_JOBS        harnesses run side by side (default: JOBS or the number of cores)
@@ -26,12 +28,14 @@ here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 cd "$here"
 build=${FUZZ_BUILD_DIR:-${BUILD_DIR:-build}-fuzz}
 seconds=${FUZZ_SECONDS:-10}
+short_seconds=${FUZZ_SHORT_SECONDS:-5}
 timeout=${FUZZ_TIMEOUT:-10}
 rss_mb=${FUZZ_RSS_MB:-2048}
 jobs=${FUZZ_JOBS:-${JOBS:-$(nproc)}}
 
 all=(workcell dynamic_workcell rwtask experiment_xml grasp_list grasp_description object_spec
-  calibration database_index original_manifest mesh png)
+  calibration database_index original_manifest mesh png npy npz hdf5)
+short=(npy npz hdf5)
 if (($# > 0)); then harnesses=("$@"); else harnesses=("${all[@]}"); fi
 
 start=$(date +%s)
@@ -70,6 +74,28 @@ copy_to workcell scenes/hands/*/*.wc.xml scenes/hands/*/*.prox.xml tests/rwsim/s
 copy_to dynamic_workcell scenes/hands/*/*.dwc.xml scenes/materials.xml tests/rwsim/simulator/data/*.dwc.xml
 copy_to grasp_description scenes/hands/*/*.grasp.xml
 copy_to object_spec scenes/objects/objects.xml
+# NPY and NPZ seeds written by numpy itself (python3-numpy): the dtypes, orders and versions the
+# reader takes, an object array it refuses, a Contact-GraspNet-like npz. HDF5 seeds are committed
+# (fuzz/seeds/hdf5: small ACRONYM-like files; no HDF5 writer is needed at fuzz time).
+if python3 -c "import numpy" 2>/dev/null; then
+  python3 - "$seeds" <<'PY'
+import sys, numpy as np
+out = sys.argv[1]
+np.save(f"{out}/npy/f8.npy", np.arange(34, dtype="<f8").reshape(2, 17))
+np.save(f"{out}/npy/f4_fortran.npy", np.asfortranarray(np.arange(6, dtype="<f4").reshape(2, 3)))
+np.save(f"{out}/npy/be_i4.npy", np.arange(4, dtype=">i4"))
+np.save(f"{out}/npy/b1.npy", np.array([True, False]))
+np.save(f"{out}/npy/scalar.npy", np.float64(1.5))
+np.save(f"{out}/npy/object.npy", np.array([{"a": 1}], dtype=object), allow_pickle=True)
+g = np.tile(np.eye(4), (2, 1, 1))
+np.savez(f"{out}/npz/plain.npz", grasps=g, scores=np.array([0.5, 0.25]))
+np.savez_compressed(f"{out}/npz/deflated.npz", grasps=g, scores=np.array([0.5, 0.25]),
+                    widths=np.array([0.04, 0.05]), segments=np.array([1, 1]))
+np.savez(f"{out}/npz/pickled.npz", pred_grasps_cam={1: g}, scores={1: np.array([0.5, 0.25])})
+PY
+else
+  echo "== no numpy: the npy and npz corpora are empty"
+fi
 
 db=${FUZZ_DB:-}
 # The test suites' shared database (tests/support/test_database.hpp), made by the test stage.
@@ -128,7 +154,9 @@ run_one() {
     echo "FAIL $h: a kept reproducer (fuzz/regressions/$h) fails again; see $log"
     return 1
   fi
-  local run_opts=(-max_total_time="$seconds")
+  local run_time=$seconds
+  [[ " ${short[*]} " == *" $h "* ]] && ((short_seconds < seconds)) && run_time=$short_seconds
+  local run_opts=(-max_total_time="$run_time")
   if [[ ${FUZZ_FORK:-0} == 1 ]]; then
     run_opts+=(-fork=1 -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1)
   fi
@@ -146,7 +174,7 @@ run_one() {
   fi
   local execs
   execs=$(grep -oE "^#[0-9]+" "$log" | tail -n 1 | tr -d '#')
-  echo "ok   $h: ${execs:-?} runs in ${seconds} s, corpus $(find "$corpus" -type f | wc -l) files"
+  echo "ok   $h: ${execs:-?} runs in ${run_time} s, corpus $(find "$corpus" -type f | wc -l) files"
 }
 
 echo "== running ${#harnesses[@]} harnesses, $seconds s each, $jobs at a time (-timeout=$timeout" \
