@@ -77,8 +77,11 @@ copy_to object_spec scenes/objects/objects.xml
 # NPY and NPZ seeds written by numpy itself (python3-numpy): the dtypes, orders and versions the
 # reader takes, an object array it refuses, a Contact-GraspNet-like npz. HDF5 seeds are committed
 # (fuzz/seeds/hdf5: small ACRONYM-like files; no HDF5 writer is needed at fuzz time).
-if python3 -c "import numpy" 2>/dev/null; then
-  python3 - "$seeds" <<'PY'
+# Debian's python3 has python3-numpy; a python3 earlier in PATH (pyenv, a virtualenv) may not.
+py=python3
+[[ -x /usr/bin/python3 ]] && py=/usr/bin/python3
+if "$py" -c "import numpy" 2>/dev/null; then
+  "$py" - "$seeds" <<'PY'
 import sys, numpy as np
 out = sys.argv[1]
 np.save(f"{out}/npy/f8.npy", np.arange(34, dtype="<f8").reshape(2, 17))
