@@ -9,6 +9,7 @@
 #include <fstream>
 #include <random>
 #include <sstream>
+#include <vector>
 
 namespace visgrab::test {
 
@@ -25,6 +26,21 @@ std::optional<std::filesystem::path> compatDataDir() {
   std::filesystem::path dir(env);
   if (!std::filesystem::is_directory(dir)) return std::nullopt;
   return std::filesystem::absolute(dir);
+}
+
+std::optional<std::filesystem::path> acronymDataDir() {
+  std::vector<std::filesystem::path> candidates;
+  if (const char* d = std::getenv("VISGRAB_ACRONYM_DATA"); d != nullptr && *d != '\0') {
+    candidates.emplace_back(d);
+  }
+  if (const auto compat = compatDataDir()) candidates.push_back(*compat / ".." / "acronym");
+  for (const auto& c : candidates) {
+    std::error_code ec;
+    if (std::filesystem::is_regular_file(c / "franka_gripper_collision_mesh.stl", ec)) {
+      return std::filesystem::absolute(c).lexically_normal();
+    }
+  }
+  return std::nullopt;
 }
 
 ::testing::AssertionResult transformNear(const char* aExpr, const char* bExpr, const char*,

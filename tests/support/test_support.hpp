@@ -17,6 +17,10 @@ std::filesystem::path sourceDir();
 /// `$RW_COMPAT_DATA` (RobWork's own files) if set and existing, else nullopt.
 std::optional<std::filesystem::path> compatDataDir();
 
+/// ACRONYM's example data (ACRONYM's NOTICE: tests only): `$VISGRAB_ACRONYM_DATA`, else
+/// `$RW_COMPAT_DATA/../acronym`, if it holds franka_gripper_collision_mesh.stl; else nullopt.
+std::optional<std::filesystem::path> acronymDataDir();
+
 /// Checks two transforms agree: positions within `tol` metres, rotation matrices entrywise.
 ::testing::AssertionResult transformNear(const char* aExpr, const char* bExpr, const char* tolExpr,
                                          const rw::math::Transform3D& a,

@@ -1,0 +1,111 @@
+// ACRONYM's table example end to end, as a user runs it: `db from-acronym`, `import acronym`,
+// `run --hand franka --protocol shake`, `agreement --labels`; the shake protocol's verdicts
+// against FleX's labels (docs/validation.md, "Agreement with ACRONYM's labels"). Reads
+// ../shared/acronym (its NOTICE: tests only); skipped with the reason when it is absent.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "support/test_support.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using visgrab::test::RunResult;
+using visgrab::test::shellQuoted;
+
+RunResult visgrab(const std::string& args) {
+  return visgrab::test::runProgram(VISGRAB_BINARY, args);
+}
+
+// The fields of label-agreement.csv's row `key` by column name.
+std::vector<std::pair<std::string, std::string>> agreementRow(const fs::path& csv,
+                                                              const std::string& key) {
+  std::ifstream in(csv);
+  std::string header;
+  std::getline(in, header);
+  const auto split = [](const std::string& line) {
+    std::vector<std::string> fields;
+    std::stringstream s(line);
+    std::string f;
+    while (std::getline(s, f, ',')) fields.push_back(f);
+    return fields;
+  };
+  const std::vector<std::string> names = split(header);
+  std::string line;
+  while (std::getline(in, line)) {
+    const std::vector<std::string> values = split(line);
+    if (values.size() < 2 || values[1] != key) continue;
+    std::vector<std::pair<std::string, std::string>> row;
+    for (std::size_t i = 0; i < names.size() && i < values.size(); ++i) {
+      row.emplace_back(names[i], values[i]);
+    }
+    return row;
+  }
+  return {};
+}
+
+double field(const std::vector<std::pair<std::string, std::string>>& row, const std::string& n) {
+  for (const auto& [name, value] : row) {
+    if (name == n) return std::stod(value);
+  }
+  ADD_FAILURE() << "no column " << n;
+  return 0.0;
+}
+
+TEST(AcronymAgreement, ShakeVerdictsAgainstFlexLabelsOnTheTableExample) {
+  const auto data = visgrab::test::acronymDataDir();
+  if (!data) {
+    GTEST_SKIP() << "ACRONYM's example data is absent: set VISGRAB_ACRONYM_DATA to the folder "
+                    "holding grasps/ and meshes/ (or RW_COMPAT_DATA beside it, as .ci/run does)";
+  }
+  const fs::path h5 =
+      *data / "grasps/Table_99cf659ae2fe4b87b72437fd995483b_0.009700376721042367.h5";
+  ASSERT_TRUE(fs::is_regular_file(h5)) << h5;
+  visgrab::test::TempDir dir;
+  const fs::path db = dir.path() / "db";
+  const RunResult made = visgrab("db from-acronym " + shellQuoted(h5) + " --mesh-root " +
+                                 shellQuoted(*data) + " --out " + shellQuoted(db) + " --quiet");
+  ASSERT_EQ(made.exitCode, 0) << made.output;
+  EXPECT_NE(made.output.find("plain/single/table_99cf659ae2fe4b87b72437fd995483b/01"),
+            std::string::npos)
+      << made.output;
+
+  const fs::path grasps = dir.path() / "grasps.csv";
+  const RunResult imported = visgrab("import acronym " + shellQuoted(h5) + " --db " +
+                                     shellQuoted(db) + " --out " + shellQuoted(grasps));
+  ASSERT_EQ(imported.exitCode, 0) << imported.output;
+  EXPECT_NE(imported.output.find("2000 grasps imported, 0 rejected"), std::string::npos)
+      << imported.output;
+
+  const fs::path results = dir.path() / "results";
+  const RunResult ran = visgrab("run --db " + shellQuoted(db) + " --grasps " + shellQuoted(grasps) +
+                                " --hand franka --protocol shake --out " + shellQuoted(results) +
+                                " --threads 2 --quiet");
+  ASSERT_EQ(ran.exitCode, 0) << ran.output;
+  EXPECT_NE(ran.output.find("2000 trials run"), std::string::npos) << ran.output;
+
+  const fs::path out = dir.path() / "agreement";
+  const RunResult agreed = visgrab("agreement " + shellQuoted(results) + " --labels " +
+                                   shellQuoted(h5) + " --out " + shellQuoted(out));
+  ASSERT_EQ(agreed.exitCode, 0) << agreed.output;
+  const auto all = agreementRow(out / "label-agreement.csv", "all");
+  ASSERT_FALSE(all.empty()) << agreed.output;
+  EXPECT_EQ(field(all, "trials"), 2000.0) << agreed.output;
+  // FleX says 1,559 of the 2,000 grasps hold (78 %).
+  EXPECT_EQ(field(all, "both_held") + field(all, "only_b_held"), 1559.0) << agreed.output;
+  // The targets are 85 % agreement and kappa 0.6; measured on 29 Nov 2026: 81.3 % and
+  // 0.440 (docs/validation.md, "Agreement with ACRONYM's labels", says why and what the
+  // disagreements are). This guards the measured figures, with a margin for the time step's
+  // chaos, until the protocol is better understood; it is not the target.
+  EXPECT_GE(field(all, "observed_agreement"), 0.78) << agreed.output;
+  EXPECT_GE(field(all, "kappa"), 0.38) << agreed.output;
+  std::cout << agreed.output;
+}
+
+}  // namespace
