@@ -61,6 +61,35 @@ TEST(SimCli, GraspReportsOutcomeCodeAndQualities) {
   EXPECT_NE(r.output.find("contacts after lifting"), std::string::npos) << r.output;
 }
 
+TEST(SimCli, GraspTakesATrialProtocol) {
+  // --protocol lift is the default protocol: the same report.
+  const RunResult plain = run("grasp " + scene() + kCylinder);
+  const RunResult lift = run("grasp " + scene() + kCylinder + " --protocol lift");
+  ASSERT_EQ(lift.exitCode, 0) << lift.output;
+  EXPECT_EQ(lift.output, plain.output);
+  // The shake runs (no gravity, two fingers judged); its verdict is the trial's.
+  const RunResult shake = run("grasp " + scene() + kCylinder + " --protocol shake");
+  ASSERT_EQ(shake.exitCode, 0) << shake.output;
+  EXPECT_NE(shake.output.find("outcome: "), std::string::npos) << shake.output;
+  // An unknown name lists the known protocols; a bad file names its line.
+  const RunResult unknown = run("grasp " + scene() + kCylinder + " --protocol wobble");
+  EXPECT_EQ(unknown.exitCode, 2) << unknown.output;
+  EXPECT_NE(unknown.output.find("unknown protocol \"wobble\""), std::string::npos)
+      << unknown.output;
+  EXPECT_NE(unknown.output.find("known: lift, shake"), std::string::npos) << unknown.output;
+  visgrab::test::TempDir dir;
+  const auto bad = dir.path() / "bad.xml";
+  std::ofstream(bad) << "<TrialProtocol name=\"b\">\n  <Phases>\n    <Lift height=\"0\"/>\n"
+                        "  </Phases>\n</TrialProtocol>\n";
+  const RunResult broken =
+      run("grasp " + scene() + kCylinder + " --protocol '" + bad.string() + "'");
+  EXPECT_NE(broken.exitCode, 0) << broken.output;
+  EXPECT_NE(broken.output.find("bad.xml:3:5: error: <Lift>: attribute height: expected a number "
+                               "> 0, got 0"),
+            std::string::npos)
+      << broken.output;
+}
+
 TEST(SimCli, BadArgumentsAreUsageErrors) {
   struct Case {
     std::string args;
