@@ -281,3 +281,28 @@ def test_repeats_run_as_the_cli_runs_them(runs, binary, test_db_path, tmp_path):
     with pytest.raises(OSError, match=r"bad\.xml:2"):
         visgrab.run(visgrab.Database(test_db_path), runs["grasps"], out=tmp_path / "y",
                     repeats=2, noise=bad)
+
+
+def test_protocol_runs_as_the_cli_runs_it(runs, binary, test_db_path, tmp_path):
+    """protocol="shake" through the module equals `visgrab run --protocol shake` byte for byte
+    and is recorded in run.csv; "lift" is the default run; an unknown name is a ValueError."""
+    out = tmp_path / "module"
+    trials = visgrab.run(visgrab.Database(test_db_path), runs["grasps"], threads=2, out=out,
+                         protocol="shake")
+    assert trials.results.sources["protocol"] == "shake"
+    assert len(trials.results.sources["protocol_hash"]) == 16
+    cli(binary, "run", "--db", test_db_path, "--grasps", out / "grasp_list.csv", "--out",
+        tmp_path / "cli", "--threads", "1", "--protocol", "shake", "--quiet")
+    for name in ("trials.csv", "run.csv"):
+        module_text = (out / name).read_text().replace(str(out / "grasp_list.csv"), "GRASPS")
+        assert module_text == (tmp_path / "cli" / name).read_text().replace(
+            str(out / "grasp_list.csv"), "GRASPS"), name
+    lift = visgrab.run(visgrab.Database(test_db_path), runs["grasps"], threads=1,
+                       out=tmp_path / "lift", protocol="lift")
+    assert lift.results.sources["protocol"] == "lift"
+    assert lift.results.sources["protocol_hash"] == ""
+    assert (tmp_path / "lift" / "trials.csv").read_bytes() == \
+        (runs["module"] / "trials.csv").read_bytes()
+    with pytest.raises(ValueError, match='unknown protocol "wobble".*known: lift, shake'):
+        visgrab.run(visgrab.Database(test_db_path), runs["grasps"], out=tmp_path / "w",
+                    protocol="wobble")
