@@ -144,6 +144,37 @@ TEST_F(SlurmCommand, RepeatOptionsReachEveryShardAndTheMergeWritesGraspsCsv) {
   EXPECT_FALSE(fs::exists(tmp_.path() / "bad"));
 }
 
+TEST_F(SlurmCommand, TheProtocolReachesEveryShardAndTheMergeKeepsItsRecord) {
+  const fs::path out = tmp_.path() / "sweep";
+  const fs::path shake = visgrab::test::sourceDir() / "scenes/protocols/shake.xml";
+  auto r = runProgram(VISGRAB_BINARY, "slurm" + common() + " --protocol shake" +
+                                          " --shards 2 --no-analyze --out " + shellQuoted(out));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const std::string script = fileBytes(out / "slurm" / "trials.sbatch");
+  EXPECT_TRUE(contains(script, "'--protocol' '" + shake.string() + "'")) << script;
+  for (const int task : {1, 0}) {
+    r = runProgram("/usr/bin/env", "SLURM_ARRAY_TASK_ID=" + std::to_string(task) + " /bin/bash " +
+                                       shellQuoted(out / "slurm" / "trials.sbatch"));
+    ASSERT_EQ(r.exitCode, 0) << task << "\n" << r.output;
+  }
+  r = runProgram("/bin/bash", shellQuoted(out / "slurm" / "merge.sbatch"));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const fs::path whole = tmp_.path() / "whole";
+  r = runProgram(VISGRAB_BINARY, "run" + common() + " --protocol " + shellQuoted(shake) +
+                                     " --quiet --threads 2 --out " + shellQuoted(whole));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  for (const auto name : {"trials.csv", "run.csv"}) {
+    EXPECT_EQ(fileBytes(out / "results" / "top" / name), fileBytes(whole / name)) << name;
+  }
+  EXPECT_TRUE(contains(fileBytes(whole / "run.csv"), "\nprotocol,shake,,,,,,\n"));
+  // An unknown protocol is refused before anything is written.
+  r = runProgram(VISGRAB_BINARY, "slurm" + common() + " --protocol wobble --shards 2 --out " +
+                                     shellQuoted(tmp_.path() / "bad"));
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+  EXPECT_TRUE(contains(r.output, "unknown protocol \"wobble\"")) << r.output;
+  EXPECT_FALSE(fs::exists(tmp_.path() / "bad"));
+}
+
 TEST_F(SlurmCommand, SubmitChainsTheMergeJobOnTheArraysId) {
   const fs::path calls = tmp_.path() / "calls.txt";
   const fs::path sbatch = visgrab::test::writeFile(
