@@ -402,6 +402,17 @@ TEST_F(ShardedRun, MergeRefusesShardsOfAnotherRun) {
   EXPECT_NE(e.find("different numbers of shards"), std::string::npos) << e;
 }
 
+TEST_F(ShardedRun, MergeRefusesAShardOfAnotherProtocol) {
+  const auto dirs = shards(3);
+  RunOptions o = options(tmp_.path() / "shaken");
+  o.protocol = visgrab::test::sourceDir() / "scenes/protocols/shake.xml";
+  o.shard = ShardSpec{2, 3};
+  visgrab::runner::runBenchmark(o);
+  const std::string e = mergeError({dirs[0], o.out, dirs[2]});
+  EXPECT_NE(e.find("ran other trial protocols"), std::string::npos) << e;
+  EXPECT_NE(e.find(o.out.string()), std::string::npos) << e;
+}
+
 TEST_F(ShardedRun, MergeRefusesATornOrChangedShardFile) {
   const auto dirs = shards(3);
   const fs::path torn = copyOf(dirs[1], "torn");
