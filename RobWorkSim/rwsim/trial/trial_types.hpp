@@ -93,7 +93,8 @@ struct GraspTrialSetup {
   /// The ODE engine's settings (the default engine; another engine brings its own).
   SimulatorOptions simulator;
   /// Called after every successful step with the engine and the phase ("close", "lift",
-  /// "shake", "pull", "settle"), e.g. to record a trajectory. Runs on the thread that runs the trial.
+  /// "shake", "pull", "settle"), e.g. to record a trajectory. Runs on the thread that runs the
+  /// trial.
   std::function<void(const PhysicsEngine&, std::string_view phase)> observer;
 };
 
