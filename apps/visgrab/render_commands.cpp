@@ -5,6 +5,7 @@
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <tuple>
 #include <utility>
@@ -112,6 +113,12 @@ RenderRequest parseRenderArguments(const Arguments& a) {
   }
   // The trials replay in the database the run used, or not at all.
   if (run) database::requireRecordedDatabase(dbPath, run->sources.databaseHash);
+  if (run && !run->sources.protocol.empty() && (graspSpec || montage)) {
+    throw std::runtime_error(*a.option("results") + " ran its trials with the protocol \"" +
+                             run->sources.protocol +
+                             "\"; render replays the paper's lift only, so it would draw other "
+                             "trials than the run's");
+  }
   std::vector<fs::path> graspFiles;
   for (const auto& g : a.values("grasps")) graspFiles.emplace_back(g);
   if (graspFiles.empty() && run) {

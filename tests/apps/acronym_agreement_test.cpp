@@ -90,6 +90,15 @@ TEST(AcronymAgreement, ShakeVerdictsAgainstFlexLabelsOnTheTableExample) {
   ASSERT_EQ(ran.exitCode, 0) << ran.output;
   EXPECT_NE(ran.output.find("2000 trials run"), std::string::npos) << ran.output;
 
+  // Pictures replay the paper's lift only: a shake run's trial is refused, not drawn wrongly.
+  const RunResult picture =
+      visgrab("render --results " + shellQuoted(results) +
+              " --scene plain/single/table_99cf659ae2fe4b87b72437fd995483b/01 --grasp 0 --out " +
+              shellQuoted(dir.path() / "trial.png") + " --quiet");
+  EXPECT_EQ(picture.exitCode, 1) << picture.output;
+  EXPECT_NE(picture.output.find("protocol \"shake\""), std::string::npos) << picture.output;
+  EXPECT_FALSE(fs::exists(dir.path() / "trial.png"));
+
   const fs::path out = dir.path() / "agreement";
   const RunResult agreed = visgrab("agreement " + shellQuoted(results) + " --labels " +
                                    shellQuoted(h5) + " --out " + shellQuoted(out));

@@ -268,8 +268,9 @@ struct RobustRate {
 };
 
 /// The run fields that differ between two runs: "hand", "engine", "engine settings",
-/// "database" (the database's index hash), in that order; an unknown (empty) field differs from
-/// a known one. An empty engine counts as "ode" (runs older than the record were ODE's).
+/// "protocol" (its name or content hash), "database" (the database's index hash), in that order; an
+/// unknown (empty) field differs from a known one. An empty engine counts as "ode" (runs older than
+/// the record were ODE's).
 std::vector<std::string> differingSources(const results::RunSources& a,
                                           const results::RunSources& b);
 

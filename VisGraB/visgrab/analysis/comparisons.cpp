@@ -16,6 +16,7 @@ std::vector<std::string> differingSources(const results::RunSources& a,
   if (a.hand != b.hand) out.emplace_back("hand");
   if (engine(a) != engine(b)) out.emplace_back("engine");
   if (a.engineSettings != b.engineSettings) out.emplace_back("engine settings");
+  if (a.protocol != b.protocol || a.protocolHash != b.protocolHash) out.emplace_back("protocol");
   if (a.databaseHash != b.databaseHash) out.emplace_back("database");
   return out;
 }

@@ -83,7 +83,7 @@ struct SceneEntry {
   /// Generated only (index format 2): ground-truth poses (OpenCV YAML).
   std::filesystem::path poses;
   /// Generated only: the file the scene was made from (`db from-acronym`), else nullopt.
-  std::optional<SceneSource> source;
+  std::optional<SceneSource> source{};
 };
 
 /// A scene database opened for reading: a generated folder (DIR/index.xml) or an original

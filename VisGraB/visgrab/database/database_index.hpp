@@ -112,7 +112,7 @@ struct SceneRecord {
   /// Ground-truth poses, one per object, in the order of conditions.objects.
   std::vector<ObjectPose> objects;
   /// The file the scene was made from (<Source>), when not generated from a spec.
-  std::optional<SceneSource> source;
+  std::optional<SceneSource> source{};
 };
 
 /// The content of DIR/index.xml.

@@ -156,6 +156,11 @@ void drawShowcases(std::vector<analysis::Showcase>& showcases,
   for (std::size_t r = 0; r < inputs.size(); ++r) {
     RunInputs& in = inputs[r];
     if (!in.problem.empty()) continue;
+    if (!runs[r].sources.protocol.empty()) {
+      in.problem = "the run's trials ran the protocol \"" + runs[r].sources.protocol +
+                   "\"; pictures replay the paper's lift only, so none are drawn";
+      continue;
+    }
     try {
       // The trials replay on the engine that ran them (run.csv; older runs were ODE's).
       const std::string& engine = runs[r].sources.engine;

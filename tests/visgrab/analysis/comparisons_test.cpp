@@ -154,6 +154,13 @@ TEST(ComparisonsTest, DifferingSourcesNamesEachField) {
   b.engine = "mujoco";
   b.databaseHash = "0123456789abcdef";
   EXPECT_EQ(differingSources(a, b), (std::vector<std::string>{"engine", "database"}));
+  // A shake run against a lift run (whose record is empty), and two protocols of one name.
+  b.protocol = "shake";
+  b.protocolHash = "00000000000000aa";
+  EXPECT_EQ(differingSources(a, b), (std::vector<std::string>{"engine", "protocol", "database"}));
+  a.protocol = "shake";
+  a.protocolHash = "00000000000000bb";
+  EXPECT_EQ(differingSources(a, b), (std::vector<std::string>{"engine", "protocol", "database"}));
 }
 
 TEST(ComparisonsTest, TheReportWritesTheComparisons) {
