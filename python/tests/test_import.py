@@ -136,3 +136,44 @@ def test_cli_import_writes_the_grasp_list_and_exits_1_when_all_are_rejected(db, 
     assert refused.returncode == 1
     assert "np.savez(\"grasps.npz\", grasps=np.concatenate(list(pred_grasps_cam.values()))" \
         in refused.stderr
+
+
+def test_top_down_graspnet_and_contact_graspnet_grasps_hold_a_standing_box(db, franka, tmp_path):
+    """By physics: a top-down grasp across the narrow side of the standing salt box (4.5 cm of
+    the Franka's 8 cm), made from its ground-truth pose and written in each format's camera-frame
+    convention, holds through the paper's lift (Franka 70 N, mu 0.6: 84 N against 5.2 N)."""
+    from conftest import trials_rows
+    scene = "plain/single/saltbox/01"
+    X_wo = np.array(db.scene(scene).ground_truth[0]["pose"], dtype=float)
+    X_cw = np.linalg.inv(np.array(db.scene(scene).cloud_frame, dtype=float))  # camera <- table
+    # The jaw frame in the table frame: 2 cm below the box's top (12.5 cm) on its axis, z down,
+    # x across the 4.5 cm side (the box frame's x).
+    centre = (X_wo @ [0.0, 0.0, 0.105, 1.0])[:3]
+    approach, closing = np.array([0.0, 0.0, -1.0]), X_wo[:3, 0]
+    closing = closing - (closing @ approach) * approach
+    closing /= np.linalg.norm(closing)
+    to_cam = lambda v: X_cw[:3, :3] @ v
+    c_cam = (X_cw @ np.r_[centre, 1.0])[:3]
+    a_cam, b_cam = to_cam(approach), to_cam(closing)
+    # GraspNet: columns approach, closing, their cross; fingertips' front at t + depth a; the pad
+    # centre tipDepth behind it.
+    depth, tip = 0.02, franka.jaw_frame["tip_depth"]
+    t = c_cam - (depth - tip) * a_cam
+    row = np.r_[0.9, 0.055, 0.02, depth, np.column_stack([a_cam, b_cam, np.cross(a_cam, b_cam)])
+                .ravel(), t, 13.0]
+    np.save(tmp_path / "gn.npy", row.reshape(1, 17).astype(np.float64))
+    # Contact-GraspNet: the Panda hand's base frame (z approach, x closing), 0.1034 m behind the
+    # pads' centre.
+    hand = np.eye(4)
+    hand[:3, :3] = np.column_stack([b_cam, np.cross(a_cam, b_cam), a_cam])
+    hand[:3, 3] = c_cam - 0.1034 * a_cam
+    np.savez(tmp_path / "cgn.npz", grasps=hand.reshape(1, 4, 4), scores=np.array([0.8]))
+    grasps = (visgrab.import_grasps("graspnet", tmp_path / "gn.npy", db, scene=scene,
+                                    method="graspnet", strict=True) +
+              visgrab.import_grasps("contact-graspnet", tmp_path / "cgn.npz", db, scene=scene,
+                                    method="contact-graspnet", strict=True))
+    for g in grasps:
+        np.testing.assert_allclose(g.jaw_position, centre, atol=1e-6)
+    visgrab.run(db, grasps, hand="franka", threads=1, out=tmp_path / "results")
+    outcomes = {r["method"]: r["outcome"] for r in trials_rows(tmp_path / "results/trials.csv")}
+    assert outcomes == {"graspnet": "stable", "contact-graspnet": "stable"}, outcomes
