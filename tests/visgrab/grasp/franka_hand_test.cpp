@@ -36,20 +36,6 @@ const HandGraspSetup& frankaHand() {
   return *setup;
 }
 
-// ACRONYM's data: $VISGRAB_ACRONYM_DATA, else $RW_COMPAT_DATA/../acronym; nullopt if absent.
-std::optional<std::filesystem::path> acronymData() {
-  std::vector<std::filesystem::path> candidates;
-  if (const char* d = std::getenv("VISGRAB_ACRONYM_DATA")) candidates.emplace_back(d);
-  if (const char* d = std::getenv("RW_COMPAT_DATA")) {
-    candidates.push_back(std::filesystem::path(d) / ".." / "acronym");
-  }
-  for (const auto& c : candidates) {
-    std::error_code ec;
-    if (std::filesystem::is_regular_file(c / "franka_gripper_collision_mesh.stl", ec)) return c;
-  }
-  return std::nullopt;
-}
-
 // The world bounding box of the collision geometry of one frame of the hand at q (the base at
 // the world's origin), or of the named geometries only.
 Aabb collisionBounds(const HandGraspSetup& hand, double q, const std::string& frame,
@@ -87,7 +73,7 @@ void expectBoundsNear(const Aabb& model, const Aabb& mesh, double tol, const cha
 // reaches up to 0.09 only further out). The model's pads (their grip faces at x = +/-0.04, their
 // z extent) and its palm (the union of the base's boxes) agree with these within 1 mm.
 TEST(FrankaHand, AgreesWithAcronymsCollisionMesh) {
-  const auto data = acronymData();
+  const auto data = visgrab::test::acronymDataDir();
   if (!data) {
     GTEST_SKIP() << "ACRONYM's data is absent: set VISGRAB_ACRONYM_DATA to the folder holding "
                     "franka_gripper_collision_mesh.stl (or RW_COMPAT_DATA with ../acronym beside "

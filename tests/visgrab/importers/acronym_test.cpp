@@ -220,15 +220,8 @@ TEST(AcronymObjectFields, EachBadFieldIsNamed) {
   }
 }
 
-// ACRONYM's public table example: $VISGRAB_ACRONYM_DATA, else $RW_COMPAT_DATA/../acronym.
-std::optional<std::filesystem::path> acronymData() {
-  if (const char* env = std::getenv("VISGRAB_ACRONYM_DATA")) return std::filesystem::path(env);
-  if (const auto compat = test::compatDataDir()) return *compat / ".." / "acronym";
-  return std::nullopt;
-}
-
 TEST(AcronymExample, ReadsTheTableExampleTransformsLabelsAndObject) {
-  const auto data = acronymData();
+  const auto data = visgrab::test::acronymDataDir();
   const std::filesystem::path file =
       data ? *data / "grasps/Table_99cf659ae2fe4b87b72437fd995483b_0.009700376721042367.h5"
            : std::filesystem::path();
