@@ -283,7 +283,7 @@ TEST(JawFrame, RobWorksRobotiqPadCentreAndStroke) {
   rw::kinematics::State state = hand->defaultState();
   hand->device().setQ(hand->preshapes()[jaw->preshape].qOpen, state);
   const auto& wc = hand->workcell();
-  const auto at = [&](const char* name) {
+  const auto at = [&](const char* name) -> Vector3D {  // a copy: not a view of a temporary
     auto f = wc.findFrame(hand->deviceName() + "." + name);
     EXPECT_TRUE(f.valid()) << name;
     return rw::kinematics::worldTransform(wc.frames(), state, f).translation();
