@@ -92,8 +92,6 @@ struct SceneSource {
   std::string file;
   /// Pose of the source's frame in the table (world) frame.
   rw::math::Transform3D X_W_source = rw::math::Transform3D::Identity();
-  /// Equal when both fields are.
-  bool operator==(const SceneSource& other) const = default;
 };
 
 /// True when a scene of a database made with camera profile `camera` may lack `field`'s file:
