@@ -246,6 +246,8 @@ class TrialRun {
   bool runPhases();
   bool lift(const trial::ProtocolPhase& phase, const Transform3D& X_W_base);
   bool pull(const trial::ProtocolPhase& phase);
+  bool followRamp(const trial::ProtocolPhase& phase, const Transform3D& X_W_base,
+                  const Transform3D& X_end, std::string_view name);
   bool shake(const trial::ProtocolPhase& phase);
   bool settle(double time);
   void finish(GraspOutcome outcome, std::string detail = {}) {
@@ -381,6 +383,13 @@ bool TrialRun::runPhases() {
 bool TrialRun::lift(const trial::ProtocolPhase& phase, const Transform3D& X_W_base) {
   Transform3D X_end = X_W_base;
   X_end.translation().z() += phase.distance;
+  return followRamp(phase, X_W_base, X_end, "lift");
+}
+
+// The base moved from X_W_base to X_end on the phase's ramp (speed, acceleration), then
+// `phase.settle` s at rest; `name` is the observer's phase.
+bool TrialRun::followRamp(const trial::ProtocolPhase& phase, const Transform3D& X_W_base,
+                          const Transform3D& X_end, std::string_view name) {
   control::RampLimits limits;
   limits.linearVelocity = phase.speed;
   limits.linearAcceleration = phase.acceleration;
@@ -390,7 +399,7 @@ bool TrialRun::lift(const trial::ProtocolPhase& phase, const Transform3D& X_W_ba
     const Transform3D next = trajectory.pose(sim_.time() - t0 + dt_);
     const control::Twist twist = control::twistToReach(sim_.bodyPose(data_.baseBody), next, dt_);
     sim_.setKinematicVelocity(data_.baseBody, twist.linear, twist.angular);
-    if (!advance("lift")) return false;
+    if (!advance(name)) return false;
   }
   sim_.setKinematicVelocity(data_.baseBody, Vector3D::Zero(), Vector3D::Zero());
   return settle(phase.settle);
@@ -417,19 +426,7 @@ bool TrialRun::pull(const trial::ProtocolPhase& phase) {
       rw::kinematics::worldTransform(dwc_.workcell().frames(), sim_.state(), data_.tcp);
   Transform3D X_end = X_W_base;
   X_end.translation() += phase.distance * worldAxis(phase, X_W_tcp);
-  control::RampLimits limits;
-  limits.linearVelocity = phase.speed;
-  limits.linearAcceleration = phase.acceleration;
-  const control::RampTrajectory trajectory(X_W_base, X_end, limits);
-  const double t0 = sim_.time();
-  while (sim_.time() - t0 < trajectory.duration() - 1e-9) {
-    const Transform3D next = trajectory.pose(sim_.time() - t0 + dt_);
-    const control::Twist twist = control::twistToReach(sim_.bodyPose(data_.baseBody), next, dt_);
-    sim_.setKinematicVelocity(data_.baseBody, twist.linear, twist.angular);
-    if (!advance("pull")) return false;
-  }
-  sim_.setKinematicVelocity(data_.baseBody, Vector3D::Zero(), Vector3D::Zero());
-  return settle(phase.settle);
+  return followRamp(phase, X_W_base, X_end, "pull");
 }
 
 // The base follows X_W_base0 moved by s(t) = A (1 - cos(2 pi f t)) along the axis, or turned by
