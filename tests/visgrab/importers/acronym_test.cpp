@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "import_checks.hpp"
 #include "support/test_support.hpp"
 #include "test_files.hpp"
 #include "visgrab/importers/grasp_importers.hpp"
@@ -21,25 +22,10 @@ namespace {
 using rw::math::Transform3D;
 using rw::math::Vector3D;
 
-template <typename F>
-std::string acronymErrorOf(F&& f) {
-  try {
-    f();
-  } catch (const ImportError& e) {
-    return e.what();
-  }
-  return "";
-}
+using test::errorOf;
 
-ImportContext acronymContext() {
-  ImportContext c;
-  c.sceneId = "table";
-  c.method = "acronym";
-  c.hand = "franka";
-  c.jaw.stroke = 0.08;
-  c.jaw.tipDepth = 0.01;
-  return c;
-}
+// Scene "table", method "acronym", the Franka-like jaw frame of import_checks.hpp.
+ImportContext acronymContext() { return test::frankaImportContext("table", "acronym"); }
 
 // The mesh frame turned 90 degrees about the world z and at (0.3, 0, 0.2).
 Transform3D meshPose() {
@@ -122,47 +108,43 @@ TEST(AcronymImport, MissingKeysWrongShapesAndBadLabelsRejectTheFile) {
   test::TempDir dir;
   const auto none = dir.path() / "none.h5";
   test::writeHdf5(none, {{"grasps/other", {1}, {0}}});
-  EXPECT_EQ(acronymErrorOf([&] { importAcronym(none, Transform3D::Identity(), acronymContext()); }),
+  EXPECT_EQ(errorOf([&] { importAcronym(none, Transform3D::Identity(), acronymContext()); }),
             none.string() +
                 ": dataset 'grasps/transforms' is missing (expected N x 4 x 4 "
                 "transforms)");
   const auto flat = dir.path() / "flat.h5";
   test::writeHdf5(flat, {{"grasps/transforms", {2, 16}, std::vector<double>(32, 0.0)}});
-  EXPECT_EQ(acronymErrorOf([&] { importAcronym(flat, Transform3D::Identity(), acronymContext()); }),
+  EXPECT_EQ(errorOf([&] { importAcronym(flat, Transform3D::Identity(), acronymContext()); }),
             flat.string() +
                 ": dataset 'grasps/transforms' has shape (2, 16) (expected N x 4 x "
                 "4 transforms)");
   const auto threeByFour = dir.path() / "t34.h5";
   test::writeHdf5(threeByFour, {{"grasps/transforms", {1, 3, 4}, std::vector<double>(12, 0.0)}});
-  EXPECT_EQ(acronymErrorOf(
-                [&] { importAcronym(threeByFour, Transform3D::Identity(), acronymContext()); }),
+  EXPECT_EQ(errorOf([&] { importAcronym(threeByFour, Transform3D::Identity(), acronymContext()); }),
             threeByFour.string() +
                 ": grasps/transforms has shape (1, 3, 4), expected (N, 4, 4): "
                 "the Panda hand's pose in the mesh frame per grasp");
   const auto labels = dir.path() / "labels.h5";
   test::writeHdf5(labels, {{"grasps/transforms", {2, 4, 4}, kTwoGrasps},
                            {"grasps/qualities/flex/object_in_gripper", {3}, {1, 0, 1}, true}});
-  EXPECT_EQ(acronymErrorOf([&] { readAcronymLabels(labels); }),
+  EXPECT_EQ(errorOf([&] { readAcronymLabels(labels); }),
             labels.string() +
                 ": grasps/qualities/flex/object_in_gripper has 3 labels, "
                 "expected 2 (one per grasp)");
   const auto two = dir.path() / "two.h5";
   test::writeHdf5(two, {{"grasps/transforms", {2, 4, 4}, kTwoGrasps},
                         {"grasps/qualities/flex/object_in_gripper", {2}, {1, 2}, true}});
-  EXPECT_EQ(acronymErrorOf([&] { readAcronymLabels(two); }),
+  EXPECT_EQ(errorOf([&] { readAcronymLabels(two); }),
             two.string() +
                 ": grasps/qualities/flex/object_in_gripper[1] is 2.000000, expected "
                 "0 or 1");
-  EXPECT_HAS(acronymErrorOf([&] { readAcronymLabels(none); }),
-             "dataset 'grasps/transforms' is missing");
+  EXPECT_HAS(errorOf([&] { readAcronymLabels(none); }), "dataset 'grasps/transforms' is missing");
   const auto json = test::writeFile(dir.path() / "g.json", R"({"grasps": {"transforms": [[1]]}})");
-  EXPECT_HAS(
-      acronymErrorOf([&] { importAcronym(json, Transform3D::Identity(), acronymContext()); }),
-      json.string() + ":1:28: grasps.transforms[0] is not a 4x4 matrix");
+  EXPECT_HAS(errorOf([&] { importAcronym(json, Transform3D::Identity(), acronymContext()); }),
+             json.string() + ":1:28: grasps.transforms[0] is not a 4x4 matrix");
   const auto noGrasps = test::writeFile(dir.path() / "n.json", R"({"object": {}})");
-  EXPECT_HAS(
-      acronymErrorOf([&] { importAcronym(noGrasps, Transform3D::Identity(), acronymContext()); }),
-      noGrasps.string() + ": no object \"grasps\" (expected GraspGen's layout");
+  EXPECT_HAS(errorOf([&] { importAcronym(noGrasps, Transform3D::Identity(), acronymContext()); }),
+             noGrasps.string() + ": no object \"grasps\" (expected GraspGen's layout");
 }
 
 TEST(AcronymObjectFields, ReadsEveryField) {
@@ -215,8 +197,7 @@ TEST(AcronymObjectFields, EachBadFieldIsNamed) {
     for (auto d : tableObject()) datasets.push_back(d.path == c.key ? c.replacement : d);
     const auto file = dir.path() / (std::to_string(&c - cases.data()) + ".h5");
     test::writeHdf5(file, datasets);
-    EXPECT_EQ(acronymErrorOf([&] { readAcronymObject(file); }), file.string() + ": " + c.message)
-        << c.key;
+    EXPECT_EQ(errorOf([&] { readAcronymObject(file); }), file.string() + ": " + c.message) << c.key;
   }
 }
 

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "import_checks.hpp"
 #include "support/test_support.hpp"
 #include "test_files.hpp"
 #include "visgrab/importers/npy.hpp"
@@ -21,26 +22,10 @@ using rw::math::Vector3D;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-template <typename F>
-std::string errorOf(F&& f) {
-  try {
-    f();
-  } catch (const ImportError& e) {
-    return e.what();
-  }
-  return "";
-}
+using test::errorOf;
 
-// A Franka-like jaw frame built in code: stroke 0.08 m, fingertips 0.01 m beyond the pad centre.
-ImportContext frankaContext() {
-  ImportContext c;
-  c.sceneId = "scene1";
-  c.method = "m";
-  c.hand = "franka";
-  c.jaw.stroke = 0.08;
-  c.jaw.tipDepth = 0.01;
-  return c;
-}
+// Scene "scene1", method "m", the Franka-like jaw frame of import_checks.hpp.
+ImportContext frankaContext() { return test::frankaImportContext("scene1", "m"); }
 
 // The camera above the table looking down: its z (forward) along world -z, its x along world x,
 // so its y (down in the image) along world -y; at (0.1, 0.2, 0.8).

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "import_checks.hpp"
 #include "support/test_support.hpp"
 #include "test_files.hpp"
 #include "visgrab/importers/hdf5_file.hpp"
@@ -16,20 +17,10 @@
 namespace visgrab::importers {
 namespace {
 
+using test::errorOf;
 using test::f4;
 using test::f8;
 using test::npyBytes;
-
-// The message of the ImportError `f` throws ("" when it throws none).
-template <typename F>
-std::string errorOf(F&& f) {
-  try {
-    f();
-  } catch (const ImportError& e) {
-    return e.what();
-  }
-  return "";
-}
 
 TEST(Npy, ReadsLittleEndianFloat64InCOrder) {
   const NdArray a = parseNpy(npyBytes("<f8", {2, 3}, f8({1, 2, 3, 4, 5, 6})), "a.npy");
