@@ -12,16 +12,14 @@
 #include <vector>
 
 #include "support/test_support.hpp"
+#include "support/visgrab_cli.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 using visgrab::test::RunResult;
+using visgrab::test::runVisgrab;
 using visgrab::test::shellQuoted;
-
-RunResult visgrab(const std::string& args) {
-  return visgrab::test::runProgram(VISGRAB_BINARY, args);
-}
 
 // The fields of label-agreement.csv's row `key` by column name.
 std::vector<std::pair<std::string, std::string>> agreementRow(const fs::path& csv,
@@ -69,39 +67,39 @@ TEST(AcronymAgreement, ShakeVerdictsAgainstFlexLabelsOnTheTableExample) {
   ASSERT_TRUE(fs::is_regular_file(h5)) << h5;
   visgrab::test::TempDir dir;
   const fs::path db = dir.path() / "db";
-  const RunResult made = visgrab("db from-acronym " + shellQuoted(h5) + " --mesh-root " +
-                                 shellQuoted(*data) + " --out " + shellQuoted(db) + " --quiet");
+  const RunResult made = runVisgrab("db from-acronym " + shellQuoted(h5) + " --mesh-root " +
+                                    shellQuoted(*data) + " --out " + shellQuoted(db) + " --quiet");
   ASSERT_EQ(made.exitCode, 0) << made.output;
   EXPECT_NE(made.output.find("plain/single/table_99cf659ae2fe4b87b72437fd995483b/01"),
             std::string::npos)
       << made.output;
 
   const fs::path grasps = dir.path() / "grasps.csv";
-  const RunResult imported = visgrab("import acronym " + shellQuoted(h5) + " --db " +
-                                     shellQuoted(db) + " --out " + shellQuoted(grasps));
+  const RunResult imported = runVisgrab("import acronym " + shellQuoted(h5) + " --db " +
+                                        shellQuoted(db) + " --out " + shellQuoted(grasps));
   ASSERT_EQ(imported.exitCode, 0) << imported.output;
   EXPECT_NE(imported.output.find("2000 grasps imported, 0 rejected"), std::string::npos)
       << imported.output;
 
   const fs::path results = dir.path() / "results";
-  const RunResult ran = visgrab("run --db " + shellQuoted(db) + " --grasps " + shellQuoted(grasps) +
-                                " --hand franka --protocol shake --out " + shellQuoted(results) +
-                                " --threads 2 --quiet");
+  const RunResult ran = runVisgrab("run --db " + shellQuoted(db) + " --grasps " +
+                                   shellQuoted(grasps) + " --hand franka --protocol shake --out " +
+                                   shellQuoted(results) + " --threads 2 --quiet");
   ASSERT_EQ(ran.exitCode, 0) << ran.output;
   EXPECT_NE(ran.output.find("2000 trials run"), std::string::npos) << ran.output;
 
   // Pictures replay the paper's lift only: a shake run's trial is refused, not drawn wrongly.
   const RunResult picture =
-      visgrab("render --results " + shellQuoted(results) +
-              " --scene plain/single/table_99cf659ae2fe4b87b72437fd995483b/01 --grasp 0 --out " +
-              shellQuoted(dir.path() / "trial.png") + " --quiet");
+      runVisgrab("render --results " + shellQuoted(results) +
+                 " --scene plain/single/table_99cf659ae2fe4b87b72437fd995483b/01 --grasp 0 --out " +
+                 shellQuoted(dir.path() / "trial.png") + " --quiet");
   EXPECT_EQ(picture.exitCode, 1) << picture.output;
   EXPECT_NE(picture.output.find("protocol \"shake\""), std::string::npos) << picture.output;
   EXPECT_FALSE(fs::exists(dir.path() / "trial.png"));
 
   const fs::path out = dir.path() / "agreement";
-  const RunResult agreed = visgrab("agreement " + shellQuoted(results) + " --labels " +
-                                   shellQuoted(h5) + " --out " + shellQuoted(out));
+  const RunResult agreed = runVisgrab("agreement " + shellQuoted(results) + " --labels " +
+                                      shellQuoted(h5) + " --out " + shellQuoted(out));
   ASSERT_EQ(agreed.exitCode, 0) << agreed.output;
   const auto all = agreementRow(out / "label-agreement.csv", "all");
   ASSERT_FALSE(all.empty()) << agreed.output;

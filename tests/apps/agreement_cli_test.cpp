@@ -8,16 +8,14 @@
 #include <vector>
 
 #include "support/test_support.hpp"
+#include "support/visgrab_cli.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 using visgrab::test::RunResult;
+using visgrab::test::runVisgrab;
 using visgrab::test::shellQuoted;
-
-RunResult runVisgrab(const std::string& args) {
-  return visgrab::test::runProgram(VISGRAB_BINARY, args);
-}
 
 std::string readText(const fs::path& file) {
   std::ifstream in(file, std::ios::binary);
