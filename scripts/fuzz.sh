@@ -9,8 +9,8 @@
 # Environment:
 #   FUZZ_BUILD_DIR   build folder (default ${BUILD_DIR:-build}-fuzz)
 #   FUZZ_SECONDS     run time per harness in seconds (default 10)
-#   FUZZ_SHORT_SECONDS  run time of the grasp importers' readers (npy, npz, hdf5; default 5: small
-#                    formats that saturate fast, and CI's time budget is close to its limit)
+#   FUZZ_SHORT_SECONDS  run time of the grasp importers' readers (npy, npz, hdf5, json; default 5:
+#                    small formats that saturate fast, and CI's time budget is close to its limit)
 #   FUZZ_TIMEOUT     seconds one input may take before it counts as a hang (default 10)
 #   FUZZ_RSS_MB      memory limit in MB, also the largest single allocation (default 2048)
 #   FUZZ_JOBS        harnesses run side by side (default: JOBS or the number of cores)
@@ -34,8 +34,8 @@ rss_mb=${FUZZ_RSS_MB:-2048}
 jobs=${FUZZ_JOBS:-${JOBS:-$(nproc)}}
 
 all=(workcell dynamic_workcell rwtask experiment_xml grasp_list grasp_description object_spec
-  calibration database_index original_manifest mesh png npy npz hdf5)
-short=(npy npz hdf5)
+  calibration database_index original_manifest mesh png npy npz hdf5 json)
+short=(npy npz hdf5 json)
 if (($# > 0)); then harnesses=("$@"); else harnesses=("${all[@]}"); fi
 
 start=$(date +%s)
