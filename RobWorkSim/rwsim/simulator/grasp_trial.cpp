@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <stdexcept>
@@ -10,6 +11,7 @@
 #include <utility>
 
 #include "rw/kinematics/frame_tree.hpp"
+#include "rw/models/device.hpp"
 #include "rw/proximity/collision_detector.hpp"
 #include "rwsim/control/pd_controller.hpp"
 #include "rwsim/control/ramp_trajectory.hpp"
@@ -233,7 +235,9 @@ class TrialRun {
         engine_(data.engine->create(withProtocolGravity(variation, setup.protocol))),
         sim_(*engine_),
         pd_(data.controller->p, data.controller->d),
-        dt_(sim_.timeStep()) {}
+        dt_(sim_.timeStep()),
+        timeLimit_(std::max(setup.timeLimit,
+                            setup.closeTimeLimit + trial::phasesDuration(setup.protocol) + 1.0)) {}
 
   GraspTrialResult run(const rw::kinematics::State& initial);
 
@@ -241,6 +245,9 @@ class TrialRun {
   bool inCollision(const rw::kinematics::State& state);
   bool advance(std::string_view phase);
   bool close();
+  // The PD's speed limits: the device's (clampToVelocityLimits) and the protocol's closing
+  // speeds, the smaller of both per joint; empty when neither applies.
+  Q closingSpeedLimits(const rw::models::Device& device) const;
   bool gripForceReached() const;
   void noteClosingCap(const Q& v, const Q& restSpeed);
   bool runPhases();
@@ -271,6 +278,9 @@ class TrialRun {
   trial::PhysicsEngine& sim_;
   control::PDController pd_;
   double dt_;
+  // setup_.timeLimit, or longer when the protocol's phases need it (closing's cap + phases +
+  // 1 s).
+  double timeLimit_;
   GraspTrialResult result_;
   std::string closingNote_;
 };
@@ -294,12 +304,31 @@ bool TrialRun::advance(std::string_view phase) {
     return false;
   }
   if (observer_) observer_(sim_, phase);
-  if (sim_.time() > setup_.timeLimit) {
+  if (sim_.time() > timeLimit_) {
     finish(GraspOutcome::kTimeout,
-           "simulated time passed the limit of " + std::to_string(setup_.timeLimit) + " s");
+           "simulated time passed the limit of " + std::to_string(timeLimit_) + " s");
     return false;
   }
   return true;
+}
+
+Q TrialRun::closingSpeedLimits(const rw::models::Device& device) const {
+  const trial::TrialProtocol& protocol = setup_.protocol;
+  const bool capped = protocol.closingSpeed > 0.0 || protocol.closingAngularSpeed > 0.0;
+  if (!setup_.clampToVelocityLimits && !capped) return Q();
+  const auto& tree = dwc_.workcell().frames();
+  const auto& active = device.activeJoints();
+  constexpr double kNone = std::numeric_limits<double>::infinity();
+  Q limits = setup_.clampToVelocityLimits
+                 ? device.velocityLimits()
+                 : Q::Constant(static_cast<Eigen::Index>(active.size()), kNone);
+  for (std::size_t i = 0; i < active.size(); ++i) {
+    const bool prismatic = tree.frame(active[i]).type() == rw::kinematics::FrameType::kPrismatic;
+    const double cap = prismatic ? protocol.closingSpeed : protocol.closingAngularSpeed;
+    auto& limit = limits[static_cast<Eigen::Index>(i)];
+    if (cap > 0.0) limit = std::min(limit, cap);
+  }
+  return limits;
 }
 
 bool TrialRun::close() {
@@ -541,7 +570,7 @@ GraspTrialResult TrialRun::run(const rw::kinematics::State& initial) {
   sim_.reset(state);
   if (grasp_.tauMax.size() > 0) sim_.setMotorForceLimits(data_.hand, grasp_.tauMax);
   pd_.reset(grasp_.qOpen);
-  if (setup_.clampToVelocityLimits) pd_.setVelocityLimits(device.velocityLimits());
+  if (const Q limits = closingSpeedLimits(device); limits.size() > 0) pd_.setVelocityLimits(limits);
   pd_.setTarget(grasp_.qClosed);
   if (!close()) return withMessages();
   result_.qGrasp = sim_.jointPositions(data_.hand);

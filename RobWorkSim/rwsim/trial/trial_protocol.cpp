@@ -13,6 +13,7 @@
 #include "rw/common/xml_attributes.hpp"
 #include "rw/common/xml_reader.hpp"
 #include "rw/common/xml_tree.hpp"
+#include "rwsim/control/ramp_trajectory.hpp"
 
 namespace rwsim::trial {
 
@@ -28,9 +29,10 @@ constexpr std::array<std::string_view, 2> kMotions{"translation", "rotation"};
 constexpr std::array<std::string_view, 2> kSuccessRules{"hand-contact", "two-fingers"};
 
 // Typed attributes, for a precise message on a schema datatype error.
-const std::array<rw::common::AttributeRule, 15> kValueRules{{
+const std::array<rw::common::AttributeRule, 16> kValueRules{{
     {"enabled", rw::common::ValueKind::kBoolean},
     {"force"},
+    {"angularSpeed"},
     {"height"},
     {"speed"},
     {"acceleration"},
@@ -147,6 +149,8 @@ TrialProtocol readProtocol(const XmlElement& root, DiagnosticSink& sink) {
       } else if (rule && part.has("force")) {
         read.error(part, "attribute force: only rule=\"force\" takes a force");
       }
+      readPositive(read, part, "speed", false, false, protocol.closingSpeed);
+      readPositive(read, part, "angularSpeed", false, false, protocol.closingAngularSpeed);
     } else if (part.name == "Phases") {
       protocol.phases.clear();
       for (const XmlElement& phase : part.children)
@@ -179,6 +183,11 @@ void checkProtocol(const TrialProtocol& protocol) {
   require(protocol.closing == ClosingRule::kRest || positive(protocol.gripForce),
           "the closing force threshold must be a finite number > 0 N, not " +
               number(protocol.gripForce));
+  require(nonNegative(protocol.closingSpeed),
+          "the closing speed must be >= 0 m/s (0: no cap), not " + number(protocol.closingSpeed));
+  require(nonNegative(protocol.closingAngularSpeed),
+          "the closing angular speed must be >= 0 rad/s (0: no cap), not " +
+              number(protocol.closingAngularSpeed));
   for (std::size_t i = 0; i < protocol.phases.size(); ++i) {
     const ProtocolPhase& p = protocol.phases[i];
     const std::string at = "phase " + std::to_string(i + 1) + ": ";
@@ -203,6 +212,11 @@ std::string describe(const TrialProtocol& protocol) {
   text += protocol.closing == ClosingRule::kRest
               ? "; close until rest"
               : "; close until rest or " + number(protocol.gripForce) + " N";
+  // Nothing is added for an uncapped closing, so the hashes of earlier protocols stay.
+  if (protocol.closingSpeed > 0.0) text += " at most " + number(protocol.closingSpeed) + " m/s";
+  if (protocol.closingAngularSpeed > 0.0) {
+    text += " at most " + number(protocol.closingAngularSpeed) + " rad/s";
+  }
   for (const ProtocolPhase& p : protocol.phases) {
     switch (p.kind) {
       case PhaseKind::kLift:
@@ -227,6 +241,17 @@ std::string describe(const TrialProtocol& protocol) {
   text += protocol.success == SuccessRule::kHandContact ? "; held by hand contact"
                                                         : "; held by two fingers";
   return text;
+}
+
+double phasesDuration(const TrialProtocol& protocol) {
+  double total = 0.0;
+  for (const ProtocolPhase& p : protocol.phases) {
+    total += p.kind == PhaseKind::kShake
+                 ? p.cycles / p.frequency
+                 : control::RampProfile(p.distance, p.speed, p.acceleration).duration();
+    total += p.settle;
+  }
+  return total;
 }
 
 std::string protocolHash(const TrialProtocol& protocol) {

@@ -91,6 +91,11 @@ struct TrialProtocol {
   ClosingRule closing = ClosingRule::kRest;
   /// kForceThreshold: the total normal force of the hand on one object that ends closing, N.
   double gripForce = 0.0;
+  /// The fastest a prismatic finger joint closes, m/s (the controller's command is clamped to
+  /// it for the whole trial); 0: no cap (the paper's PD closing at the hand's force limit).
+  double closingSpeed = 0.0;
+  /// The same for revolute finger joints, rad/s; 0: no cap.
+  double closingAngularSpeed = 0.0;
   /// The motion after closing, in order (the paper: one lift of 10 cm at 0.5 m/s, 1 m/s^2, then
   /// 0.2 s standing still).
   std::vector<ProtocolPhase> phases = {ProtocolPhase{}};
@@ -107,14 +112,18 @@ struct TrialProtocol {
 };
 
 /// @throws std::invalid_argument naming the field unless every number is finite and in range
-/// (distances, speeds, accelerations, frequencies, amplitudes > 0; settle and gripForce >= 0;
-/// cycles a positive multiple of 0.5; a non-zero axis).
+/// (distances, speeds, accelerations, frequencies, amplitudes > 0; settle, gripForce and the
+/// closing speeds >= 0; cycles a positive multiple of 0.5; a non-zero axis).
 void checkProtocol(const TrialProtocol& protocol);
 
 /// One line that tells protocols apart (every value in shortest exact form, SI units), e.g.
 /// "gravity on; close until rest; lift 0.1 m at 0.5 m/s 1 m/s^2, settle 0.2 s; held by hand
 /// contact". The name is not part of it.
 std::string describe(const TrialProtocol& protocol);
+
+/// Simulated time the phases after closing take, s: each phase's motion (a ramp's time, a
+/// shake's cycles / frequency) and its settle.
+double phasesDuration(const TrialProtocol& protocol);
 
 /// 16 hex digits: FNV-1a of describe(protocol) (run.csv's protocol_hash).
 std::string protocolHash(const TrialProtocol& protocol);
