@@ -1,8 +1,9 @@
 #include "visgrab/importers/json_value.hpp"
 
+#include <charconv>
 #include <cmath>
-#include <cstdlib>
 #include <string>
+#include <system_error>
 
 #include "visgrab/importers/nd_array.hpp"
 
@@ -38,7 +39,8 @@ constexpr int kMaxDepth = 64;
 
 class JsonParser {
  public:
-  JsonParser(std::string_view text, const std::string& name) : text_(text), name_(name) {}
+  JsonParser(std::string_view text, const std::string& name, std::size_t maxValues)
+      : text_(text), name_(name), maxValues_(maxValues) {}
 
   JsonValue document() {
     JsonValue v = value(0);
@@ -74,6 +76,10 @@ class JsonParser {
   JsonValue value(int depth) {
     if (depth > kMaxDepth) fail("nested more than " + std::to_string(kMaxDepth) + " deep");
     skipSpace();
+    if (++values_ > maxValues_) {
+      fail("more than " + std::to_string(maxValues_) +
+           " JSON values; a grasp file this large is not read (split it)");
+    }
     JsonValue v;
     v.line = line_;
     v.column = static_cast<int>(at_ - lineStart_) + 1;
@@ -171,9 +177,14 @@ class JsonParser {
       if (peek() == '+' || peek() == '-') ++at_;
       if (!digits()) fail("expected digits in the exponent");
     }
-    const std::string literal(text_.substr(start, at_ - start));
-    const double value = std::strtod(literal.c_str(), nullptr);
-    if (!std::isfinite(value)) fail("number " + literal + " is out of range");
+    // from_chars, not strtod: the same digits read the same whatever the program's locale.
+    const std::string_view literal = text_.substr(start, at_ - start);
+    double value = 0.0;
+    const auto [end, error] =
+        std::from_chars(literal.data(), literal.data() + literal.size(), value);
+    if (error != std::errc() || end != literal.data() + literal.size() || !std::isfinite(value)) {
+      fail("number " + std::string(literal) + " is out of range");
+    }
     return value;
   }
 
@@ -227,6 +238,7 @@ class JsonParser {
         out += c;
         continue;
       }
+      if (at_ >= text_.size()) fail("unterminated string");
       const char e = peek();
       ++at_;
       switch (e) {
@@ -274,12 +286,14 @@ class JsonParser {
   std::size_t at_ = 0;
   int line_ = 1;
   std::size_t lineStart_ = 0;
+  std::size_t maxValues_;
+  std::size_t values_ = 0;
 };
 
 }  // namespace
 
-JsonValue parseJson(std::string_view text, const std::string& name) {
-  return JsonParser(text, name).document();
+JsonValue parseJson(std::string_view text, const std::string& name, std::size_t maxValues) {
+  return JsonParser(text, name, maxValues).document();
 }
 
 }  // namespace visgrab::importers

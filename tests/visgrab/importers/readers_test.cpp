@@ -2,6 +2,7 @@
 // and every error path with its message.
 #include <gtest/gtest.h>
 
+
 #include <cmath>
 #include <string>
 #include <vector>
@@ -211,6 +212,19 @@ TEST(Json, ReadsTheGrammarStrictly) {
   EXPECT_EQ(errorOf([] { parseJson("1e999", "f"); }), "f:1:6: number 1e999 is out of range");
   EXPECT_EQ(errorOf([] { parseJson(std::string(100, '['), "f"); }),
             "f:1:66: nested more than 64 deep");
+  // Found by the json fuzzer's author: a backslash as the text's last byte.
+  EXPECT_EQ(errorOf([] { parseJson("\"abc\\", "f"); }), "f:1:6: unterminated string");
+  // Below a double's range too (strtod gave 0).
+  EXPECT_EQ(errorOf([] { parseJson("[1e-400]", "f"); }), "f:1:8: number 1e-400 is out of range");
+}
+
+TEST(Json, CapsTheNumberOfValues) {
+  // The array and its 3 numbers are 4 values: a cap of 4 reads it, 3 stops at the third number
+  // (the cap keeps a huge file from asking for many times the memory; kMaxJsonValues).
+  EXPECT_EQ(parseJson("[1,\n2, 3]", "f", 4).items.size(), 3u);
+  EXPECT_EQ(errorOf([] { parseJson("[1,\n2, 3]", "f", 3); }),
+            "f:2:4: more than 3 JSON values; a grasp file this large is not read (split it)");
+  EXPECT_EQ(kMaxJsonValues, 4194304u);
 }
 
 }  // namespace
