@@ -11,16 +11,15 @@
 #include <string>
 #include <string_view>
 
+#include "gripper_trial.hpp"
 #include "rw/math/rpy.hpp"
 #include "rwsim/loaders/dynamic_workcell_loader.hpp"
 #include "rwsim/simulator/grasp_quality.hpp"
-#include "sim_test_scenes.hpp"
 #include "support/test_support.hpp"
 
 namespace {
 
 using rw::math::Q;
-using rw::math::Transform3D;
 using rw::math::Vector3D;
 using rwsim::simulator::GraspParameters;
 using rwsim::simulator::GraspTrial;
@@ -28,11 +27,10 @@ using rwsim::simulator::GraspTrialResult;
 using rwsim::simulator::GraspTrialSetup;
 using rwsim::trial::GraspOutcome;
 using rwsim::trial::outcomeName;
-using visgrab::test::sim::SceneBuilder;
-
-Transform3D at(double x, double y, double z) {
-  return rw::math::makeTranslation(Vector3D(x, y, z));
-}
+using visgrab::test::sim::at;
+using visgrab::test::sim::gripperGrasp;
+using visgrab::test::sim::gripperScene;
+using visgrab::test::sim::gripperSetup;
 
 Q q(std::initializer_list<double> v) {
   Q out(static_cast<Eigen::Index>(v.size()));
@@ -41,30 +39,7 @@ Q q(std::initializer_list<double> v) {
   return out;
 }
 
-// --- Two-jaw gripper over a box on a table ---------------------------------------------------
-
-std::unique_ptr<rwsim::dynamics::DynamicWorkCell> gripperScene() {
-  SceneBuilder scene("gripper");
-  scene.addTable("Table", at(0, 0, -0.05), Vector3D(1, 1, 0.1));
-  scene.addBox("Box", at(0, 0, 0.05), Vector3D(0.06, 0.06, 0.1), 0.2);
-  // Jaw faces at |y| = 0.04 when open; the gripper is parked away and placed by the trial.
-  scene.addGripper(at(0.5, 0.5, 0.5), 0.05, 20.0);
-  return scene.build();
-}
-
-GraspTrialSetup gripperSetup() {
-  GraspTrialSetup setup;
-  setup.hand = "Gripper";
-  return setup;
-}
-
-GraspParameters gripperGrasp(const Transform3D& X_W_tcp) {
-  GraspParameters g;
-  g.X_W_tcp = X_W_tcp;  // TCP = the base frame: the jaws' centre
-  g.qOpen = q({0.0, 0.0});
-  g.qClosed = q({0.04, 0.04});
-  return g;
-}
+// --- Two-jaw gripper over a box on a table (gripper_trial.hpp) --------------------------------
 
 std::string describe(const GraspTrialResult& r) {
   return std::string(outcomeName(r.outcome)) + " (" + r.detail + "), Q_lift " +

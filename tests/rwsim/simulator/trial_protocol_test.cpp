@@ -12,6 +12,7 @@
 #include <string>
 
 #include "engine_steps.hpp"
+#include "gripper_trial.hpp"
 #include "rw/common/diagnostic.hpp"
 #include "rwsim/simulator/grasp_trial.hpp"
 #include "rwsim/simulator/simulator.hpp"
@@ -20,24 +21,22 @@
 
 namespace {
 
-using rw::math::Q;
 using rw::math::Transform3D;
 using rw::math::Vector3D;
-using rwsim::simulator::GraspParameters;
 using rwsim::simulator::GraspTrial;
 using rwsim::simulator::GraspTrialResult;
 using rwsim::simulator::GraspTrialSetup;
 using rwsim::trial::GraspOutcome;
 using rwsim::trial::PhaseKind;
 using rwsim::trial::TrialProtocol;
+using visgrab::test::sim::at;
+using visgrab::test::sim::gripperGrasp;
+using visgrab::test::sim::gripperScene;
+using visgrab::test::sim::gripperSetup;
 using visgrab::test::sim::kG;
 using visgrab::test::sim::SceneBuilder;
 
 std::filesystem::path protocolDir() { return visgrab::test::sourceDir() / "scenes/protocols"; }
-
-Transform3D at(double x, double y, double z) {
-  return rw::math::makeTranslation(Vector3D(x, y, z));
-}
 
 // The one message of the LoadError that parsing `xml` as "p.xml" throws.
 std::string loadError(const std::string& xml) {
@@ -222,15 +221,10 @@ TrialProtocol halfShake() {
 
 GraspTrialResult shakeTrial(double mass, double jawForce, const Transform3D& X_W_tcp) {
   const auto dwc = floatingBoxAndGripper(mass, jawForce);
-  GraspTrialSetup setup;
-  setup.hand = "Gripper";
+  GraspTrialSetup setup = gripperSetup();
   setup.protocol = halfShake();
   const GraspTrial trial(*dwc, setup);
-  GraspParameters g;
-  g.X_W_tcp = X_W_tcp;
-  g.qOpen = Q::Zero(2);
-  g.qClosed = Q::Constant(2, 0.04);
-  return trial.run(g, dwc->workcell().defaultState());
+  return trial.run(gripperGrasp(X_W_tcp), dwc->workcell().defaultState());
 }
 
 std::string describe(const GraspTrialResult& r) {
@@ -271,20 +265,12 @@ TEST(ShakeProtocol, ABoxBesideTheJawsIsMissed) {
 }
 
 TEST(ShakeProtocol, TheLiftProtocolFromItsFileGivesTheDefaultTrialBitForBit) {
-  SceneBuilder scene("gripper");
-  scene.addTable("Table", at(0, 0, -0.05), Vector3D(1, 1, 0.1));
-  scene.addBox("Box", at(0, 0, 0.05), Vector3D(0.06, 0.06, 0.1), 0.2);
-  scene.addGripper(at(0.5, 0.5, 0.5), 0.05, 20.0);
-  const auto dwc = scene.build();
-  GraspTrialSetup setup;
-  setup.hand = "Gripper";
+  const auto dwc = gripperScene();
+  GraspTrialSetup setup = gripperSetup();
   const GraspTrial plain(*dwc, setup);
   setup.protocol = rwsim::trial::loadTrialProtocol(protocolDir() / "lift.xml");
   const GraspTrial fromFile(*dwc, setup);
-  GraspParameters g;
-  g.X_W_tcp = at(0, 0, 0.06);
-  g.qOpen = Q::Zero(2);
-  g.qClosed = Q::Constant(2, 0.04);
+  const auto g = gripperGrasp(at(0, 0, 0.06));
   const auto a = plain.run(g, dwc->workcell().defaultState());
   const auto b = fromFile.run(g, dwc->workcell().defaultState());
   EXPECT_EQ(a.outcome, GraspOutcome::kStable) << describe(a);
