@@ -8,7 +8,8 @@ parameters changes (docs/validation.md, "Agreement with ACRONYM's labels").
 Makes the database and the grasp list once (`db from-acronym`, `import acronym`), then runs the
 2,000 grasps with scenes/protocols/shake.xml and with one parameter of it changed at a time, and
 prints one Markdown row per protocol: held share, agreement, kappa, user CPU seconds. Nothing is
-fitted: each row changes one value of the documented protocol.
+fitted: each row changes one value of the documented protocol, except the last, which takes every
+value of the public FleX grasping scene at once (docs/validation.md).
 """
 import argparse
 import csv
@@ -33,6 +34,17 @@ VARIANTS = [
     ("rotation 7.5 deg", [(r'amplitude="0.2617993877991494"', 'amplitude="0.1308996938995747"')]),
     ("rotation 30 deg", [(r'amplitude="0.2617993877991494"', 'amplitude="0.5235987755982988"')]),
     ("no rotation phase", [(r'\s*<Shake motion="rotation"[^>]*/>', '')]),
+    ("closing at most 0.2 m/s (franka_description's finger limit)",
+     [(r'force="20"/>', 'force="20" speed="0.2"/>')]),
+    ("closing at most 0.02 m/s (the FleX grasping scene's)",
+     [(r'force="20"/>', 'force="20" speed="0.02"/>')]),
+    # Not one change: every value of the public FleX grasping scene (docs/validation.md) at once.
+    ("the FleX grasping scene's values, all at once",
+     [(r'force="20"/>', 'force="20" speed="0.02"/>'),
+      (r'amplitude="0.02" frequency="5"\s+cycles="2"',
+       'amplitude="0.01" frequency="0.5" cycles="3"'),
+      (r'amplitude="0.2617993877991494"\s+frequency="2" cycles="2" settle="0.1"',
+       'amplitude="0.09817477042468103" frequency="0.5" cycles="3" settle="5"')]),
 ]
 
 
