@@ -236,8 +236,10 @@ class TrialRun {
         sim_(*engine_),
         pd_(data.controller->p, data.controller->d),
         dt_(sim_.timeStep()),
-        timeLimit_(std::max(setup.timeLimit,
-                            setup.closeTimeLimit + trial::phasesDuration(setup.protocol) + 1.0)) {}
+        timeLimit_(setup.timeLimit > 0.0
+                       ? setup.timeLimit
+                       : std::max(10.0, setup.closeTimeLimit +
+                                            trial::phasesDuration(setup.protocol) + 1.0)) {}
 
   GraspTrialResult run(const rw::kinematics::State& initial);
 
@@ -278,8 +280,8 @@ class TrialRun {
   trial::PhysicsEngine& sim_;
   control::PDController pd_;
   double dt_;
-  // setup_.timeLimit, or longer when the protocol's phases need it (closing's cap + phases +
-  // 1 s).
+  // setup_.timeLimit; unset, 10 s or longer when the protocol's phases need it (closing's cap +
+  // phases + 1 s).
   double timeLimit_;
   GraspTrialResult result_;
   std::string closingNote_;

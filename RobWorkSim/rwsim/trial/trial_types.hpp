@@ -66,8 +66,9 @@ struct GraspTrialSetup {
   TrialProtocol protocol;
   /// Drift of the object in the hand above which a held grasp is "slipped", m (RobWork: 1 cm).
   double slipThreshold = 0.01;
-  /// Simulated-time limit, s.
-  double timeLimit = 10.0;
+  /// Simulated-time limit, s (passing it ends the trial as kTimeout); 0 (the default): 10 s, or
+  /// longer when the protocol needs it (closeTimeLimit + trial::phasesDuration + 1 s).
+  double timeLimit = 0.0;
   /// Closing ends at the latest after this long (then the grasp is evaluated as it is), s.
   double closeTimeLimit = 5.0;
   /// Closing is not judged before this, s.
