@@ -9,6 +9,7 @@
 #include <limits>
 #include <string>
 
+#include "gripper_trial.hpp"
 #include "rw/common/diagnostic.hpp"
 #include "rwsim/simulator/grasp_trial.hpp"
 #include "rwsim/trial/trial_protocol.hpp"
@@ -16,15 +17,13 @@
 
 namespace {
 
-using rw::math::Q;
-using rw::math::Transform3D;
 using rw::math::Vector3D;
-using rwsim::simulator::GraspParameters;
 using rwsim::simulator::GraspTrial;
 using rwsim::simulator::GraspTrialResult;
 using rwsim::simulator::GraspTrialSetup;
 using rwsim::trial::GraspOutcome;
 using rwsim::trial::TrialProtocol;
+using visgrab::test::sim::at;
 
 constexpr const char* kCapped = R"(<TrialProtocol name="slow">
   <Gravity enabled="false"/>
@@ -91,9 +90,8 @@ TEST(ClosingSpeed, PhasesDurationIsEachPhasesMotionAndSettle) {
 // 1 cm from the box on each side when open, 20 N per jaw; sim_test_scenes.hpp).
 std::unique_ptr<rwsim::dynamics::DynamicWorkCell> boxBetweenJaws() {
   visgrab::test::sim::SceneBuilder scene("closing");
-  scene.addBox("Box", rw::math::makeTranslation(Vector3D(0, 0, 0)), Vector3D(0.06, 0.06, 0.06),
-               0.2);
-  scene.addGripper(rw::math::makeTranslation(Vector3D(0.5, 0.5, 0.5)), 0.05, 20.0);
+  scene.addBox("Box", at(0, 0, 0), Vector3D(0.06, 0.06, 0.06), 0.2);
+  scene.addGripper(at(0.5, 0.5, 0.5), 0.05, 20.0);
   return scene.build();
 }
 
@@ -128,14 +126,10 @@ struct Closing {
 
 Closing close(double speed, const rwsim::trial::ProtocolPhase& phase) {
   const auto dwc = boxBetweenJaws();
-  GraspTrialSetup setup;
-  setup.hand = "Gripper";
+  GraspTrialSetup setup = visgrab::test::sim::gripperSetup();
   setup.protocol = slowClosing(speed, phase);
   const GraspTrial trial(*dwc, setup);
-  GraspParameters g;
-  g.X_W_tcp = Transform3D::Identity();
-  g.qOpen = Q::Zero(2);
-  g.qClosed = Q::Constant(2, 0.04);
+  const auto g = visgrab::test::sim::gripperGrasp(at(0, 0, 0));
   Closing out;
   const auto device = dwc->findDevice("Gripper");
   const auto box = dwc->findBody("Box");
