@@ -7,8 +7,8 @@
 
 namespace visgrab::app {
 
-void addProtocolOption(CLI::App& command) {
-  command
+CLI::Option* addProtocolOption(CLI::App& command) {
+  return command
       .add_option("--protocol",
                   "The trial protocol: lift (the paper's, default), shake (ACRONYM's: no "
                   "gravity, close to a force, shake, held by two fingers) or a protocol file "

@@ -8,9 +8,9 @@
 
 namespace visgrab::app {
 
-/// `--protocol lift|shake|FILE` on `cmd` (run, benchmark, grasp, slurm): the trial protocol
-/// (docs/protocols.md).
-void addProtocolOption(CLI::App& command);
+/// `--protocol lift|shake|FILE` on `cmd` (run, benchmark, grasp, slurm, render): the trial
+/// protocol (docs/protocols.md), with the help of the commands that run trials.
+CLI::Option* addProtocolOption(CLI::App& command);
 
 /// The protocol file --protocol names (a name in DATA/protocols or a path; cli::protocolPath),
 /// nullopt without the option. The file is loaded once here, so that a bad one fails before

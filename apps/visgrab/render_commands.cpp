@@ -11,6 +11,8 @@
 #include <utility>
 
 #include "progress_reporter.hpp"
+#include "protocol_option.hpp"
+#include "rw/common/diagnostic.hpp"
 #include "rwsim/engines/engine_registry.hpp"
 #include "visgrab/database/database.hpp"
 #include "visgrab/grasp/grasp_resolver.hpp"
@@ -18,6 +20,7 @@
 #include "visgrab/render/offscreen_renderer.hpp"
 #include "visgrab/render/png_io.hpp"
 #include "visgrab/results/results_file.hpp"
+#include "visgrab/results/run_protocol.hpp"
 #include "visgrab/session/grasp_order.hpp"
 #include "visgrab/session/scene_loader.hpp"
 #include "visgrab/session/scene_session.hpp"
@@ -68,7 +71,30 @@ struct RenderRequest {
   fs::path handFile;
   /// The engine the trials replay on: --engine, else the run's (run.csv), else ODE.
   std::string engine;
+  /// The protocol the trials replay with: the run's (results::replayProtocol), else --protocol,
+  /// else the lift.
+  rwsim::trial::TrialProtocol protocol;
 };
+
+/// The protocol of the trials render replays: with --results the run's (--protocol, if given,
+/// must be it), else --protocol, else the lift.
+/// @throws std::runtime_error naming the run when its protocol is not found or --protocol is
+/// another; UsageError, rw::common::LoadError as protocolOption.
+rwsim::trial::TrialProtocol replayedProtocol(const Arguments& a,
+                                             const std::optional<results::RunResults>& run) {
+  const std::optional<fs::path> given = protocolOption(a);
+  if (!run) {
+    return given ? rwsim::trial::loadTrialProtocol(*given) : rwsim::trial::TrialProtocol::lift();
+  }
+  try {
+    return results::replayProtocol(run->sources, dataFolder(a), given);
+  } catch (const rw::common::LoadError&) {
+    throw;
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error("cannot replay the trials of " + *a.option("results") + ": " +
+                             e.what());
+  }
+}
 
 // --scene and --out are required options of the CLI11 command (addRenderCommands).
 RenderRequest parseRenderArguments(const Arguments& a) {
@@ -113,12 +139,9 @@ RenderRequest parseRenderArguments(const Arguments& a) {
   }
   // The trials replay in the database the run used, or not at all.
   if (run) database::requireRecordedDatabase(dbPath, run->sources.databaseHash);
-  if (run && !run->sources.protocol.empty() && (graspSpec || montage)) {
-    throw std::runtime_error(*a.option("results") + " ran its trials with the protocol \"" +
-                             run->sources.protocol +
-                             "\"; render replays the paper's lift only, so it would draw other "
-                             "trials than the run's");
-  }
+  // ... and with the protocol the run used, or not at all (the scene alone needs none).
+  rwsim::trial::TrialProtocol protocol;
+  if (graspSpec || montage || a.option("protocol")) protocol = replayedProtocol(a, run);
   std::vector<fs::path> graspFiles;
   for (const auto& g : a.values("grasps")) graspFiles.emplace_back(g);
   if (graspFiles.empty() && run) {
@@ -166,18 +189,20 @@ RenderRequest parseRenderArguments(const Arguments& a) {
                          ? request.run->sources.engine
                          : std::string(rwsim::engines::kDefaultEngine);
   }
+  request.protocol = std::move(protocol);
   return request;
 }
 
-/// The scene to draw, loaded with the hand as the benchmark runs it, with its grasps in the
-/// benchmark's order (empty without grasp files).
+/// The scene to draw, loaded with the hand as the benchmark runs it (its trials with the
+/// request's engine and protocol), with its grasps in the benchmark's order (empty without grasp
+/// files).
 class RenderScene {
  public:
   explicit RenderScene(const RenderRequest& request)
       : db_(database::Database::openAny(request.dbPath)),
         entry_(&db_.scene(request.sceneId)),
         hand_(grasp::loadHandGraspSetup(request.handFile)),
-        loader_(db_, *hand_, request.engine),
+        loader_(makeLoader(db_, *hand_, request)),
         session_(loader_, *entry_) {
     if (request.graspFiles.empty()) return;
     const auto contents = taskio::readGraspSources(request.graspFiles);
@@ -192,6 +217,14 @@ class RenderScene {
   const std::vector<session::SceneGrasp>& grasps() const { return grasps_; }
 
  private:
+  static session::SceneLoader makeLoader(const database::Database& db,
+                                         const grasp::HandGraspSetup& hand,
+                                         const RenderRequest& request) {
+    session::SceneLoader loader(db, hand, request.engine);
+    loader.setProtocol(request.protocol);
+    return loader;
+  }
+
   database::Database db_;
   const database::SceneEntry* entry_;
   std::unique_ptr<grasp::HandGraspSetup> hand_;
@@ -360,7 +393,7 @@ void addRenderCommands(CommandLine& cli) {
       "closed, lifted) labelled with the outcome and qualities, contact forces as arrows; "
       "--overlay the grasp over the left stereo image; --montage every grasp of the scene "
       "coloured by outcome. --results takes the database, grasps, hand and outcomes from a "
-      "run.",
+      "run; its trials replay with the run's engine and protocol.",
       guarded(runRender));
   render.add_option("--scene", "The scene to draw")->required()->type_name("ID");
   render.add_option("--out", "The picture to write (PNG)")->required()->type_name("FILE.png");
@@ -403,6 +436,12 @@ void addRenderCommands(CommandLine& cli) {
   addEngineOption(render)->description(
       "The physics engine the trials replay on (default: the one the --results run recorded, "
       "else ode): ode or mujoco (when built)");
+  addProtocolOption(render)->description(
+      "The trial protocol the trials replay with: lift, a protocol of the data folder's "
+      "protocols/ or a file. Default: the one the --results run recorded (the lift, or its "
+      "protocols/NAME.xml when that has the recorded hash), else the lift. With --results it "
+      "must have the run's protocol_hash; a run whose protocol is not in protocols/ needs the "
+      "file it ran with");
   addDataOption(render);
   addQuietFlag(render);
 }

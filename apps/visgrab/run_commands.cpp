@@ -142,6 +142,7 @@ analysis::ShowcaseDrawer pictureDrawer(const Arguments& a, int threads, bool qui
   if (a.flag("no-pictures")) return {};
   view::ReportPictureOptions options;
   options.threads = threads;
+  options.data = dataFolder(a);  // its protocols/: the protocol of a run other than the lift's
   if (!quiet) {
     auto reporter = std::make_shared<ProgressReporter>("report pictures", "pictures");
     options.progress = [reporter](int done, int total) { reporter->update(done, total); };
@@ -402,6 +403,10 @@ void addRunCommands(CommandLine& cli) {
       ->check(integerAtLeast(0));
   addThreadsOption(analyze);
   addFlag(analyze, "--no-pictures", "Leave the report's pictures out");
+  addDataOption(analyze)->description(
+      "The project's scene data, whose protocols/ the pictures of a run made with another "
+      "protocol than the lift replay with (default: $VISGRAB_DATA, else the installed "
+      "share/visgrab/scenes, else the source tree's scenes/)");
   addQuietFlag(analyze);
 }
 

@@ -6,9 +6,12 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
+#include "rwsim/trial/trial_protocol.hpp"
 #include "support/test_database.hpp"
 #include "support/test_support.hpp"
 #include "visgrab/render/png_io.hpp"
@@ -201,6 +204,184 @@ TEST_F(RenderCli, GraspNIsTheScenesNthRowOfTrialsCsv) {
       EXPECT_NE(r.output.find(", " + outcome + ", hand"), std::string::npos) << r.output;
     }
   }
+}
+
+// --- Runs made with another protocol than the lift ---------------------------------------------
+
+std::string readText(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+// `text` with its first `from` replaced by `to`.
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  const auto at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  if (at != std::string::npos) text.replace(at, from.size(), to);
+  return text;
+}
+
+// Two runs of the can's two grasps (render's "good" and "through"): one with the project's shake
+// (--protocol shake), one with a protocol file of its own outside the data folder ("myshake":
+// the shake 3 cm instead of 2), and a third protocol file, the shake with one value changed.
+class RenderProtocolCli : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = new visgrab::test::TempDir;
+    const auto base = visgrab::test::testDatabase().groundTruth(kScene).front().X_WO.translation();
+    std::string plan;
+    for (const auto& [id, above] : {std::pair{"good", 0.06}, std::pair{"high", 0.10}}) {
+      char line[256];
+      std::snprintf(line, sizeof line,
+                    "%s, known, %s, preshape, %.6f,%.6f,%.6f, 0,0,1,0, SDH_CYL\n", kScene, id,
+                    base.x(), base.y(), base.z() + above);
+      plan += line;
+    }
+    visgrab::test::writeFile(path("grasps.csv"), plan);
+    const std::string shake = readText(visgrab::test::sourceDir() / "scenes/protocols/shake.xml");
+    visgrab::test::writeFile(path("mine/myshake.xml"),
+                             replaced(replaced(shake, "name=\"shake\"", "name=\"myshake\""),
+                                      "amplitude=\"0.02\"", "amplitude=\"0.03\""));
+    visgrab::test::writeFile(path("changed.xml"), replaced(shake, "cycles=\"2\"", "cycles=\"3\""));
+    for (const auto& [out, protocol] :
+         {std::pair{"shake", std::string("shake")},
+          std::pair{"custom", shellQuoted(path("mine/myshake.xml"))}}) {
+      const RunResult r =
+          visgrab("run --db " + db() + " --grasps " + shellQuoted(path("grasps.csv")) +
+                  " --protocol " + protocol + " --out " + shellQuoted(path(out)) + " --quiet");
+      ASSERT_EQ(r.exitCode, 0) << r.output;
+    }
+  }
+  static void TearDownTestSuite() {
+    delete dir_;
+    dir_ = nullptr;
+  }
+  static fs::path path(const std::string& name) { return dir_->path() / name; }
+  static std::string results(const std::string& run) {
+    return " --results " + shellQuoted(path(run));
+  }
+  static std::string hashOf(const fs::path& protocol) {
+    return rwsim::trial::protocolHash(rwsim::trial::loadTrialProtocol(protocol));
+  }
+  // trials.csv's outcome of grasp `id` of `run`.
+  static std::string outcomeOf(const std::string& run, const std::string& id) {
+    for (const auto& t : visgrab::results::readResults(path(run)).trials) {
+      if (t.graspId == id) return std::string(rwsim::trial::outcomeName(t.outcome));
+    }
+    ADD_FAILURE() << "no grasp " << id << " in " << run;
+    return {};
+  }
+  // Renders `grasp` of `run` with `more` options; the picture is `out`.
+  static RunResult render(const std::string& run, const std::string& grasp, const std::string& more,
+                          const std::string& out) {
+    return visgrab("render" + results(run) + " --scene " + kScene + " --grasp " + grasp +
+                   " --size 120x90 " + more + " --out " + shellQuoted(path(out)));
+  }
+
+  static visgrab::test::TempDir* dir_;
+};
+
+visgrab::test::TempDir* RenderProtocolCli::dir_ = nullptr;
+
+// The shake run's grasps replay with the data folder's shake: the replay ends as trials.csv says
+// (its outcome in the closing line; a replay that differed in outcome or simulated time would say
+// "replayed as ... but the results say ...").
+TEST_F(RenderProtocolCli, AShakeRunReplaysWithTheShake) {
+  const auto run = visgrab::results::readResults(path("shake"));
+  ASSERT_EQ(run.sources.protocol, "shake");
+  for (const std::string id : {"good", "high"}) {
+    for (const std::string& given : {std::string(), std::string("--protocol shake")}) {
+      SCOPED_TRACE(id + " " + given);
+      const RunResult r = render("shake", id, given, "shake.png");
+      ASSERT_EQ(r.exitCode, 0) << r.output;
+      EXPECT_NE(r.output.find(", " + outcomeOf("shake", id) + ", hand"), std::string::npos)
+          << r.output;
+      EXPECT_EQ(r.output.find("replayed as"), std::string::npos) << r.output;
+      EXPECT_GT(visgrab::render::readPng(path("shake.png")).width, 120);
+    }
+  }
+  // The montage simulates nothing it has a record of, but replays with the shake all the same.
+  const RunResult montage =
+      visgrab("render" + results("shake") + " --scene " + kScene +
+              " --montage --size 120x90 --out " + shellQuoted(path("montage.png")));
+  ASSERT_EQ(montage.exitCode, 0) << montage.output;
+  EXPECT_NE(montage.output.find("2 grasps"), std::string::npos) << montage.output;
+}
+
+// A protocol file whose hash is not the run's is refused: exit 1, the file and both hashes
+// named, no picture. So is the lift for a shake run, and the shake for a lift run.
+TEST_F(RenderProtocolCli, AProtocolWithAnotherHashIsRefused) {
+  const std::string shakeHash = hashOf(visgrab::test::sourceDir() / "scenes/protocols/shake.xml");
+  struct Case {
+    std::string run;
+    std::string given;
+    std::string givenHash;
+    std::string runs;
+  };
+  const Case cases[] = {
+      {"shake", path("changed.xml").string(), hashOf(path("changed.xml")),
+       "the protocol \"shake\" (hash " + shakeHash + ")"},
+      {"shake", "lift", hashOf(visgrab::test::sourceDir() / "scenes/protocols/lift.xml"),
+       "the protocol \"shake\" (hash " + shakeHash + ")"},
+      {"custom", "shake", shakeHash,
+       "the protocol \"myshake\" (hash " + hashOf(path("mine/myshake.xml")) + ")"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.run + " --protocol " + c.given);
+    fs::remove(path("refused.png"));
+    const RunResult r = render(c.run, "good", "--protocol " + shellQuoted(c.given), "refused.png");
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    EXPECT_NE(r.output.find("cannot replay the trials of " + path(c.run).string()),
+              std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("has hash " + c.givenHash), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find(c.runs), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(path("refused.png")));
+  }
+}
+
+// A run made with a protocol file outside the data folder: refused without the file (naming the
+// protocol and its hash, asking for --protocol FILE), replayed with it.
+TEST_F(RenderProtocolCli, ACustomProtocolRunReplaysWithItsFile) {
+  const std::string hash = hashOf(path("mine/myshake.xml"));
+  RunResult r = render("custom", "good", "", "custom.png");
+  EXPECT_EQ(r.exitCode, 1) << r.output;
+  EXPECT_NE(r.output.find("the protocol \"myshake\" (hash " + hash + "), which cannot be found"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("pass --protocol FILE"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(path("custom.png")));
+  // The scene alone replays nothing: drawn.
+  r = visgrab("render" + results("custom") + " --scene " + kScene + " --size 120x90 --out " +
+              shellQuoted(path("custom-scene.png")));
+  EXPECT_EQ(r.exitCode, 0) << r.output;
+
+  for (const std::string id : {"good", "high"}) {
+    SCOPED_TRACE(id);
+    r = render("custom", id, "--protocol " + shellQuoted(path("mine/myshake.xml")), "custom.png");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find(", " + outcomeOf("custom", id) + ", hand"), std::string::npos)
+        << r.output;
+    EXPECT_EQ(r.output.find("replayed as"), std::string::npos) << r.output;
+  }
+}
+
+// The report draws the shake run's pictures with the data folder's shake, and leaves out the
+// custom run's, saying why.
+TEST_F(RenderProtocolCli, ReportPicturesUseTheRunsProtocol) {
+  RunResult r = visgrab("analyze " + shellQuoted(path("shake")) + " --bootstrap 0 --out " +
+                        shellQuoted(path("shake-report")));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_EQ(r.output.find("not drawn"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::is_empty(path("shake-report") / "images"));
+
+  r = visgrab("analyze " + shellQuoted(path("custom")) + " --bootstrap 0 --out " +
+              shellQuoted(path("custom-report")));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("not drawn: the run's trials ran the protocol \"myshake\""),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("which cannot be found"), std::string::npos) << r.output;
 }
 
 TEST_F(RenderCli, MistakesAreUsageErrors) {

@@ -9,6 +9,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "rw/common/number_text.hpp"
 #include "visgrab/analysis/report.hpp"
 #include "visgrab/render/srgb.hpp"
 
@@ -370,11 +371,17 @@ TrialPicture trialStrip(render::GlRenderer& renderer, const WorkcellDrawing& dra
   const TrialReplay replay =
       replayTrial(session.trial(), resolved.parameters, session.initialState());
   picture.outcome = replay.result.outcome;
-  if (grasp.record && grasp.record->outcome != replay.result.outcome) {
-    picture.note = "replayed as " + std::string(rwsim::trial::outcomeName(picture.outcome)) +
+  // Trials are deterministic: the run's trial ends with the same outcome at the same time.
+  if (grasp.record && (grasp.record->outcome != replay.result.outcome ||
+                       grasp.record->simulatedTime != replay.result.simulatedTime)) {
+    const auto said = [](GraspOutcome outcome, double time) {
+      return std::string(rwsim::trial::outcomeName(outcome)) + " after " +
+             rw::common::shortestText(time) + " s";
+    };
+    picture.note = "replayed as " + said(picture.outcome, replay.result.simulatedTime) +
                    " but the results say " +
-                   std::string(rwsim::trial::outcomeName(grasp.record->outcome)) +
-                   " (another build, hand or database than the run's?)";
+                   said(grasp.record->outcome, grasp.record->simulatedTime) +
+                   " (another build, hand, database or protocol than the run's?)";
   }
   picture.image = graspStrip(renderer, drawing, session, replay, title, options);
   return picture;

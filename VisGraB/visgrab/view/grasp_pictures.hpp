@@ -96,8 +96,9 @@ struct TrialPicture {
   visual::RgbImage image;
   /// The outcome of the replayed trial (or kInvalidContacts when the grasp cannot be placed).
   rwsim::trial::GraspOutcome outcome = rwsim::trial::GraspOutcome::kSimulationFailure;
-  /// Set when the replay's outcome differs from the grasp's trial record (another build, hand
-  /// or database than the run's), or why the grasp could not be placed.
+  /// Set when the replay's outcome or simulated time differs from the grasp's trial record
+  /// (another build, hand, database or protocol than the run's), or why the grasp could not be
+  /// placed.
   std::string note;
 };
 

@@ -15,6 +15,7 @@
 #include "visgrab/grasp/hand_grasp_setup.hpp"
 #include "visgrab/render/offscreen_renderer.hpp"
 #include "visgrab/render/png_io.hpp"
+#include "visgrab/results/run_protocol.hpp"
 #include "visgrab/session/grasp_order.hpp"
 #include "visgrab/session/scene_loader.hpp"
 #include "visgrab/session/scene_session.hpp"
@@ -156,16 +157,27 @@ void drawShowcases(std::vector<analysis::Showcase>& showcases,
   for (std::size_t r = 0; r < inputs.size(); ++r) {
     RunInputs& in = inputs[r];
     if (!in.problem.empty()) continue;
-    if (!runs[r].sources.protocol.empty()) {
-      in.problem = "the run's trials ran the protocol \"" + runs[r].sources.protocol +
-                   "\"; pictures replay the paper's lift only, so none are drawn";
+    const results::RunSources& sources = runs[r].sources;
+    // The trials replay with the protocol that ran them, or are not drawn.
+    rwsim::trial::TrialProtocol protocol;
+    if (!sources.protocol.empty() && options.data.empty()) {
+      in.problem = "the run's trials ran the protocol \"" + sources.protocol +
+                   "\" and no data folder is given to find it in, so none are drawn";
+      continue;
+    }
+    try {
+      protocol = results::replayProtocol(sources, options.data);
+    } catch (const results::ProtocolNotFoundError& e) {
+      in.problem = "the run's trials ran the protocol \"" + e.name() + "\" (hash " + e.hash() +
+                   "), which cannot be found: " + e.reason() + "; none are drawn";
       continue;
     }
     try {
       // The trials replay on the engine that ran them (run.csv; older runs were ODE's).
-      const std::string& engine = runs[r].sources.engine;
+      const std::string& engine = sources.engine;
       in.loader =
           std::make_unique<session::SceneLoader>(*in.db, *in.hand, engine.empty() ? "ode" : engine);
+      in.loader->setProtocol(std::move(protocol));
     } catch (const std::exception& e) {
       in.problem = std::string("cannot open the run's input: ") + e.what();
     }

@@ -13,6 +13,10 @@ namespace visgrab::view {
 struct ReportPictureOptions {
   /// Worker threads (each with its own offscreen context); the pictures do not depend on it.
   int threads = 1;
+  /// The scene data folder whose protocols/ holds the named trial protocols: a run made with a
+  /// protocol other than the lift is drawn with DATA/protocols/NAME.xml when that has the
+  /// recorded hash (results::replayProtocol); empty: such runs get no pictures.
+  std::filesystem::path data;
   /// Size of one of a strip's three panels, pixels.
   int width = 320;
   /// See width.
@@ -23,9 +27,10 @@ struct ReportPictureOptions {
 
 /// Draws each showcase's trial as graspStrip into reportDir/images/ (named after its column,
 /// group and role) and sets its image, simulating the trial again with the run's database, grasp
-/// files and hand as its run.csv records them (RunResults::sources). Where that is impossible
-/// (an older run without sources, a moved database, no OpenGL) the showcase gets a note instead,
-/// and the report is written without that picture.
+/// files, hand, engine and protocol as its run.csv records them (RunResults::sources; the
+/// protocol from options.data). Where that is impossible (an older run without sources, a moved
+/// database, a protocol not found, no OpenGL) the showcase gets a note instead, and the report
+/// is written without that picture.
 void drawShowcases(std::vector<analysis::Showcase>& showcases,
                    const std::vector<results::RunResults>& runs,
                    const std::filesystem::path& reportDir, const ReportPictureOptions& options);
