@@ -117,6 +117,16 @@ int run(int argc, char** argv) {
   }
   for (const auto& w : data.warnings) std::cerr << w << "\n";
   checkStartSelection(data, options);
+  if (!data.replayProblem.empty()) {
+    // No replay with another protocol than the run's: --grasp is refused, the window replays
+    // nothing.
+    if (options.grasp) {
+      std::cerr << "visgrab-viewer: error: cannot replay --grasp " << *options.grasp << ": "
+                << data.replayProblem << "\n";
+      return 1;
+    }
+    std::cerr << "visgrab-viewer: trials are not replayed: " << data.replayProblem << "\n";
+  }
   if (!haveDisplay()) {
     std::cerr << "visgrab-viewer: error: no display: set DISPLAY (or QT_QPA_PLATFORM), or run "
                  "under xvfb-run\n";
@@ -139,6 +149,10 @@ int run(int argc, char** argv) {
     if (!window.replayOutcome().isEmpty()) {
       std::cout << "grasp " << *options.grasp << ": " << window.replayOutcome().toStdString()
                 << "\n";
+    }
+    if (!window.replayNote().isEmpty()) {
+      std::cerr << "visgrab-viewer: grasp " << *options.grasp << ": "
+                << window.replayNote().toStdString() << "\n";
     }
     window.showMoment(ViewerWindow::Moment::kLifted);
   }

@@ -8,6 +8,7 @@
 #include "rw/common/diagnostic.hpp"
 #include "visgrab/database/database.hpp"
 #include "visgrab/results/results_file.hpp"
+#include "visgrab/results/run_protocol.hpp"
 
 namespace visgrab::viewer {
 
@@ -79,6 +80,12 @@ std::unique_ptr<CLI::App> makeViewerApp(ViewerOptions& options) {
       ->type_name("ID|N");
   app->add_option("--method", options.method, "Count --grasp among method M's grasps only")
       ->type_name("M");
+  app->add_option("--protocol", options.protocol,
+                  "The trial protocol replays use: lift, a protocol of the data folder's "
+                  "protocols/ or a file (default: the one the results recorded, found in the "
+                  "data folder's protocols/ by its name and hash, else the lift); with --results "
+                  "it must have the run's protocol_hash")
+      ->type_name("lift|NAME|FILE");
   app->add_option("--screenshot", options.screenshot,
                   "Render the 3-D view once (with --grasp: after lifting), save it as a PNG and "
                   "exit")
@@ -173,6 +180,26 @@ ViewerData loadViewerData(const ViewerOptions& options) {
     data.grasps = taskio::readGraspSources(graspFiles);
     for (const auto& d : data.grasps.rejected) data.warnings.push_back(d.format());
     for (const auto& d : data.grasps.warnings) data.warnings.push_back(d.format());
+  }
+
+  // Replays use the run's protocol, or none: a replay with another would show other trials.
+  std::optional<fs::path> protocol;
+  if (options.protocol) {
+    try {
+      protocol = cli::protocolPath(*options.protocol, dataFolder());
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(std::string("--protocol: ") + e.what());
+    }
+  }
+  if (data.results) {
+    try {
+      data.protocol = results::replayProtocol(sources, dataFolder(), protocol);
+    } catch (const results::ProtocolNotFoundError& e) {
+      data.replayProblem = e.what();
+    }
+  } else if (protocol) {
+    data.protocol = rwsim::trial::loadTrialProtocol(*protocol);
+    rwsim::trial::checkProtocol(data.protocol);
   }
   return data;
 }

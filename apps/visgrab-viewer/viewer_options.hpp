@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "rwsim/trial/trial_protocol.hpp"
 #include "visgrab/database/database.hpp"
 #include "visgrab/grasp/hand_grasp_setup.hpp"
 #include "visgrab/results/trial_record.hpp"
@@ -39,6 +40,8 @@ struct ViewerOptions {
   std::optional<std::string> grasp;
   /// --method: the method --grasp counts in (empty: all).
   std::string method;
+  /// --protocol: the trial protocol replays use (lift, a name in DATA/protocols or a file).
+  std::optional<std::string> protocol;
   /// --screenshot: save one frame of the 3-D view to this PNG and exit.
   std::optional<std::filesystem::path> screenshot;
   /// --size: the 3-D view's size in (device-independent) pixels.
@@ -78,14 +81,22 @@ struct ViewerData {
   std::optional<results::RunResults> results;
   /// The physics engine trials replay on: the run's (run.csv), else ODE.
   std::string engine = "ode";
+  /// The trial protocol trials replay with: the run's (results::replayProtocol), else
+  /// --protocol, else the lift.
+  rwsim::trial::TrialProtocol protocol;
+  /// Why no trial can be replayed (the run's protocol is not found); empty when they can.
+  std::string replayProblem;
   /// Problems that did not stop loading (rejected grasps, result warnings), one line each.
   std::vector<std::string> warnings;
 };
 
 /// Opens the database, the hand, the grasp files and the results `options` name (the results'
-/// recorded sources fill in what the options leave out).
-/// @throws UsageError when --grasp is given but no grasp files are known; rw::common::LoadError
-///   or std::runtime_error for inputs that cannot be read.
+/// recorded sources fill in what the options leave out), and finds the protocol replays use: a
+/// run's protocol that is not found sets replayProblem (the data can be browsed, no trial
+/// replayed).
+/// @throws UsageError when --grasp is given but no grasp files are known, or for an unknown
+///   --protocol name; rw::common::LoadError or std::runtime_error for inputs that cannot be read,
+///   and std::runtime_error for a --protocol that is not the run's (another hash).
 ViewerData loadViewerData(const ViewerOptions& options);
 
 }  // namespace visgrab::viewer

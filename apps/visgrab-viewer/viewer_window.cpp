@@ -282,8 +282,10 @@ void ViewerWindow::openScene(const std::string& id) {
   setWindowTitle("VisGraB viewer");
   {
     BusyCursor busy;
-    if (!loader_)
+    if (!loader_) {
       loader_ = std::make_unique<session::SceneLoader>(*data_.database, *data_.hand, data_.engine);
+      loader_->setProtocol(data_.protocol);
+    }
     session_ = std::make_unique<session::SceneSession>(*loader_, entry);
   }
   view_->setSession(session_.get());
@@ -294,7 +296,9 @@ void ViewerWindow::openScene(const std::string& id) {
   fillGraspTable();
   info_->setText(!data_.haveGraspFiles ? QString("no grasp files (give --grasps or --results)")
                  : grasps_.empty()     ? QString("the grasp files have no grasps for this scene")
-                                       : QString("select a grasp to replay its trial"));
+                 : !data_.replayProblem.empty()
+                     ? QString("trials are not replayed: the run's protocol is not found")
+                     : QString("select a grasp to replay its trial"));
   setWindowTitle(qs(entry.id) + " - VisGraB viewer");
   {
     const QSignalBlocker block(scenes_);
@@ -369,7 +373,11 @@ void ViewerWindow::graspSelected() {
   if (index >= grasps_.size()) return;
   const QString problem = replayGrasp(index);
   if (!problem.isEmpty()) {
-    statusBar()->showMessage(problem);
+    if (!data_.replayProblem.empty()) {
+      reportError("Cannot replay the trial", qs(data_.replayProblem));
+    } else {
+      statusBar()->showMessage(problem);
+    }
     return;
   }
   showFrame(0);
@@ -392,6 +400,13 @@ QString ViewerWindow::replayGrasp(std::size_t index) {
   const session::SceneGrasp& grasp = grasps_.at(index);
   const QString name = qs(grasp.request.method + " " + grasp.request.id);
   const view::DrawStyle noHand{false, true, std::nullopt};
+  if (!data_.replayProblem.empty()) {
+    // The run's protocol is not found: another protocol would replay other trials.
+    view_->showState(session_->initialState(), {}, noHand);
+    const QString reason = QString("%1 cannot be replayed: %2").arg(name, qs(data_.replayProblem));
+    info_->setText(reason.toHtmlEscaped());
+    return reason;
+  }
   const grasp::ResolvedGrasp resolved = session_->resolve(grasp.request);
   if (!resolved.placed()) {
     view_->showState(session_->initialState(), {}, noHand);
@@ -414,9 +429,15 @@ QString ViewerWindow::replayGrasp(std::size_t index) {
   }
   replayedGrasp_ = index;
   const GraspOutcome outcome = replay_->result.outcome;
-  if (grasp.record && grasp.record->outcome != outcome) {
-    replayNote_ = QString("the results say %1 (another build, hand or database than the run's?)")
-                      .arg(qs(std::string(rwsim::trial::outcomeName(grasp.record->outcome))));
+  // Trials are deterministic: the run's trial ends with the same outcome at the same time.
+  if (grasp.record && (grasp.record->outcome != outcome ||
+                       grasp.record->simulatedTime != replay_->result.simulatedTime)) {
+    replayNote_ =
+        QString(
+            "the results say %1 after %2 s (another build, hand, database or protocol than "
+            "the run's?)")
+            .arg(qs(std::string(rwsim::trial::outcomeName(grasp.record->outcome))))
+            .arg(grasp.record->simulatedTime);
   }
   if (!grasp.record) showReplayedOutcome(index);
   std::vector<SceneView::FramedPart> framed{{session_->initialState(), false}};

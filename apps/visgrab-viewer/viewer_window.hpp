@@ -55,6 +55,9 @@ class ViewerWindow : public QMainWindow {
   QString openGrasp(const std::string& spec, const std::string& method);
   /// The replayed trial's outcome with its qualities (outcomeCaption); empty without a replay.
   QString replayOutcome() const;
+  /// Why the replay may not be the run's trial (its outcome or simulated time is not the
+  /// results'); empty when it is, or without a replay or results.
+  QString replayNote() const { return replayNote_; }
   /// Shows a moment of the replayed trial (nothing without one).
   void showMoment(Moment moment);
   /// The 3-D view.

@@ -1,5 +1,6 @@
 // `visgrab-viewer` under Xvfb on the shared test database: a scene and a replayed grasp saved with
-// --screenshot (a real picture with the objects in the middle), and the command-line mistakes.
+// --screenshot (a real picture with the objects in the middle), replays of runs made with another
+// protocol than the lift, and the command-line mistakes.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -8,14 +9,21 @@
 #include <cstdint>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <numbers>
 #include <optional>
 #include <sstream>
 #include <string>
 #include <unordered_set>
 
+#include "rw/math/rpy.hpp"
 #include "support/test_database.hpp"
 #include "support/test_support.hpp"
 #include "visgrab/render/png_io.hpp"
+#include "visgrab/results/results_file.hpp"
+#include "visgrab/runner/benchmark_runner.hpp"
+#include "visgrab/taskio/grasp_list.hpp"
 #include "visgrab/view/cameras.hpp"
 
 namespace {
@@ -173,6 +181,117 @@ TEST(ViewerApp, ReplaysAGraspAndSavesTheMomentAfterLifting) {
   const auto image = readShot(shot);
   ASSERT_GE(image.width, kWidth);
   expectNotBlank(image);
+}
+
+// --- Runs made with another protocol than the lift -----------------------------------------------
+
+// Two runs of one grasp on the can (SDH_CYL pointing down, its TCP 6 cm above the can's base):
+// one with the project's shake, one with a protocol file outside the data folder ("myshake": the
+// shake 3 cm instead of 2).
+class ViewerProtocol : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = new visgrab::test::TempDir;
+    const rw::math::Vector3D base =
+        visgrab::test::testDatabase().groundTruth(kScene).front().X_WO.translation();
+    visgrab::grasp::GraspRequest g;
+    g.sceneId = kScene;
+    g.id = "g1";
+    g.method = "viewer_test";
+    g.kind = visgrab::grasp::GraspKind::kPreshape;
+    g.preshape = "SDH_CYL";
+    g.X_W_tcp = rw::math::rpyTransform(rw::math::Vector3D(0.0, std::numbers::pi, 0.0),
+                                       base + rw::math::Vector3D(0, 0, 0.06));
+    visgrab::taskio::writeGraspList({g}, path("grasps.txt"));
+    const fs::path shake = visgrab::test::sourceDir() / "scenes/protocols/shake.xml";
+    std::ifstream in(shake, std::ios::binary);
+    std::string text(std::istreambuf_iterator<char>(in), {});
+    for (const auto& [from, to] : {std::pair{"name=\"shake\"", "name=\"myshake\""},
+                                   std::pair{"amplitude=\"0.02\"", "amplitude=\"0.03\""}}) {
+      text.replace(text.find(from), std::string(from).size(), to);
+    }
+    visgrab::test::writeFile(path("mine/myshake.xml"), text);
+    for (const auto& [out, protocol] :
+         {std::pair{"shake", shake}, std::pair{"custom", path("mine/myshake.xml")}}) {
+      visgrab::runner::RunOptions options;
+      options.database = visgrab::test::testDatabase().root();
+      options.grasps = {path("grasps.txt")};
+      options.out = path(out);
+      options.hand = visgrab::test::sourceDir() / "scenes/hands/sdh/sdh.grasp.xml";
+      options.protocol = protocol;
+      visgrab::runner::runBenchmark(options);
+    }
+  }
+  static void TearDownTestSuite() {
+    delete dir_;
+    dir_ = nullptr;
+  }
+  static fs::path path(const std::string& name) { return dir_->path() / name; }
+  // The viewer's arguments for grasp 1 of `run`, with a screenshot `shot`.
+  static std::string replayArgs(const std::string& run, const std::string& more,
+                                const std::string& shot) {
+    return "--results " + shellQuoted(path(run)) + " --scene " + kScene + " --grasp 1 --size " +
+           std::to_string(kWidth) + "x" + std::to_string(kHeight) + " --screenshot " +
+           shellQuoted(path(shot)) + " " + more;
+  }
+  // trials.csv's outcome of the run's grasp.
+  static std::string outcomeOf(const std::string& run) {
+    const auto trials = visgrab::results::readResults(path(run)).trials;
+    EXPECT_EQ(trials.size(), 1u);
+    return trials.empty() ? std::string()
+                          : std::string(rwsim::trial::outcomeName(trials[0].outcome));
+  }
+
+  static visgrab::test::TempDir* dir_;
+};
+
+visgrab::test::TempDir* ViewerProtocol::dir_ = nullptr;
+
+// The shake run's grasp replays with the data folder's shake: its outcome and simulated time are
+// trials.csv's (else the viewer says "the results say ...").
+TEST_F(ViewerProtocol, ReplaysARunWithTheRunsProtocol) {
+  REQUIRE_XVFB(xvfb);
+  const RunResult r = viewerUnderXvfb(xvfb, replayArgs("shake", "", "shake.png"));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("grasp 1: " + outcomeOf("shake")), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("the results say"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("not replayed"), std::string::npos) << r.output;
+  expectNotBlank(readShot(path("shake.png")));
+
+  // A run made with a protocol file of its own replays with that file.
+  const RunResult custom = viewerUnderXvfb(
+      xvfb,
+      replayArgs("custom", "--protocol " + shellQuoted(path("mine/myshake.xml")), "custom.png"));
+  ASSERT_EQ(custom.exitCode, 0) << custom.output;
+  EXPECT_NE(custom.output.find("grasp 1: " + outcomeOf("custom")), std::string::npos)
+      << custom.output;
+  EXPECT_EQ(custom.output.find("the results say"), std::string::npos) << custom.output;
+}
+
+// Without the run's protocol nothing is replayed: --grasp is refused before any window opens
+// (exit 1, naming the protocol and asking for its file), and so is a --protocol of another hash.
+TEST_F(ViewerProtocol, RefusesToReplayWithoutTheRunsProtocol) {
+  const RunResult missing = viewer(replayArgs("custom", "", "refused.png"));
+  EXPECT_EQ(missing.exitCode, 1) << missing.output;
+  EXPECT_NE(missing.output.find("cannot replay --grasp 1: the run's trials ran the protocol "
+                                "\"myshake\""),
+            std::string::npos)
+      << missing.output;
+  EXPECT_NE(missing.output.find("pass --protocol FILE"), std::string::npos) << missing.output;
+  EXPECT_FALSE(fs::exists(path("refused.png")));
+
+  const RunResult other = viewer(replayArgs("shake", "--protocol lift", "refused.png"));
+  EXPECT_EQ(other.exitCode, 1) << other.output;
+  EXPECT_NE(other.output.find("lift.xml: the protocol \"lift\" has hash"), std::string::npos)
+      << other.output;
+  EXPECT_NE(other.output.find("the run's trials ran the protocol \"shake\""), std::string::npos)
+      << other.output;
+  EXPECT_FALSE(fs::exists(path("refused.png")));
+
+  const RunResult unknown = viewer(replayArgs("shake", "--protocol hop", "refused.png"));
+  EXPECT_EQ(unknown.exitCode, 2) << unknown.output;
+  EXPECT_NE(unknown.output.find("--protocol: unknown protocol \"hop\""), std::string::npos)
+      << unknown.output;
 }
 
 TEST(ViewerApp, CommandLineMistakesExitWith2AndNameTheOption) {
