@@ -285,9 +285,11 @@ input files. Iterating or indexing goes over the trials.
         std::vector<results::RunResults> runs;
         runs.reserve(dirs.size());
         for (const auto& dir : dirs) runs.push_back(readResults(dir, warnings));
-        py::gil_scoped_release release;
         view::ReportPictureOptions options;
         options.threads = threads;
+        // Its protocols/: the protocol of a run other than the lift's (visgrab.data_folder()).
+        options.data = py::module_::import("visgrab").attr("data_folder")().cast<fs::path>();
+        py::gil_scoped_release release;
         analysis::writeReport(
             runs, out, analysisOptions,
             pictures ? view::showcaseDrawer(options) : analysis::ShowcaseDrawer());

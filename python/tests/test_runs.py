@@ -306,3 +306,19 @@ def test_protocol_runs_as_the_cli_runs_it(runs, binary, test_db_path, tmp_path):
     with pytest.raises(ValueError, match='unknown protocol "wobble".*known: lift, shake'):
         visgrab.run(visgrab.Database(test_db_path), runs["grasps"], out=tmp_path / "w",
                     protocol="wobble")
+
+
+def test_analyze_draws_a_shake_runs_pictures_with_the_shake(runs, test_db_path, tmp_path):
+    """The report's pictures replay a run made with protocol="shake" with data_folder()'s
+    protocols/shake.xml (found by run.csv's name and hash), as `visgrab analyze` does: drawn
+    (a picture that cannot be drawn is left out), and not noted as differing from trials.csv."""
+    out = tmp_path / "shake"
+    visgrab.run(visgrab.Database(test_db_path), runs["grasps"], threads=2, out=out,
+                protocol="shake")
+    report = visgrab.analyze([out], out=tmp_path / "report", bootstrap=0)
+    html = open(report, encoding="utf-8").read()
+    images = sorted((tmp_path / "report" / "images").glob("*.png"))
+    assert images
+    for image in images:
+        assert f'src="images/{image.name}"' in html, image.name
+    assert "replayed as" not in html

@@ -390,7 +390,9 @@ def analyze(dirs, out, threads=None, pictures=True, ci_level=0.95, bootstrap=200
 
     The paper's analyses: CSV tables, report.md, report.html with SVG plots and (pictures=True,
     the CLI's default; False = --no-pictures) pictures of the best, a typical and a failed
-    grasp per method and condition. Every estimate gets a `ci_level` interval from a scene
+    grasp per method and condition (a run made with another protocol than the lift is drawn
+    with data_folder()'s protocols/NAME.xml when it has the recorded hash, as the CLI's
+    --data; docs/protocols.md). Every estimate gets a `ci_level` interval from a scene
     bootstrap of `bootstrap` resamples (--ci-level, --bootstrap; 0 = no intervals, no overall
     success rates and no comparisons), seeded with `seed` (--seed; None = the CLI's default):
     the same seed gives the same intervals with any `threads`. Returns the path of report.html.
