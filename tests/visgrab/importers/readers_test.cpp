@@ -2,7 +2,6 @@
 // and every error path with its message.
 #include <gtest/gtest.h>
 
-
 #include <cmath>
 #include <string>
 #include <vector>
