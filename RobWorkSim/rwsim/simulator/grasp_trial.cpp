@@ -250,6 +250,8 @@ class TrialRun {
   // The PD's speed limits: the device's (clampToVelocityLimits) and the protocol's closing
   // speeds, the smaller of both per joint; empty when neither applies.
   Q closingSpeedLimits(const rw::models::Device& device) const;
+  // One value per active joint of `device`: `prismatic` for prismatic joints, else `revolute`.
+  Q perJointType(const rw::models::Device& device, double prismatic, double revolute) const;
   bool gripForceReached() const;
   void noteClosingCap(const Q& v, const Q& restSpeed);
   bool runPhases();
@@ -314,35 +316,34 @@ bool TrialRun::advance(std::string_view phase) {
   return true;
 }
 
+Q TrialRun::perJointType(const rw::models::Device& device, double prismatic,
+                         double revolute) const {
+  const auto& tree = dwc_.workcell().frames();
+  const auto& active = device.activeJoints();
+  Q values(static_cast<Eigen::Index>(active.size()));
+  for (std::size_t i = 0; i < active.size(); ++i) {
+    values[static_cast<Eigen::Index>(i)] =
+        tree.frame(active[i]).type() == rw::kinematics::FrameType::kPrismatic ? prismatic
+                                                                              : revolute;
+  }
+  return values;
+}
+
 Q TrialRun::closingSpeedLimits(const rw::models::Device& device) const {
   const trial::TrialProtocol& protocol = setup_.protocol;
   const bool capped = protocol.closingSpeed > 0.0 || protocol.closingAngularSpeed > 0.0;
-  if (!setup_.clampToVelocityLimits && !capped) return Q();
-  const auto& tree = dwc_.workcell().frames();
-  const auto& active = device.activeJoints();
+  if (!capped) return setup_.clampToVelocityLimits ? device.velocityLimits() : Q();
+  // A speed of 0 caps nothing.
   constexpr double kNone = std::numeric_limits<double>::infinity();
-  Q limits = setup_.clampToVelocityLimits
-                 ? device.velocityLimits()
-                 : Q::Constant(static_cast<Eigen::Index>(active.size()), kNone);
-  for (std::size_t i = 0; i < active.size(); ++i) {
-    const bool prismatic = tree.frame(active[i]).type() == rw::kinematics::FrameType::kPrismatic;
-    const double cap = prismatic ? protocol.closingSpeed : protocol.closingAngularSpeed;
-    auto& limit = limits[static_cast<Eigen::Index>(i)];
-    if (cap > 0.0) limit = std::min(limit, cap);
-  }
-  return limits;
+  const auto cap = [](double speed) { return speed > 0.0 ? speed : kNone; };
+  const Q caps =
+      perJointType(device, cap(protocol.closingSpeed), cap(protocol.closingAngularSpeed));
+  return setup_.clampToVelocityLimits ? Q(caps.cwiseMin(device.velocityLimits())) : caps;
 }
 
 bool TrialRun::close() {
-  const auto& tree = dwc_.workcell().frames();
-  const auto& active = dwc_.device(data_.hand).device->activeJoints();
-  Q restSpeed(static_cast<Eigen::Index>(active.size()));
-  for (std::size_t i = 0; i < active.size(); ++i) {
-    restSpeed[static_cast<Eigen::Index>(i)] =
-        tree.frame(active[i]).type() == rw::kinematics::FrameType::kPrismatic
-            ? setup_.restSpeedPrismatic
-            : setup_.restSpeedRevolute;
-  }
+  const Q restSpeed = perJointType(*dwc_.device(data_.hand).device, setup_.restSpeedPrismatic,
+                                   setup_.restSpeedRevolute);
   double restSince = -1.0;
   while (true) {
     if (!advance("close")) return false;
