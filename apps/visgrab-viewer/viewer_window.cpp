@@ -429,9 +429,7 @@ QString ViewerWindow::replayGrasp(std::size_t index) {
   }
   replayedGrasp_ = index;
   const GraspOutcome outcome = replay_->result.outcome;
-  // Trials are deterministic: the run's trial ends with the same outcome at the same time.
-  if (grasp.record && (grasp.record->outcome != outcome ||
-                       grasp.record->simulatedTime != replay_->result.simulatedTime)) {
+  if (grasp.record && view::replayDiffers(*grasp.record, replay_->result)) {
     replayNote_ =
         QString(
             "the results say %1 after %2 s (another build, hand, database or protocol than "

@@ -371,9 +371,7 @@ TrialPicture trialStrip(render::GlRenderer& renderer, const WorkcellDrawing& dra
   const TrialReplay replay =
       replayTrial(session.trial(), resolved.parameters, session.initialState());
   picture.outcome = replay.result.outcome;
-  // Trials are deterministic: the run's trial ends with the same outcome at the same time.
-  if (grasp.record && (grasp.record->outcome != replay.result.outcome ||
-                       grasp.record->simulatedTime != replay.result.simulatedTime)) {
+  if (grasp.record && replayDiffers(*grasp.record, replay.result)) {
     const auto said = [](GraspOutcome outcome, double time) {
       return std::string(rwsim::trial::outcomeName(outcome)) + " after " +
              rw::common::shortestText(time) + " s";

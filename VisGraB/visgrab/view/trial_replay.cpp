@@ -64,4 +64,9 @@ TrialReplay replayTrial(const rwsim::simulator::GraspTrial& trial,
   return replay;
 }
 
+bool replayDiffers(const results::TrialRecord& record,
+                   const rwsim::simulator::GraspTrialResult& replayed) {
+  return record.outcome != replayed.outcome || record.simulatedTime != replayed.simulatedTime;
+}
+
 }  // namespace visgrab::view

@@ -7,6 +7,7 @@
 #include "rw/kinematics/state.hpp"
 #include "rw/math/types.hpp"
 #include "rwsim/simulator/grasp_trial.hpp"
+#include "visgrab/results/trial_record.hpp"
 
 namespace visgrab::view {
 
@@ -56,5 +57,11 @@ TrialReplay replayTrial(const rwsim::simulator::GraspTrial& trial,
                         const rwsim::simulator::GraspParameters& grasp,
                         const rw::kinematics::State& initial, double interval = 0.02,
                         double minForce = 1e-3);
+
+/// True when a replay is not the recorded trial: trials are deterministic, so the run's trial
+/// ends with the same outcome at the same simulated time; a difference means another build,
+/// hand, database or protocol than the run's.
+bool replayDiffers(const results::TrialRecord& record,
+                   const rwsim::simulator::GraspTrialResult& replayed);
 
 }  // namespace visgrab::view
