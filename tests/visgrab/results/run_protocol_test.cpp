@@ -5,11 +5,10 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
 
 #include "rw/common/diagnostic.hpp"
+#include "rw/common/text_file.hpp"
 #include "support/test_support.hpp"
 #include "visgrab/results/run_protocol.hpp"
 
@@ -21,13 +20,6 @@ using rwsim::trial::TrialProtocol;
 using visgrab::results::ProtocolNotFoundError;
 using visgrab::results::replayProtocol;
 using visgrab::results::RunSources;
-
-std::string readFile(const fs::path& file) {
-  std::ifstream in(file);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
 
 fs::path projectProtocol(const std::string& name) {
   return visgrab::test::sourceDir() / "scenes/protocols" / (name + ".xml");
@@ -63,7 +55,8 @@ class RunProtocol : public ::testing::Test {
     }
     custom_ = visgrab::test::writeFile(
         dir_.path() / "elsewhere/my-shake.xml",
-        replaced(replaced(readFile(projectProtocol("shake")), "name=\"shake\"", "name=\"myshake\""),
+        replaced(replaced(rw::common::readTextFileOrThrow(projectProtocol("shake")),
+                          "name=\"shake\"", "name=\"myshake\""),
                  "amplitude=\"0.02\"", "amplitude=\"0.03\""));
   }
 
@@ -100,8 +93,8 @@ TEST_F(RunProtocol, ANamedProtocolIsFoundInTheDataFolderByItsNameAndHash) {
   EXPECT_EQ(found, shake);
   EXPECT_FALSE(found.gravity);
   // Given, with the same hash: a renamed copy of the file does as well.
-  const fs::path copy =
-      visgrab::test::writeFile(dir_.path() / "copy.xml", readFile(projectProtocol("shake")));
+  const fs::path copy = visgrab::test::writeFile(
+      dir_.path() / "copy.xml", rw::common::readTextFileOrThrow(projectProtocol("shake")));
   EXPECT_EQ(replayProtocol(run, data_, copy), shake);
 }
 
@@ -155,7 +148,8 @@ TEST_F(RunProtocol, ACustomProtocolNeedsItsFile) {
   // In the data folder under its name but with one value changed since: not found, with the
   // file's hash.
   const fs::path changed = visgrab::test::writeFile(
-      data_ / "protocols/myshake.xml", replaced(readFile(custom_), "cycles=\"2\"", "cycles=\"3\""));
+      data_ / "protocols/myshake.xml",
+      replaced(rw::common::readTextFileOrThrow(custom_), "cycles=\"2\"", "cycles=\"3\""));
   const std::string changedHash = protocolHash(rwsim::trial::loadTrialProtocol(changed));
   try {
     replayProtocol(run, data_);
