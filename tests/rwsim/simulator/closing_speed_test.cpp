@@ -1,7 +1,8 @@
 // The protocol's closing speed (<Closing speed=... angularSpeed=...>, docs/protocols.md): read,
 // described and checked; in a trial the jaws close no faster than the cap, so they reach a
-// floating box after (gap / speed) s, as kinematics says; and a protocol whose phases outlast
-// the trial's 10 s time limit gets the time it needs (phasesDuration, worked by hand).
+// floating box after (gap / speed) s, as kinematics says; with clampToVelocityLimits the
+// smaller of the device's velocity limit and the cap sets that speed; and a protocol whose phases
+// outlast the trial's 10 s time limit gets the time it needs (phasesDuration, worked by hand).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -86,12 +87,15 @@ TEST(ClosingSpeed, PhasesDurationIsEachPhasesMotionAndSettle) {
   EXPECT_NEAR(rwsim::trial::phasesDuration(p), 2 * (3 / 0.5 + 5), 1e-12);
 }
 
+constexpr double kNoLimit = std::numeric_limits<double>::infinity();
+
 // A 6 cm box of 0.2 kg floating at the origin and the two-jaw gripper around it (jaw faces
-// 1 cm from the box on each side when open, 20 N per jaw; sim_test_scenes.hpp).
-std::unique_ptr<rwsim::dynamics::DynamicWorkCell> boxBetweenJaws() {
+// 1 cm from the box on each side when open, 20 N per jaw, `jawLimit` m/s per jaw as the
+// device's velocity limit; sim_test_scenes.hpp).
+std::unique_ptr<rwsim::dynamics::DynamicWorkCell> boxBetweenJaws(double jawLimit) {
   visgrab::test::sim::SceneBuilder scene("closing");
   scene.addBox("Box", at(0, 0, 0), Vector3D(0.06, 0.06, 0.06), 0.2);
-  scene.addGripper(at(0.5, 0.5, 0.5), 0.05, 20.0);
+  scene.addGripper(at(0.5, 0.5, 0.5), 0.05, 20.0, jawLimit);
   return scene.build();
 }
 
@@ -124,10 +128,14 @@ struct Closing {
   double fastestJaw = 0.0;   // largest |joint speed| of a jaw over the trial, m/s
 };
 
-Closing close(double speed, const rwsim::trial::ProtocolPhase& phase) {
-  const auto dwc = boxBetweenJaws();
+// A trial closing at most `speed` m/s (the protocol's cap; 0: none) on jaws whose device limit
+// is `jawLimit` m/s, which the trial's PD obeys when `clamp` (clampToVelocityLimits).
+Closing close(double speed, const rwsim::trial::ProtocolPhase& phase, double jawLimit = kNoLimit,
+              bool clamp = false) {
+  const auto dwc = boxBetweenJaws(jawLimit);
   GraspTrialSetup setup = visgrab::test::sim::gripperSetup();
   setup.protocol = slowClosing(speed, phase);
+  setup.clampToVelocityLimits = clamp;
   const GraspTrial trial(*dwc, setup);
   const auto g = visgrab::test::sim::gripperGrasp(at(0, 0, 0));
   Closing out;
@@ -165,6 +173,42 @@ TEST(ClosingSpeed, JawsReachTheBoxAfterTheGapOverTheCap) {
   EXPECT_EQ(free.result.outcome, GraspOutcome::kStable) << free.result.detail;
   EXPECT_LT(free.firstTouch, 0.05);
   EXPECT_GT(free.fastestJaw, 0.2);
+}
+
+TEST(ClosingSpeed, TheDevicesLimitWinsWhenItIsBelowTheCap) {
+  // Jaws limited to 0.01 m/s by the device, the protocol's cap 0.02 m/s: clamped, the PD
+  // commands min(0.02, 0.01) = 0.01 m/s, so the 1 cm gap takes 1 s, and the first contact comes
+  // with the jaw between 9.5 and 10 mm along (contact margin 0.5 mm, as above), at q / 0.01 s:
+  // between 0.95 and 1 s, twice the 0.5 s the cap alone gives.
+  const Closing limited = close(0.02, pull(), 0.01, true);
+  EXPECT_EQ(limited.result.outcome, GraspOutcome::kStable) << limited.result.detail;
+  EXPECT_GE(limited.qTouch, 0.01 - 0.0005 - 1e-9);
+  EXPECT_LE(limited.qTouch, 0.01 + 1e-4);
+  EXPECT_NEAR(limited.firstTouch, limited.qTouch / 0.01, 0.0051);
+  EXPECT_GT(limited.firstTouch, 0.94);
+  EXPECT_LE(limited.fastestJaw, 0.01 * (1 + 1e-6));
+  // It closes at the limit, not below it (the motor reaches 0.01 m/s in 0.05 ms, as above).
+  EXPECT_GT(limited.fastestJaw, 0.01 * (1 - 1e-3));
+  // The same jaws unclamped (RobWork's default) ignore the device's limit: the cap's 0.5 s.
+  const Closing unclamped = close(0.02, pull(), 0.01, false);
+  EXPECT_EQ(unclamped.result.outcome, GraspOutcome::kStable) << unclamped.result.detail;
+  EXPECT_NEAR(unclamped.firstTouch, unclamped.qTouch / 0.02, 0.0051);
+  EXPECT_LT(unclamped.firstTouch, 0.51);
+  EXPECT_GT(unclamped.fastestJaw, 0.02 * (1 - 1e-3));
+}
+
+TEST(ClosingSpeed, TheCapWinsWhenItIsBelowTheDevicesLimit) {
+  // Jaws limited to 0.04 m/s by the device, the protocol's cap 0.02 m/s: clamped, the PD
+  // commands min(0.02, 0.04) = 0.02 m/s (the PD alone would ask 10/s * 4 cm = 0.4 m/s), so the
+  // first contact comes at q / 0.02 s, between 0.475 and 0.5 s, and no jaw passes 0.02 m/s.
+  const Closing capped = close(0.02, pull(), 0.04, true);
+  EXPECT_EQ(capped.result.outcome, GraspOutcome::kStable) << capped.result.detail;
+  EXPECT_GE(capped.qTouch, 0.01 - 0.0005 - 1e-9);
+  EXPECT_LE(capped.qTouch, 0.01 + 1e-4);
+  EXPECT_NEAR(capped.firstTouch, capped.qTouch / 0.02, 0.0051);
+  EXPECT_GT(capped.firstTouch, 0.47);
+  EXPECT_LE(capped.fastestJaw, 0.02 * (1 + 1e-6));
+  EXPECT_GT(capped.fastestJaw, 0.02 * (1 - 1e-3));
 }
 
 TEST(ClosingSpeed, ALongProtocolGetsTheTimeItNeeds) {

@@ -105,7 +105,7 @@ void SceneBuilder::addBody(const std::string& name, const Transform3D& X_W,
   });
 }
 
-void SceneBuilder::addGripper(const Transform3D& X_W, double gap, double force) {
+void SceneBuilder::addGripper(const Transform3D& X_W, double gap, double force, double velocity) {
   auto& wc = *wc_;
   const FrameId base = addFrame(wc, "Gripper.Base", FrameTree::kWorld, FrameType::kMovable, X_W);
   addGeometry(wc, base, "Housing", rw::math::makeTranslation(Vector3D(0, 0, 0.1)),
@@ -119,6 +119,7 @@ void SceneBuilder::addGripper(const Transform3D& X_W, double gap, double force) 
   left.transform = rw::math::rpyTransform(Vector3D(0, 0, -q90), Vector3D(0, -gap, 0));
   left.limits.lower = 0.0;
   left.limits.upper = gap;
+  left.limits.velocity = velocity;
   const FrameId l = wc.frames().add(left);
   FrameSpec right = left;
   right.name = "Gripper.Right";

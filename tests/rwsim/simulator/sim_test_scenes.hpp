@@ -1,5 +1,6 @@
 #pragma once
 
+#include <limits>
 #include <memory>
 #include <string>
 
@@ -36,8 +37,10 @@ class SceneBuilder {
   /// A two-jaw gripper "Gripper": kinematic base at `X_W`, prismatic jaws "Gripper.Left" at
   /// y = -gap and "Gripper.Right" at y = +gap moving towards y = 0 (q > 0 closes), jaw plates of
   /// thickness 0.02 (faces at |y| = gap - 0.01), 0.1 x 0.1, each 0.1 kg; two independent DOF,
-  /// force limit `force` each; PD controller "GraspController" (P 10, D 0.003 as RobWork's).
-  void addGripper(const rw::math::Transform3D& X_W, double gap, double force);
+  /// force limit `force` each, velocity limit `velocity` each (m/s; default none); PD controller
+  /// "GraspController" (P 10, D 0.003 as RobWork's).
+  void addGripper(const rw::math::Transform3D& X_W, double gap, double force,
+                  double velocity = std::numeric_limits<double>::infinity());
   /// A one-joint finger "Finger": fixed base at X_W, revolute joint "Finger.Joint" about world
   /// +y through X_W's origin, a rod along +x ending in a sphere (r 0.01) whose lowest point is
   /// at (lever, 0, 0), level with the axis; positive q turns the tip down. Link mass 0.1 kg,
