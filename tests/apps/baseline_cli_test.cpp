@@ -14,22 +14,20 @@
 
 #include "support/test_database.hpp"
 #include "support/test_support.hpp"
+#include "support/visgrab_cli.hpp"
 #include "visgrab/taskio/grasp_file.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 using visgrab::test::RunResult;
+using visgrab::test::runVisgrab;
 using visgrab::test::shellQuoted;
 
 // Two scenes of the shared database: a box on the plain table, a can on the textured one.
 constexpr const char* kPlainScene = "plain/single/saltbox/01";
 constexpr const char* kTexturedScene = "textured/single/cocacola/01";
 const std::string kTwoScenes = std::string("'") + kPlainScene + ";" + kTexturedScene + "'";
-
-RunResult visgrab(const std::string& args) {
-  return visgrab::test::runProgram(VISGRAB_BINARY, args);
-}
 
 std::string baselineArgs(const fs::path& out, const std::string& more) {
   return "baseline --db " + shellQuoted(visgrab::test::testDatabasePath()) + " --scenes " +
@@ -44,7 +42,7 @@ std::string readAll(const fs::path& file) {
 TEST(BaselineCli, WritesAtMostPerTypeContactGraspsPerSceneAndMethod) {
   visgrab::test::TempDir dir;
   const fs::path file = dir.path() / "grasps" / "baseline.csv";
-  const RunResult r = visgrab(baselineArgs(file, "--per-type 5 --threads 2"));
+  const RunResult r = runVisgrab(baselineArgs(file, "--per-type 5 --threads 2"));
   ASSERT_EQ(r.exitCode, 0) << r.output;
   EXPECT_NE(r.output.find("grasps in " + file.string()), std::string::npos) << r.output;
 
@@ -71,7 +69,7 @@ TEST(BaselineCli, WritesAtMostPerTypeContactGraspsPerSceneAndMethod) {
 
   // One thread: the same file, byte for byte.
   const fs::path again = dir.path() / "again.csv";
-  const RunResult one = visgrab(baselineArgs(again, "--per-type 5 --threads 1 --quiet"));
+  const RunResult one = runVisgrab(baselineArgs(again, "--per-type 5 --threads 1 --quiet"));
   ASSERT_EQ(one.exitCode, 0) << one.output;
   EXPECT_EQ(readAll(again), readAll(file));
 }
@@ -80,10 +78,10 @@ TEST(BaselineCli, WritesAtMostPerTypeContactGraspsPerSceneAndMethod) {
 // between its contacts (checked against the contact grasps of a run without --preshape).
 TEST(BaselineCli, PreshapeWritesTheTwoContactGraspsAsPreshapeGrasps) {
   visgrab::test::TempDir dir;
-  const RunResult contacts = visgrab(baselineArgs(dir.path() / "c.csv", "--per-type 4"));
+  const RunResult contacts = runVisgrab(baselineArgs(dir.path() / "c.csv", "--per-type 4"));
   ASSERT_EQ(contacts.exitCode, 0) << contacts.output;
   const RunResult preshapes =
-      visgrab(baselineArgs(dir.path() / "p.csv", "--per-type 4 --preshape wide"));
+      runVisgrab(baselineArgs(dir.path() / "p.csv", "--per-type 4 --preshape wide"));
   ASSERT_EQ(preshapes.exitCode, 0) << preshapes.output;
   const auto c = visgrab::taskio::readGraspFile(dir.path() / "c.csv");
   const auto p = visgrab::taskio::readGraspFile(dir.path() / "p.csv");
@@ -107,7 +105,7 @@ TEST(BaselineCli, PreshapeWritesTheTwoContactGraspsAsPreshapeGrasps) {
 TEST(BaselineCli, DebugWritesOnePicturePerScene) {
   visgrab::test::TempDir dir;
   const fs::path pictures = dir.path() / "debug";
-  const RunResult r = visgrab(baselineArgs(
+  const RunResult r = runVisgrab(baselineArgs(
       dir.path() / "g.csv", "--per-type 2 --threads 2 --quiet --debug " + shellQuoted(pictures)));
   ASSERT_EQ(r.exitCode, 0) << r.output;
   std::set<std::string> names;
@@ -135,7 +133,7 @@ TEST(BaselineCli, CommandLineMistakesExitWithTwoAndNameTheProblem) {
        "selects no scene"},
   };
   for (const auto& [args, message] : cases) {
-    const RunResult r = visgrab(args);
+    const RunResult r = runVisgrab(args);
     EXPECT_EQ(r.exitCode, 2) << args << "\n" << r.output;
     EXPECT_NE(r.output.find(message), std::string::npos) << args << "\n" << r.output;
   }
@@ -145,8 +143,8 @@ TEST(BaselineCli, CommandLineMistakesExitWithTwoAndNameTheProblem) {
 TEST(BaselineCli, AMissingDatabaseIsBadInputNamingThePath) {
   visgrab::test::TempDir dir;
   const fs::path missing = dir.path() / "no-database-here";
-  const RunResult r = visgrab("baseline --db " + shellQuoted(missing) + " --out " +
-                              shellQuoted(dir.path() / "g.csv"));
+  const RunResult r = runVisgrab("baseline --db " + shellQuoted(missing) + " --out " +
+                                 shellQuoted(dir.path() / "g.csv"));
   EXPECT_EQ(r.exitCode, 1) << r.output;
   EXPECT_NE(r.output.find(missing.string()), std::string::npos) << r.output;
 }

@@ -8,21 +8,19 @@
 #include <vector>
 
 #include "support/test_support.hpp"
+#include "support/visgrab_cli.hpp"
 
 namespace {
 
 using visgrab::test::RunResult;
+using visgrab::test::runVisgrab;
 using visgrab::test::shellQuoted;
-
-RunResult visgrab(const std::string& args) {
-  return visgrab::test::runProgram(VISGRAB_BINARY, args);
-}
 
 TEST(DbCli, GeneratesListsAndShowsAScene) {
   visgrab::test::TempDir dir;
   const auto db = dir.path() / "db";
-  const RunResult made = visgrab("db generate --out " + shellQuoted(db) +
-                                 " --scenes 'plain,single,cocacola,pose=1' --threads 1");
+  const RunResult made = runVisgrab("db generate --out " + shellQuoted(db) +
+                                    " --scenes 'plain,single,cocacola,pose=1' --threads 1");
   ASSERT_EQ(made.exitCode, 0) << made.output;
   EXPECT_NE(made.output.find("1 scenes generated, 0 already complete, 0 failed"), std::string::npos)
       << made.output;
@@ -34,18 +32,19 @@ TEST(DbCli, GeneratesListsAndShowsAScene) {
         << file;
   }
   // Again: nothing left to do.
-  const RunResult again = visgrab("db generate --out " + shellQuoted(db) +
-                                  " --scenes 'plain,single,cocacola,pose=1' --quiet");
+  const RunResult again = runVisgrab("db generate --out " + shellQuoted(db) +
+                                     " --scenes 'plain,single,cocacola,pose=1' --quiet");
   ASSERT_EQ(again.exitCode, 0) << again.output;
   EXPECT_NE(again.output.find("0 scenes generated, 1 already complete"), std::string::npos)
       << again.output;
 
-  const RunResult list = visgrab("db list --db " + shellQuoted(db));
+  const RunResult list = runVisgrab("db list --db " + shellQuoted(db));
   ASSERT_EQ(list.exitCode, 0) << list.output;
   EXPECT_NE(list.output.find("plain/single/cocacola/01"), std::string::npos) << list.output;
   EXPECT_NE(list.output.find("1 of 1 scenes"), std::string::npos) << list.output;
 
-  const RunResult show = visgrab("db show --db " + shellQuoted(db) + " plain/single/cocacola/01");
+  const RunResult show =
+      runVisgrab("db show --db " + shellQuoted(db) + " plain/single/cocacola/01");
   ASSERT_EQ(show.exitCode, 0) << show.output;
   EXPECT_NE(show.output.find("cocacola"), std::string::npos) << show.output;
   EXPECT_NE(show.output.find("calibration.yml"), std::string::npos) << show.output;
@@ -60,7 +59,7 @@ TEST(DbCli, GeneratesListsAndShowsAScene) {
 
   // An unknown id names the id and suggests the scene that exists.
   const RunResult unknown =
-      visgrab("db show --db " + shellQuoted(db) + " plain/single/cocacola/02");
+      runVisgrab("db show --db " + shellQuoted(db) + " plain/single/cocacola/02");
   EXPECT_EQ(unknown.exitCode, 1) << unknown.output;
   EXPECT_NE(unknown.output.find("plain/single/cocacola/02"), std::string::npos) << unknown.output;
   EXPECT_NE(unknown.output.find("plain/single/cocacola/01"), std::string::npos) << unknown.output;
@@ -74,9 +73,9 @@ TEST(DbCli, BenchmarkGeneratesTheDatabaseRunsTheGraspsAndWritesTheReport) {
       "plain/single/cocacola/01, mine, g1, preshape, 0,0,0.06, 0,0,1,0, SDH_CYL\n"
       "plain/single/cocacola/01, mine, g2, preshape, 0,0,0.06, 0,0,1,0, NO_SUCH_SHAPE\n");
   const RunResult r =
-      visgrab("benchmark --db " + shellQuoted(dir.path() / "db") +
-              " --scenes 'plain,single,cocacola,pose=1' --grasps " + shellQuoted(grasps) +
-              " --out " + shellQuoted(dir.path() / "out") + " --threads 1 --quiet");
+      runVisgrab("benchmark --db " + shellQuoted(dir.path() / "db") +
+                 " --scenes 'plain,single,cocacola,pose=1' --grasps " + shellQuoted(grasps) +
+                 " --out " + shellQuoted(dir.path() / "out") + " --threads 1 --quiet");
   ASSERT_EQ(r.exitCode, 0) << r.output;
   EXPECT_NE(r.output.find("generating it"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("1 trials run, 0 resumed, 1 grasps rejected"), std::string::npos)
@@ -116,18 +115,18 @@ TEST(DbCli, BenchmarkGeneratesTheDatabaseRunsTheGraspsAndWritesTheReport) {
 
 TEST(DbCli, BadArgumentsAreUsageErrors) {
   visgrab::test::TempDir dir;
-  const RunResult noOut = visgrab("db generate --scenes cocacola");
+  const RunResult noOut = runVisgrab("db generate --scenes cocacola");
   EXPECT_EQ(noOut.exitCode, 2) << noOut.output;
   EXPECT_NE(noOut.output.find("--out DIR is required"), std::string::npos) << noOut.output;
   const RunResult badFilter =
-      visgrab("db generate --out " + shellQuoted(dir.path() / "x") + " --scenes cocacolla");
+      runVisgrab("db generate --out " + shellQuoted(dir.path() / "x") + " --scenes cocacolla");
   EXPECT_EQ(badFilter.exitCode, 2) << badFilter.output;
   EXPECT_NE(badFilter.output.find("cocacolla"), std::string::npos) << badFilter.output;
   const RunResult badThreads =
-      visgrab("db generate --out " + shellQuoted(dir.path() / "x") + " --threads zero");
+      runVisgrab("db generate --out " + shellQuoted(dir.path() / "x") + " --threads zero");
   EXPECT_EQ(badThreads.exitCode, 2) << badThreads.output;
   EXPECT_NE(badThreads.output.find("--threads"), std::string::npos) << badThreads.output;
-  const RunResult missing = visgrab("db list --db " + shellQuoted(dir.path() / "nothing"));
+  const RunResult missing = runVisgrab("db list --db " + shellQuoted(dir.path() / "nothing"));
   EXPECT_EQ(missing.exitCode, 1) << missing.output;
   EXPECT_NE(missing.output.find("nothing"), std::string::npos) << missing.output;
 }

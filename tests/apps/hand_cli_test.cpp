@@ -11,19 +11,17 @@
 #include "rwsim/trial/grasp_outcome.hpp"
 #include "support/test_database.hpp"
 #include "support/test_support.hpp"
+#include "support/visgrab_cli.hpp"
 #include "visgrab/render/png_io.hpp"
 #include "visgrab/results/results_file.hpp"
 
 namespace {
 
 using visgrab::test::RunResult;
+using visgrab::test::runVisgrab;
 using visgrab::test::shellQuoted;
 
 constexpr const char* kScene = "plain/single/cocacola/01";
-
-RunResult visgrab(const std::string& args) {
-  return visgrab::test::runProgram(VISGRAB_BINARY, args);
-}
 
 std::string hand(const char* name) {
   return shellQuoted(visgrab::test::sourceDir() / "scenes/hands" / name);
@@ -51,13 +49,13 @@ void writePlan(const std::filesystem::path& file) {
 
 TEST(HandCli, GraspRunsEachHandInADatabaseScene) {
   for (const char* name : {"franka", "pg70", "robotiq2f85", "sdh"}) {
-    const RunResult r = visgrab(graspArgs(name));
+    const RunResult r = runVisgrab(graspArgs(name));
     ASSERT_EQ(r.exitCode, 0) << name << "\n" << r.output;
     const bool held = r.output.find("outcome: stable") != std::string::npos ||
                       r.output.find("outcome: slipped") != std::string::npos;
     EXPECT_TRUE(held) << name << "\n" << r.output;
   }
-  const RunResult r = visgrab(graspArgs("robotiq2f85"));
+  const RunResult r = runVisgrab(graspArgs("robotiq2f85"));
   EXPECT_NE(r.output.find("hand Robotiq2F85, TCP Robotiq2F85.TCP"), std::string::npos) << r.output;
 }
 
@@ -65,7 +63,7 @@ TEST(HandCli, GraspRunsEachHandInADatabaseScene) {
 // pre-shape at the given TCP pose): the same grasp given to `visgrab run` in a grasp file ends
 // with the same outcome and the same Q_lift and Q_GWS.
 TEST(HandCli, GraspAndRunTakeTheSameDoor) {
-  const RunResult single = visgrab(graspArgs("pg70") + " --json");
+  const RunResult single = runVisgrab(graspArgs("pg70") + " --json");
   ASSERT_EQ(single.exitCode, 0) << single.output;
   const auto number = [&](const std::string& key) {
     const auto at = single.output.find("\"" + key + "\":");
@@ -80,9 +78,9 @@ TEST(HandCli, GraspAndRunTakeTheSameDoor) {
   };
   visgrab::test::TempDir dir;
   writePlan(dir.path() / "plan.csv");
-  const RunResult run = visgrab("run --db " + shellQuoted(visgrab::test::testDatabasePath()) +
-                                " --grasps " + shellQuoted(dir.path() / "plan.csv") + " --out " +
-                                shellQuoted(dir.path() / "out") + " --hand pg70 --quiet");
+  const RunResult run = runVisgrab("run --db " + shellQuoted(visgrab::test::testDatabasePath()) +
+                                   " --grasps " + shellQuoted(dir.path() / "plan.csv") + " --out " +
+                                   shellQuoted(dir.path() / "out") + " --hand pg70 --quiet");
   ASSERT_EQ(run.exitCode, 0) << run.output;
   const auto results = visgrab::results::readResults(dir.path() / "out");
   ASSERT_EQ(results.trials.size(), 1u);
@@ -99,9 +97,9 @@ TEST(HandCli, GraspAndRunTakeTheSameDoor) {
 TEST(HandCli, RunTakesTheFrankaByName) {
   visgrab::test::TempDir dir;
   writePlan(dir.path() / "plan.csv");
-  const RunResult run = visgrab("run --db " + shellQuoted(visgrab::test::testDatabasePath()) +
-                                " --grasps " + shellQuoted(dir.path() / "plan.csv") + " --out " +
-                                shellQuoted(dir.path() / "out") + " --hand franka --quiet");
+  const RunResult run = runVisgrab("run --db " + shellQuoted(visgrab::test::testDatabasePath()) +
+                                   " --grasps " + shellQuoted(dir.path() / "plan.csv") + " --out " +
+                                   shellQuoted(dir.path() / "out") + " --hand franka --quiet");
   ASSERT_EQ(run.exitCode, 0) << run.output;
   const auto results = visgrab::results::readResults(dir.path() / "out");
   ASSERT_EQ(results.trials.size(), 1u);
@@ -114,7 +112,7 @@ TEST(HandCli, RunTakesTheFrankaByName) {
 TEST(HandCli, RenderDrawsTheGivenHand) {
   visgrab::test::TempDir dir;
   writePlan(dir.path() / "plan.csv");
-  const RunResult r = visgrab(
+  const RunResult r = runVisgrab(
       "render --db " + shellQuoted(visgrab::test::testDatabasePath()) + " --scene " + kScene +
       " --hand " + hand("robotiq2f85") + " --grasps " + shellQuoted(dir.path() / "plan.csv") +
       " --grasp 1 --size 160x120 --out " + shellQuoted(dir.path() / "r.png"));
@@ -125,35 +123,35 @@ TEST(HandCli, RenderDrawsTheGivenHand) {
   std::string badLine = kScene;
   badLine.append(", plan, 1, preshape, 0,0,0.2, 0,0,1,0, NOPE\n");
   visgrab::test::writeFile(dir.path() / "bad.csv", badLine);
-  const RunResult bad = visgrab("render --db " + shellQuoted(visgrab::test::testDatabasePath()) +
-                                " --scene " + kScene + " --hand " + hand("pg70") + " --grasps " +
-                                shellQuoted(dir.path() / "bad.csv") + " --grasp 1 --out " +
-                                shellQuoted(dir.path() / "bad.png"));
+  const RunResult bad = runVisgrab("render --db " + shellQuoted(visgrab::test::testDatabasePath()) +
+                                   " --scene " + kScene + " --hand " + hand("pg70") + " --grasps " +
+                                   shellQuoted(dir.path() / "bad.csv") + " --grasp 1 --out " +
+                                   shellQuoted(dir.path() / "bad.png"));
   EXPECT_EQ(bad.exitCode, 1) << bad.output;
   EXPECT_NE(bad.output.find("NOPE"), std::string::npos) << bad.output;
 }
 
 TEST(HandCli, Mistakes) {
-  RunResult r = visgrab(graspArgs("pg70", "bogus"));
+  RunResult r = runVisgrab(graspArgs("pg70", "bogus"));
   EXPECT_EQ(r.exitCode, 2) << r.output;
   EXPECT_NE(r.output.find("no pre-shape 'bogus' (PG70, PG70_SMALL)"), std::string::npos)
       << r.output;
-  r = visgrab("grasp --db " + shellQuoted(visgrab::test::testDatabasePath()) + " --scene " +
-              kScene + " --hand SchunkHand --pose 0 0 0.2 0 180 0 --preshape wide");
+  r = runVisgrab("grasp --db " + shellQuoted(visgrab::test::testDatabasePath()) + " --scene " +
+                 kScene + " --hand SchunkHand --pose 0 0 0.2 0 180 0 --preshape wide");
   EXPECT_EQ(r.exitCode, 2) << r.output;
   EXPECT_NE(r.output.find("--hand with --db names a hand"), std::string::npos) << r.output;
-  r = visgrab(graspArgs("pg70") + " --tcp PG70.TCPPG70");
+  r = runVisgrab(graspArgs("pg70") + " --tcp PG70.TCPPG70");
   EXPECT_EQ(r.exitCode, 2) << r.output;
   EXPECT_NE(r.output.find("--tcp goes with --hand NAME only"), std::string::npos) << r.output;
-  r = visgrab("grasp --db " + shellQuoted(visgrab::test::testDatabasePath()) +
-              " --pose 0 0 0.2 0 "
-              "180 0 --preshape wide");
+  r = runVisgrab("grasp --db " + shellQuoted(visgrab::test::testDatabasePath()) +
+                 " --pose 0 0 0.2 0 "
+                 "180 0 --preshape wide");
   EXPECT_EQ(r.exitCode, 2) << r.output;
   EXPECT_NE(r.output.find("--db DIR and --scene ID go together"), std::string::npos) << r.output;
   visgrab::test::TempDir empty;
-  r = visgrab("run --db " + shellQuoted(visgrab::test::testDatabasePath()) + " --grasps " +
-              shellQuoted(empty.path()) + " --out " + shellQuoted(empty.path() / "out") +
-              " --hand " + shellQuoted(empty.path()));
+  r = runVisgrab("run --db " + shellQuoted(visgrab::test::testDatabasePath()) + " --grasps " +
+                 shellQuoted(empty.path()) + " --out " + shellQuoted(empty.path() / "out") +
+                 " --hand " + shellQuoted(empty.path()));
   EXPECT_EQ(r.exitCode, 1) << r.output;
   EXPECT_NE(r.output.find("holds no grasp description"), std::string::npos) << r.output;
 }
@@ -170,14 +168,14 @@ TEST(HandCli, RunTakesAHandByName) {
   }
   const std::string common = "run --db " + shellQuoted(visgrab::test::testDatabasePath()) +
                              " --grasps " + shellQuoted(tmp.path() / "g.csv") + " --out ";
-  RunResult r = visgrab(common + shellQuoted(tmp.path() / "a") + " --hand pg70");
+  RunResult r = runVisgrab(common + shellQuoted(tmp.path() / "a") + " --hand pg70");
   EXPECT_EQ(r.exitCode, 1) << r.output;  // its only grasp was rejected: no trial ran
   // The pre-shape is looked up in the PG70's description: the name chose that hand.
   EXPECT_NE(r.output.find("g.csv:1: error: grasp g1: unknown pre-shape \"NOPE\" for hand "
                           "\"PG70\" (known: PG70, PG70_SMALL)"),
             std::string::npos)
       << r.output;
-  r = visgrab(common + shellQuoted(tmp.path() / "b") + " --hand pg7");
+  r = runVisgrab(common + shellQuoted(tmp.path() / "b") + " --hand pg7");
   EXPECT_EQ(r.exitCode, 1) << r.output;
   EXPECT_NE(r.output.find("unknown hand \"pg7\""), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("(known: franka, pg70, robotiq2f85, robwork-robotiq, sdh)"),

@@ -6,13 +6,12 @@
 #include <string>
 
 #include "support/test_support.hpp"
+#include "support/visgrab_cli.hpp"
 
 namespace {
 
 using visgrab::test::RunResult;
-
-// Runs the visgrab binary with `args` (already shell-quoted).
-RunResult run(const std::string& args) { return visgrab::test::runProgram(VISGRAB_BINARY, args); }
+using visgrab::test::runVisgrab;
 
 std::string scene() {
   return "'" +
@@ -27,7 +26,8 @@ const std::string kCylinder =
 TEST(SimCli, SimWritesPosesPerStep) {
   visgrab::test::TempDir dir;
   const auto csv = dir.path() / "poses.csv";
-  const RunResult r = run("sim " + scene() + " --time 0.05 --dt 0.01 --out '" + csv.string() + "'");
+  const RunResult r =
+      runVisgrab("sim " + scene() + " --time 0.05 --dt 0.01 --out '" + csv.string() + "'");
   ASSERT_EQ(r.exitCode, 0) << r.output;
   EXPECT_NE(r.output.find("simulated 0.05 s in 5 steps"), std::string::npos) << r.output;
   std::ifstream in(csv);
@@ -45,14 +45,14 @@ TEST(SimCli, SimWritesPosesPerStep) {
 }
 
 TEST(SimCli, SimPrintsFinalPosesWithoutOut) {
-  const RunResult r = run("sim " + scene() + " --time 0.02");
+  const RunResult r = runVisgrab("sim " + scene() + " --time 0.02");
   ASSERT_EQ(r.exitCode, 0) << r.output;
   EXPECT_NE(r.output.find("final poses"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("  Box  "), std::string::npos) << r.output;
 }
 
 TEST(SimCli, GraspReportsOutcomeCodeAndQualities) {
-  const RunResult r = run("grasp " + scene() + kCylinder);
+  const RunResult r = runVisgrab("grasp " + scene() + kCylinder);
   ASSERT_EQ(r.exitCode, 0) << r.output;
   EXPECT_NE(r.output.find("outcome: stable (RobWork code 1)"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("Q_lift: 0.9"), std::string::npos) << r.output;
@@ -63,16 +63,16 @@ TEST(SimCli, GraspReportsOutcomeCodeAndQualities) {
 
 TEST(SimCli, GraspTakesATrialProtocol) {
   // --protocol lift is the default protocol: the same report.
-  const RunResult plain = run("grasp " + scene() + kCylinder);
-  const RunResult lift = run("grasp " + scene() + kCylinder + " --protocol lift");
+  const RunResult plain = runVisgrab("grasp " + scene() + kCylinder);
+  const RunResult lift = runVisgrab("grasp " + scene() + kCylinder + " --protocol lift");
   ASSERT_EQ(lift.exitCode, 0) << lift.output;
   EXPECT_EQ(lift.output, plain.output);
   // The shake runs (no gravity, two fingers judged); its verdict is the trial's.
-  const RunResult shake = run("grasp " + scene() + kCylinder + " --protocol shake");
+  const RunResult shake = runVisgrab("grasp " + scene() + kCylinder + " --protocol shake");
   ASSERT_EQ(shake.exitCode, 0) << shake.output;
   EXPECT_NE(shake.output.find("outcome: "), std::string::npos) << shake.output;
   // An unknown name lists the known protocols; a bad file names its line.
-  const RunResult unknown = run("grasp " + scene() + kCylinder + " --protocol wobble");
+  const RunResult unknown = runVisgrab("grasp " + scene() + kCylinder + " --protocol wobble");
   EXPECT_EQ(unknown.exitCode, 2) << unknown.output;
   EXPECT_NE(unknown.output.find("unknown protocol \"wobble\""), std::string::npos)
       << unknown.output;
@@ -82,7 +82,7 @@ TEST(SimCli, GraspTakesATrialProtocol) {
   std::ofstream(bad) << "<TrialProtocol name=\"b\">\n  <Phases>\n    <Lift height=\"0\"/>\n"
                         "  </Phases>\n</TrialProtocol>\n";
   const RunResult broken =
-      run("grasp " + scene() + kCylinder + " --protocol '" + bad.string() + "'");
+      runVisgrab("grasp " + scene() + kCylinder + " --protocol '" + bad.string() + "'");
   EXPECT_NE(broken.exitCode, 0) << broken.output;
   EXPECT_NE(broken.output.find("bad.xml:3:5: error: <Lift>: attribute height: expected a number "
                                "> 0, got 0"),
@@ -113,7 +113,7 @@ TEST(SimCli, BadArgumentsAreUsageErrors) {
        "'0.05x' is not a number"},
   };
   for (const Case& c : cases) {
-    const RunResult r = run(c.args);
+    const RunResult r = runVisgrab(c.args);
     EXPECT_EQ(r.exitCode, 2) << c.args << "\n" << r.output;
     EXPECT_NE(r.output.find(c.message), std::string::npos) << c.args << "\n" << r.output;
     EXPECT_NE(r.output.find("usage: visgrab "), std::string::npos) << r.output;
