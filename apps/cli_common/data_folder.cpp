@@ -4,6 +4,8 @@
 #include <stdexcept>
 #include <system_error>
 
+#include "visgrab/results/run_protocol.hpp"
+
 namespace visgrab::cli {
 
 std::filesystem::path installedDataFolder(const std::filesystem::path& executable) {
@@ -54,19 +56,13 @@ std::filesystem::path protocolPath(const std::string& text, const std::filesyste
   std::error_code error;
   const bool looksLikePath = text.find('/') != std::string::npos || text.ends_with(".xml");
   if (text.empty() || looksLikePath || std::filesystem::is_regular_file(text, error)) return text;
-  const std::filesystem::path folder = data / "protocols";
-  const std::filesystem::path file = folder / (text + ".xml");
+  const std::filesystem::path file = results::namedProtocolFile(data, text);
   if (std::filesystem::is_regular_file(file, error)) return file;
-  std::vector<std::string> known;
-  for (const auto& entry : std::filesystem::directory_iterator(folder, error)) {
-    if (entry.path().extension() == ".xml") known.push_back(entry.path().stem().string());
-  }
-  std::sort(known.begin(), known.end());
   std::string list;
-  for (const auto& p : known) list += (list.empty() ? "" : ", ") + p;
+  for (const auto& p : results::knownProtocols(data)) list += (list.empty() ? "" : ", ") + p;
   throw std::invalid_argument("unknown protocol \"" + text + "\": not a file, and " +
-                              folder.string() + " has no protocol of that name (known: " + list +
-                              ")");
+                              file.parent_path().string() +
+                              " has no protocol of that name (known: " + list + ")");
 }
 
 }  // namespace visgrab::cli

@@ -28,7 +28,8 @@ std::filesystem::path handPath(const std::string& text, const std::filesystem::p
 
 /// The trial protocol `text` names (`--protocol`, Python's run(protocol=)): an existing file, or
 /// text that looks like a path (holds '/' or ends in ".xml"), as it is; otherwise a protocol's
-/// name, `data`/protocols/`text`.xml ("lift", "shake").
+/// name, `data`/protocols/`text`.xml ("lift", "shake"; results::namedProtocolFile, where the
+/// replays look for a run's protocol too).
 /// @throws std::invalid_argument for an unknown name, listing the known ones.
 std::filesystem::path protocolPath(const std::string& text, const std::filesystem::path& data);
 

@@ -221,12 +221,14 @@ input files. Iterating or indexing goes over the trials.
             d["engine_settings"] = r.sources.engineSettings;
             d["protocol"] = r.sources.protocol.empty() ? std::string("lift") : r.sources.protocol;
             d["protocol_hash"] = r.sources.protocolHash;
+            d["protocol_file"] = r.sources.protocolFile.string();
             return d;
           },
           "The run's inputs (run.csv): database, database_hash (its index's hash; empty for "
           "runs older than the record), grasps, hand, engine (\"ode\" for runs older than the "
           "record) and engine_settings, protocol (\"lift\" when run.csv has no protocol record) "
-          "and protocol_hash (empty for the lift).")
+          "and protocol_hash and protocol_file (the file the run was given; both empty for the "
+          "lift).")
       .def_readonly("label", &results::RunResults::label, "The folder's name.")
       .def("__len__", [](const results::RunResults& r) { return r.trials.size(); })
       .def(

@@ -291,6 +291,8 @@ def test_protocol_runs_as_the_cli_runs_it(runs, binary, test_db_path, tmp_path):
                          protocol="shake")
     assert trials.results.sources["protocol"] == "shake"
     assert len(trials.results.sources["protocol_hash"]) == 16
+    assert trials.results.sources["protocol_file"] == \
+        os.path.normpath(os.path.join(visgrab.data_folder(), "protocols", "shake.xml"))
     cli(binary, "run", "--db", test_db_path, "--grasps", out / "grasp_list.csv", "--out",
         tmp_path / "cli", "--threads", "1", "--protocol", "shake", "--quiet")
     for name in ("trials.csv", "run.csv"):
@@ -301,6 +303,7 @@ def test_protocol_runs_as_the_cli_runs_it(runs, binary, test_db_path, tmp_path):
                        out=tmp_path / "lift", protocol="lift")
     assert lift.results.sources["protocol"] == "lift"
     assert lift.results.sources["protocol_hash"] == ""
+    assert lift.results.sources["protocol_file"] == ""
     assert (tmp_path / "lift" / "trials.csv").read_bytes() == \
         (runs["module"] / "trials.csv").read_bytes()
     with pytest.raises(ValueError, match='unknown protocol "wobble".*known: lift, shake'):

@@ -221,9 +221,11 @@ std::string replaced(std::string text, const std::string& from, const std::strin
   return text;
 }
 
-// Two runs of the can's two grasps (render's "good" and "through"): one with the project's shake
-// (--protocol shake), one with a protocol file of its own outside the data folder ("myshake":
-// the shake 3 cm instead of 2), and a third protocol file, the shake with one value changed.
+// Three runs of the can's two grasps (render's "good" and "through"): one with the project's
+// shake (--protocol shake); two with a protocol file of their own outside the data folder
+// ("myshake": the shake 3 cm instead of 2), "custom" whose file stays where it was and "moved"
+// whose file is moved away after the run; and a fourth protocol file, the shake with one value
+// changed.
 class RenderProtocolCli : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
@@ -243,14 +245,17 @@ class RenderProtocolCli : public ::testing::Test {
                              replaced(replaced(shake, "name=\"shake\"", "name=\"myshake\""),
                                       "amplitude=\"0.02\"", "amplitude=\"0.03\""));
     visgrab::test::writeFile(path("changed.xml"), replaced(shake, "cycles=\"2\"", "cycles=\"3\""));
-    for (const auto& [out, protocol] :
-         {std::pair{"shake", std::string("shake")},
-          std::pair{"custom", shellQuoted(path("mine/myshake.xml"))}}) {
+    fs::copy_file(path("mine/myshake.xml"), path("mine/moved.xml"));
+    for (const auto& [out, protocol] : {std::pair{"shake", std::string("shake")},
+                                        std::pair{"custom", shellQuoted(path("mine/myshake.xml"))},
+                                        std::pair{"moved", shellQuoted(path("mine/moved.xml"))}}) {
       const RunResult r =
           visgrab("run --db " + db() + " --grasps " + shellQuoted(path("grasps.csv")) +
                   " --protocol " + protocol + " --out " + shellQuoted(path(out)) + " --quiet");
       ASSERT_EQ(r.exitCode, 0) << r.output;
     }
+    fs::create_directories(path("elsewhere"));
+    fs::rename(path("mine/moved.xml"), path("elsewhere/moved.xml"));
   }
   static void TearDownTestSuite() {
     delete dir_;
@@ -340,43 +345,61 @@ TEST_F(RenderProtocolCli, AProtocolWithAnotherHashIsRefused) {
   }
 }
 
-// A run made with a protocol file outside the data folder: refused without the file (naming the
-// protocol and its hash, asking for --protocol FILE), replayed with it.
+// A run made with a protocol file outside the data folder replays with the file it recorded
+// (run.csv's protocol_file). Once that file is moved away: refused (naming the protocol, its hash
+// and the missing file, asking for --protocol FILE), and replayed with the file given.
 TEST_F(RenderProtocolCli, ACustomProtocolRunReplaysWithItsFile) {
-  const std::string hash = hashOf(path("mine/myshake.xml"));
-  RunResult r = render("custom", "good", "", "custom.png");
-  EXPECT_EQ(r.exitCode, 1) << r.output;
-  EXPECT_NE(r.output.find("the protocol \"myshake\" (hash " + hash + "), which cannot be found"),
-            std::string::npos)
-      << r.output;
-  EXPECT_NE(r.output.find("pass --protocol FILE"), std::string::npos) << r.output;
-  EXPECT_FALSE(fs::exists(path("custom.png")));
-  // The scene alone replays nothing: drawn.
-  r = visgrab("render" + results("custom") + " --scene " + kScene + " --size 120x90 --out " +
-              shellQuoted(path("custom-scene.png")));
-  EXPECT_EQ(r.exitCode, 0) << r.output;
-
   for (const std::string id : {"good", "high"}) {
     SCOPED_TRACE(id);
-    r = render("custom", id, "--protocol " + shellQuoted(path("mine/myshake.xml")), "custom.png");
+    const RunResult r = render("custom", id, "", "custom.png");
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find(", " + outcomeOf("custom", id) + ", hand"), std::string::npos)
         << r.output;
     EXPECT_EQ(r.output.find("replayed as"), std::string::npos) << r.output;
   }
+
+  const std::string hash = hashOf(path("elsewhere/moved.xml"));
+  fs::remove(path("moved.png"));
+  RunResult r = render("moved", "good", "", "moved.png");
+  EXPECT_EQ(r.exitCode, 1) << r.output;
+  EXPECT_NE(r.output.find("the protocol \"myshake\" (hash " + hash + "), which cannot be found"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("the run's protocol file " + path("mine/moved.xml").string() +
+                          " does not exist"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("pass --protocol FILE"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(path("moved.png")));
+  // The scene alone replays nothing: drawn.
+  r = visgrab("render" + results("moved") + " --scene " + kScene + " --size 120x90 --out " +
+              shellQuoted(path("moved-scene.png")));
+  EXPECT_EQ(r.exitCode, 0) << r.output;
+
+  for (const std::string id : {"good", "high"}) {
+    SCOPED_TRACE(id);
+    r = render("moved", id, "--protocol " + shellQuoted(path("elsewhere/moved.xml")), "moved.png");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find(", " + outcomeOf("moved", id) + ", hand"), std::string::npos)
+        << r.output;
+    EXPECT_EQ(r.output.find("replayed as"), std::string::npos) << r.output;
+  }
 }
 
-// The report draws the shake run's pictures with the data folder's shake, and leaves out the
-// custom run's, saying why.
+// The report draws the shake run's pictures with the data folder's shake and the custom run's
+// with its file, and leaves out the pictures of the run whose file was moved, saying why.
 TEST_F(RenderProtocolCli, ReportPicturesUseTheRunsProtocol) {
-  RunResult r = visgrab("analyze " + shellQuoted(path("shake")) + " --bootstrap 0 --out " +
-                        shellQuoted(path("shake-report")));
-  ASSERT_EQ(r.exitCode, 0) << r.output;
-  EXPECT_EQ(r.output.find("not drawn"), std::string::npos) << r.output;
-  EXPECT_FALSE(fs::is_empty(path("shake-report") / "images"));
+  for (const std::string run : {"shake", "custom"}) {
+    SCOPED_TRACE(run);
+    const RunResult r = visgrab("analyze " + shellQuoted(path(run)) + " --bootstrap 0 --out " +
+                                shellQuoted(path(run + "-report")));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_EQ(r.output.find("not drawn"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::is_empty(path(run + "-report") / "images"));
+  }
 
-  r = visgrab("analyze " + shellQuoted(path("custom")) + " --bootstrap 0 --out " +
-              shellQuoted(path("custom-report")));
+  const RunResult r = visgrab("analyze " + shellQuoted(path("moved")) + " --bootstrap 0 --out " +
+                              shellQuoted(path("moved-report")));
   ASSERT_EQ(r.exitCode, 0) << r.output;
   EXPECT_NE(r.output.find("not drawn: the run's trials ran the protocol \"myshake\""),
             std::string::npos)

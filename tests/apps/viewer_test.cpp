@@ -187,7 +187,7 @@ TEST(ViewerApp, ReplaysAGraspAndSavesTheMomentAfterLifting) {
 
 // Two runs of one grasp on the can (SDH_CYL pointing down, its TCP 6 cm above the can's base):
 // one with the project's shake, one with a protocol file outside the data folder ("myshake": the
-// shake 3 cm instead of 2).
+// shake 3 cm instead of 2), moved elsewhere after the run (so run.csv's protocol_file is gone).
 class ViewerProtocol : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
@@ -221,6 +221,8 @@ class ViewerProtocol : public ::testing::Test {
       options.protocol = protocol;
       visgrab::runner::runBenchmark(options);
     }
+    fs::create_directories(path("elsewhere"));
+    fs::rename(path("mine/myshake.xml"), path("elsewhere/myshake.xml"));
   }
   static void TearDownTestSuite() {
     delete dir_;
@@ -258,10 +260,10 @@ TEST_F(ViewerProtocol, ReplaysARunWithTheRunsProtocol) {
   EXPECT_EQ(r.output.find("not replayed"), std::string::npos) << r.output;
   expectNotBlank(readShot(path("shake.png")));
 
-  // A run made with a protocol file of its own replays with that file.
+  // A run made with a protocol file of its own, since moved, replays with the file given.
   const RunResult custom = viewerUnderXvfb(
-      xvfb,
-      replayArgs("custom", "--protocol " + shellQuoted(path("mine/myshake.xml")), "custom.png"));
+      xvfb, replayArgs("custom", "--protocol " + shellQuoted(path("elsewhere/myshake.xml")),
+                       "custom.png"));
   ASSERT_EQ(custom.exitCode, 0) << custom.output;
   EXPECT_NE(custom.output.find("grasp 1: " + outcomeOf("custom")), std::string::npos)
       << custom.output;

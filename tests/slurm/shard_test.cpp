@@ -408,9 +408,28 @@ TEST_F(ShardedRun, MergeRefusesAShardOfAnotherProtocol) {
   o.protocol = visgrab::test::sourceDir() / "scenes/protocols/shake.xml";
   o.shard = ShardSpec{2, 3};
   visgrab::runner::runBenchmark(o);
-  const std::string e = mergeError({dirs[0], o.out, dirs[2]});
+  std::string e = mergeError({dirs[0], o.out, dirs[2]});
   EXPECT_NE(e.find("ran other trial protocols"), std::string::npos) << e;
   EXPECT_NE(e.find(o.out.string()), std::string::npos) << e;
+
+  // The same protocol (same name and hash) from another file: a run's shards name one file, as
+  // they name one database, grasp list and hand (run.csv's protocol_file).
+  const fs::path copy = tmp_.path() / "copy/shake.xml";
+  fs::create_directories(copy.parent_path());
+  fs::copy_file(o.protocol, copy);
+  std::vector<fs::path> shaken{{}, o.out, {}};
+  for (const int k : {1, 3}) {
+    RunOptions s = options(tmp_.path() / ("shaken-" + std::to_string(k)));
+    s.protocol = k == 1 ? o.protocol : copy;
+    s.shard = ShardSpec{k, 3};
+    visgrab::runner::runBenchmark(s);
+    shaken[k - 1] = s.out;
+  }
+  e = mergeError(shaken);
+  EXPECT_NE(e.find("name other input paths in run.csv (database, grasps, hand or protocol file)"),
+            std::string::npos)
+      << e;
+  EXPECT_NE(e.find(shaken[2].string()), std::string::npos) << e;
 }
 
 TEST_F(ShardedRun, MergeRefusesATornOrChangedShardFile) {

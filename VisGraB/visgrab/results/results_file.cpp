@@ -325,6 +325,9 @@ std::string formatRunFile(const RunResults& run) {
     text += "protocol," + csvField(run.sources.protocol) + ",,,,,,\n";
     text += "protocol_hash," + csvField(run.sources.protocolHash) + ",,,,,,\n";
   }
+  if (!run.sources.protocolFile.empty()) {
+    text += "protocol_file," + csvField(run.sources.protocolFile.string()) + ",,,,,,\n";
+  }
   if (run.repeats.repeated()) {
     text += "repeats," + std::to_string(run.repeats.count) + ",,,,,,\n";
     text += "noise," + csvField(run.repeats.noise) + ",,,,,,\n";
@@ -464,6 +467,8 @@ RunResults parseRunFile(std::string_view text, const std::string& file) {
       run.sources.protocol = f[1];
     } else if (f[0] == "protocol_hash") {
       run.sources.protocolHash = f[1];
+    } else if (f[0] == "protocol_file") {
+      run.sources.protocolFile = f[1];
     } else if (f[0] == "repeats") {
       try {
         run.repeats.count = parseInt(f[1]);
@@ -483,7 +488,8 @@ RunResults parseRunFile(std::string_view text, const std::string& file) {
       fail(file, lineNo,
            "unknown record '" + f[0] +
                "' (expected scene, method, rejected, database, database_hash, grasps, hand, "
-               "engine, engine_settings, protocol, protocol_hash, repeats, noise or adaptive)");
+               "engine, engine_settings, protocol, protocol_hash, protocol_file, repeats, noise or "
+               "adaptive)");
     }
   }
   if (!run.repeats.repeated() && (!run.repeats.noise.empty() || !run.repeats.adaptive.empty())) {

@@ -24,7 +24,9 @@
 ///    by spaces), one `method` record per method, one `rejected` record (count in the last
 ///    column) per method with rejected grasps, and `database`, `grasps`, `hand` records naming
 ///    the run's inputs, and `engine` and `engine_settings` records naming the physics engine and
-///    its settings (absent in older files, whose runs were ODE's).
+///    its settings (absent in older files, whose runs were ODE's); a run with a trial protocol
+///    other than the lift adds `protocol`, `protocol_hash` and `protocol_file` (the file it was
+///    given; absent in older files), a run with repeats `repeats`, `noise` and `adaptive`.
 /// The column line identifies the format: a later version that changes what a column means
 /// changes the column line. Older files are still read: they start with a comment line
 /// `# visgrab trials 1|2` or `# visgrab run 1` before the column line, hold one record per line

@@ -89,6 +89,10 @@ struct RunSources {
   std::string protocol;
   /// rwsim::trial::protocolHash of the protocol (16 hex digits); empty for the lift.
   std::string protocolHash;
+  /// The protocol's file as the run was given it (absolute); empty for the lift and in files
+  /// older than the record. Replays fall back on it when the data folder has no protocol of the
+  /// recorded name and hash (results::replayProtocol).
+  std::filesystem::path protocolFile;
 };
 
 /// How a run repeated its grasps (`visgrab run --repeats N`; run.csv's repeats, noise and

@@ -418,8 +418,8 @@ void checkSameEngine(const RunOptions& options, const std::optional<results::Run
   }
 }
 
-/// The run's protocol (RunOptions::protocol loaded; the lift without one), and its run.csv record
-/// in `sources` (none for the lift).
+/// The run's protocol (RunOptions::protocol loaded; the lift without one), and its run.csv records
+/// in `sources` (name, hash and file; none for the lift).
 rwsim::trial::TrialProtocol loadProtocol(const RunOptions& options, results::RunSources& sources) {
   if (options.protocol.empty()) return rwsim::trial::TrialProtocol::lift();
   rwsim::trial::TrialProtocol protocol = rwsim::trial::loadTrialProtocol(options.protocol);
@@ -431,6 +431,7 @@ rwsim::trial::TrialProtocol loadProtocol(const RunOptions& options, results::Run
   if (!protocol.isLift()) {
     sources.protocol = protocol.name;
     sources.protocolHash = rwsim::trial::protocolHash(protocol);
+    sources.protocolFile = fs::absolute(options.protocol).lexically_normal();
   }
   return protocol;
 }
@@ -657,6 +658,7 @@ RunSummary runBenchmark(const RunOptions& options,
   plan.run.repeats = repeats.record;
   plan.run.sources.protocol = protocolRecord.protocol;
   plan.run.sources.protocolHash = protocolRecord.protocolHash;
+  plan.run.sources.protocolFile = protocolRecord.protocolFile;
   std::optional<ShardRecord> shard;
   if (options.shard) {
     restrictToShard(plan, *options.shard);

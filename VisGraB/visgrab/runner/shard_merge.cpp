@@ -160,10 +160,12 @@ MergeSummary mergeShards(const std::vector<fs::path>& shardDirs, const fs::path&
     } else if (part.sources.database != merged.sources.database ||
                part.sources.databaseHash != merged.sources.databaseHash ||
                part.sources.grasps != merged.sources.grasps ||
-               part.sources.hand != merged.sources.hand) {
+               part.sources.hand != merged.sources.hand ||
+               part.sources.protocolFile != merged.sources.protocolFile) {
       throw std::runtime_error("shard folders " + shards.front().dir.string() + " and " +
                                s.dir.string() +
-                               " name other input paths in run.csv (database, grasps or hand); "
+                               " name other input paths in run.csv (database, grasps, hand or "
+                               "protocol file); "
                                "run every shard with the same paths");
     }
     merged.scenes.insert(merged.scenes.end(), part.scenes.begin(), part.scenes.end());

@@ -554,6 +554,9 @@ TEST(ResultsFileTest, RunFileRecordsMaySpanLines) {
   run.sources.database = "/data/my db, v2";
   run.sources.grasps = {"a\nb.csv"};
   run.sources.hand = "sdh";
+  run.sources.protocol = "my shake";
+  run.sources.protocolHash = "0123456789abcdef";
+  run.sources.protocolFile = "/protocols/my,\nshake.xml";
   const std::string text = formatRunFile(run);
   const RunResults back = parseRunFile(text, "run.csv");
   ASSERT_EQ(back.scenes.size(), 3u);
@@ -563,6 +566,11 @@ TEST(ResultsFileTest, RunFileRecordsMaySpanLines) {
   EXPECT_EQ(back.sources.database, run.sources.database);
   EXPECT_EQ(back.sources.grasps, run.sources.grasps);
   EXPECT_EQ(back.sources.hand, run.sources.hand);
+  EXPECT_EQ(back.sources.protocol, run.sources.protocol);
+  EXPECT_EQ(back.sources.protocolHash, run.sources.protocolHash);
+  EXPECT_EQ(back.sources.protocolFile, run.sources.protocolFile);
+  EXPECT_NE(text.find("\nprotocol_file,\"/protocols/my,\nshake.xml\",,,,,,\n"), std::string::npos)
+      << text;
   // run.csv is written atomically: a cut-off one is an error, at the line its record starts.
   const std::string cut = text.substr(0, text.find("two\nlines") + 4);
   try {

@@ -1,11 +1,12 @@
 // replayProtocol: the protocol a run's trials ran, found again for a replay. A lift run replays
 // the lift; a run that recorded another protocol replays the data folder's protocol of that name
-// when its hash is the recorded one, or a given file with that hash; anything else is an error
-// that names the protocol, the hashes and the file.
+// when its hash is the recorded one, else the file the run recorded, or a given file with that
+// hash; anything else is an error that names the protocol, the hashes and the files.
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "rw/common/diagnostic.hpp"
 #include "rw/common/text_file.hpp"
@@ -161,6 +162,55 @@ TEST_F(RunProtocol, ACustomProtocolNeedsItsFile) {
   // The same values back under that name: found.
   fs::copy_file(custom_, changed, fs::copy_options::overwrite_existing);
   EXPECT_EQ(replayProtocol(run, data_), custom);
+}
+
+// A run made with a file of its own outside the data folder records it (protocol_file): the
+// replays find the protocol there while the file keeps its values, and say why not otherwise.
+TEST_F(RunProtocol, ACustomProtocolIsFoundByTheFileTheRunRecorded) {
+  const TrialProtocol custom = rwsim::trial::loadTrialProtocol(custom_);
+  RunSources run = ranWith(custom);
+  run.protocolFile = custom_;
+  EXPECT_EQ(replayProtocol(run, data_), custom);
+  // Even when the record's name is no file name of the data folder.
+  RunSources odd = run;
+  odd.protocol = "../myshake";
+  EXPECT_EQ(replayProtocol(odd, data_), custom);
+
+  // The file changed since the run: not found, with both files' reasons.
+  const std::string original = rw::common::readTextFileOrThrow(custom_);
+  visgrab::test::writeFile(custom_, replaced(original, "cycles=\"2\"", "cycles=\"3\""));
+  const std::string changedHash = protocolHash(rwsim::trial::loadTrialProtocol(custom_));
+  try {
+    replayProtocol(run, data_);
+    ADD_FAILURE() << "a changed protocol file was taken for the run's";
+  } catch (const ProtocolNotFoundError& e) {
+    EXPECT_EQ(e.reason(), (data_ / "protocols/myshake.xml").string() +
+                              " does not exist, and the run's protocol file " + custom_.string() +
+                              " has hash " + changedHash + " (changed since the run)");
+    EXPECT_NE(std::string(e.what()).find("pass --protocol FILE"), std::string::npos) << e.what();
+  }
+  // Gone: not found either.
+  fs::remove(custom_);
+  try {
+    replayProtocol(run, data_);
+    ADD_FAILURE() << "a removed protocol file was found";
+  } catch (const ProtocolNotFoundError& e) {
+    EXPECT_NE(
+        e.reason().find(", and the run's protocol file " + custom_.string() + " does not exist"),
+        std::string::npos)
+        << e.reason();
+  }
+  // A copy in the data folder under the recorded name does.
+  visgrab::test::writeFile(data_ / "protocols/myshake.xml", original);
+  EXPECT_EQ(replayProtocol(run, data_), custom);
+}
+
+// The data folder's protocols by name: the rule `--protocol NAME` and the replays share.
+TEST_F(RunProtocol, NamedProtocolsAreTheDataFoldersXmlFiles) {
+  EXPECT_EQ(visgrab::results::namedProtocolFile(data_, "shake"), data_ / "protocols/shake.xml");
+  visgrab::test::writeFile(data_ / "protocols/notes.txt", "not a protocol");
+  EXPECT_EQ(visgrab::results::knownProtocols(data_), (std::vector<std::string>{"lift", "shake"}));
+  EXPECT_TRUE(visgrab::results::knownProtocols(dir_.path() / "nowhere").empty());
 }
 
 TEST_F(RunProtocol, ARecordThatNamesNoFileOfTheDataFolderIsNotFound) {

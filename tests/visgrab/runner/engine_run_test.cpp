@@ -316,6 +316,12 @@ TEST_F(EngineRun, TheLiftLeavesNoProtocolRecordAndAnotherProtocolIsRecordedAndCh
   EXPECT_EQ(run.sources.protocolHash.size(), 16u);
   const std::string text = readFile(shake.out / "run.csv");
   EXPECT_NE(text.find("\nprotocol,shake,,,,,,\n"), std::string::npos) << text;
+  // And the file it was given, absolute (the replays fall back on it).
+  EXPECT_TRUE(run.sources.protocolFile.is_absolute()) << run.sources.protocolFile;
+  EXPECT_EQ(run.sources.protocolFile, fs::absolute(shake.protocol).lexically_normal());
+  EXPECT_NE(text.find("\nprotocol_file," + run.sources.protocolFile.string() + ",,,,,,\n"),
+            std::string::npos)
+      << text;
 
   // Resuming the shake's folder with the lift (or the lift's with the shake) is refused.
   for (auto [dir, protocol] :
