@@ -27,28 +27,11 @@ Load loadOn(const SolvedContact& c, bool objectIsB) {
   return {forceOnObject.dot(n), n, forceOnObject};
 }
 
-}  // namespace
-
-std::vector<int> handContactCounts(const std::vector<SolvedBodyContact>& contacts,
-                                   const std::vector<bool>& isHandBody, double threshold) {
-  std::vector<int> counts(isHandBody.size(), 0);
-  for (const auto& bc : contacts) {
-    const bool handA = isHand(isHandBody, bc.bodyA);
-    const bool handB = isHand(isHandBody, bc.bodyB);
-    if (handA == handB) continue;
-    const dynamics::BodyId other = handA ? bc.bodyB : bc.bodyA;
-    for (const auto& p : bc.points) {
-      if (loadOn(p, handA).normalForce > threshold) {
-        ++counts[other.index()];
-      }
-    }
-  }
-  return counts;
-}
-
-std::vector<double> handNormalForces(const std::vector<SolvedBodyContact>& contacts,
-                                     const std::vector<bool>& isHandBody, double threshold) {
-  std::vector<double> forces(isHandBody.size(), 0.0);
+// Calls visit(body index, normal force) for each point between a hand body and another body
+// whose normal force on that other body exceeds `threshold`, in the contacts' order.
+template <class Visit>
+void forEachLoadedHandPoint(const std::vector<SolvedBodyContact>& contacts,
+                            const std::vector<bool>& isHandBody, double threshold, Visit visit) {
   for (const auto& bc : contacts) {
     const bool handA = isHand(isHandBody, bc.bodyA);
     const bool handB = isHand(isHandBody, bc.bodyB);
@@ -56,9 +39,26 @@ std::vector<double> handNormalForces(const std::vector<SolvedBodyContact>& conta
     const dynamics::BodyId other = handA ? bc.bodyB : bc.bodyA;
     for (const auto& p : bc.points) {
       const double f = loadOn(p, handA).normalForce;
-      if (f > threshold) forces[other.index()] += f;
+      if (f > threshold) visit(other.index(), f);
     }
   }
+}
+
+}  // namespace
+
+std::vector<int> handContactCounts(const std::vector<SolvedBodyContact>& contacts,
+                                   const std::vector<bool>& isHandBody, double threshold) {
+  std::vector<int> counts(isHandBody.size(), 0);
+  forEachLoadedHandPoint(contacts, isHandBody, threshold,
+                         [&](std::size_t body, double) { ++counts[body]; });
+  return counts;
+}
+
+std::vector<double> handNormalForces(const std::vector<SolvedBodyContact>& contacts,
+                                     const std::vector<bool>& isHandBody, double threshold) {
+  std::vector<double> forces(isHandBody.size(), 0.0);
+  forEachLoadedHandPoint(contacts, isHandBody, threshold,
+                         [&](std::size_t body, double f) { forces[body] += f; });
   return forces;
 }
 
