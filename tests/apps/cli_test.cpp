@@ -3,15 +3,12 @@
 #include <string>
 
 #include "support/test_support.hpp"
+#include "support/visgrab_cli.hpp"
 
 namespace {
 
 using visgrab::test::RunResult;
-
-// Runs the visgrab binary with `args` (already shell-quoted).
-RunResult runVisgrab(const std::string& args) {
-  return visgrab::test::runProgram(VISGRAB_BINARY, args);
-}
+using visgrab::test::runVisgrab;
 
 std::string quoted(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
 

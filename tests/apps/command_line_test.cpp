@@ -9,6 +9,7 @@
 
 #include "command_line.hpp"
 #include "support/test_support.hpp"
+#include "support/visgrab_cli.hpp"
 #ifdef VISGRAB_VIEWER_BINARY
 #include "viewer_options.hpp"
 #endif
@@ -76,13 +77,13 @@ TEST(CommandLineHelp, EveryVisgrabCommandListsEveryOptionInItsHelp) {
                         "merge", "slurm", "baseline", "render", "agreement", "import"}));
   for (const CLI::App* cmd : commands) {
     const std::string words = wordsAfterProgram(*cmd);
-    const RunResult help = visgrab::test::runProgram(VISGRAB_BINARY, words + " --help");
+    const RunResult help = visgrab::test::runVisgrab(words + " --help");
     ASSERT_EQ(help.exitCode, 0) << words << "\n" << help.output;
     EXPECT_NE(help.output.find("usage: " + visgrab::app::commandPath(*cmd)), std::string::npos)
         << help.output;
     expectHelpListsEverything(*cmd, help.output, "visgrab " + words);
     // -h is the same everywhere.
-    const RunResult h = visgrab::test::runProgram(VISGRAB_BINARY, words + " -h");
+    const RunResult h = visgrab::test::runVisgrab(words + " -h");
     EXPECT_EQ(h.exitCode, 0) << words;
     EXPECT_EQ(h.output, help.output) << words;
   }
@@ -103,28 +104,28 @@ TEST(CommandLineRules, EqualsAndRepeatsAreTheSameForEveryCommand) {
   const std::string missing = visgrab::test::shellQuoted(dir.path() / "no-db");
   // --x=v is --x v: both reach the command (which finds no database: bad input, exit 1).
   for (const std::string& args : {"db list --db " + missing, "db list --db=" + missing}) {
-    const RunResult r = visgrab::test::runProgram(VISGRAB_BINARY, args);
+    const RunResult r = visgrab::test::runVisgrab(args);
     EXPECT_EQ(r.exitCode, 1) << args << "\n" << r.output;
     EXPECT_NE(r.output.find("no-db"), std::string::npos) << r.output;
   }
   // An option given twice is a usage error, a flag too ...
-  const RunResult twice = visgrab::test::runProgram(VISGRAB_BINARY, "db list --db a --db=b");
+  const RunResult twice = visgrab::test::runVisgrab("db list --db a --db=b");
   EXPECT_EQ(twice.exitCode, 2) << twice.output;
   EXPECT_NE(twice.output.find("--db is given 2 times"), std::string::npos) << twice.output;
-  const RunResult flag = visgrab::test::runProgram(VISGRAB_BINARY, "db list --db a --json --json");
+  const RunResult flag = visgrab::test::runVisgrab("db list --db a --json --json");
   EXPECT_EQ(flag.exitCode, 2) << flag.output;
   EXPECT_NE(flag.output.find("--json is given 2 times"), std::string::npos) << flag.output;
   // ... but a repeatable one collects its values (the run then finds no database: exit 1).
-  const RunResult grasps = visgrab::test::runProgram(
-      VISGRAB_BINARY, "run --db " + missing + " --grasps a --grasps=b --out " + missing);
+  const RunResult grasps =
+      visgrab::test::runVisgrab("run --db " + missing + " --grasps a --grasps=b --out " + missing);
   EXPECT_EQ(grasps.exitCode, 1) << grasps.output;
   // Several positionals reach the command (which finds no results in the first: exit 1).
-  const RunResult results = visgrab::test::runProgram(
-      VISGRAB_BINARY, "analyze " + missing + " " + missing + "2 --out " + missing + "3");
+  const RunResult results =
+      visgrab::test::runVisgrab("analyze " + missing + " " + missing + "2 --out " + missing + "3");
   EXPECT_EQ(results.exitCode, 1) << results.output;
   EXPECT_NE(results.output.find("no-db/trials.csv"), std::string::npos) << results.output;
   // A missing value names what was expected.
-  const RunResult value = visgrab::test::runProgram(VISGRAB_BINARY, "db list --db");
+  const RunResult value = visgrab::test::runVisgrab("db list --db");
   EXPECT_EQ(value.exitCode, 2) << value.output;
   EXPECT_NE(value.output.find("--db: expected DIR|MANIFEST"), std::string::npos) << value.output;
 }

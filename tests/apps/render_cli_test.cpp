@@ -14,6 +14,7 @@
 #include "rwsim/trial/trial_protocol.hpp"
 #include "support/test_database.hpp"
 #include "support/test_support.hpp"
+#include "support/visgrab_cli.hpp"
 #include "visgrab/render/png_io.hpp"
 #include "visgrab/results/results_file.hpp"
 
@@ -21,13 +22,10 @@ namespace {
 
 namespace fs = std::filesystem;
 using visgrab::test::RunResult;
+using visgrab::test::runVisgrab;
 using visgrab::test::shellQuoted;
 
 constexpr const char* kScene = "plain/single/cocacola/01";
-
-RunResult visgrab(const std::string& args) {
-  return visgrab::test::runProgram(VISGRAB_BINARY, args);
-}
 
 std::string db() { return shellQuoted(visgrab::test::testDatabasePath()); }
 
@@ -50,9 +48,9 @@ class RenderCli : public ::testing::Test {
     visgrab::test::writeFile(dir_->path() / "good.csv", good);
     visgrab::test::writeFile(dir_->path() / "through.csv", through);
     const RunResult r =
-        visgrab("run --db " + db() + " --grasps " + shellQuoted(dir_->path() / "good.csv") +
-                " --grasps " + shellQuoted(dir_->path() / "through.csv") + " --out " +
-                shellQuoted(dir_->path() / "results") + " --quiet");
+        runVisgrab("run --db " + db() + " --grasps " + shellQuoted(dir_->path() / "good.csv") +
+                   " --grasps " + shellQuoted(dir_->path() / "through.csv") + " --out " +
+                   shellQuoted(dir_->path() / "results") + " --quiet");
     ASSERT_EQ(r.exitCode, 0) << r.output;
   }
   static void TearDownTestSuite() {
@@ -68,8 +66,8 @@ class RenderCli : public ::testing::Test {
 visgrab::test::TempDir* RenderCli::dir_ = nullptr;
 
 TEST_F(RenderCli, SceneAloneIsFramedOnTheObjects) {
-  const RunResult r = visgrab("render --db " + db() + " --scene " + kScene + " --out " +
-                              shellQuoted(path("scene.png")));
+  const RunResult r = runVisgrab("render --db " + db() + " --scene " + kScene + " --out " +
+                                 shellQuoted(path("scene.png")));
   ASSERT_EQ(r.exitCode, 0) << r.output;
   const auto image = visgrab::render::readPng(path("scene.png"));
   ASSERT_EQ(image.width, 800);
@@ -89,16 +87,16 @@ TEST_F(RenderCli, SceneAloneIsFramedOnTheObjects) {
 }
 
 TEST_F(RenderCli, GraspStripFromTheRunsResults) {
-  RunResult r = visgrab("render" + results() + " --scene " + kScene +
-                        " --grasp good --size 240x180 --out " + shellQuoted(path("good.png")));
+  RunResult r = runVisgrab("render" + results() + " --scene " + kScene +
+                           " --grasp good --size 240x180 --out " + shellQuoted(path("good.png")));
   ASSERT_EQ(r.exitCode, 0) << r.output;
   EXPECT_NE(r.output.find("stable"), std::string::npos) << r.output;
   auto image = visgrab::render::readPng(path("good.png"));
   EXPECT_EQ(image.width, 3 * (240 + 2));
   EXPECT_EQ(image.height, 36 + 180 + 30 + 2);
   // The second grasp by number: in collision, one panel.
-  r = visgrab("render" + results() + " --scene " + kScene + " --grasp 2 --size 240x180 --out " +
-              shellQuoted(path("through.png")));
+  r = runVisgrab("render" + results() + " --scene " + kScene + " --grasp 2 --size 240x180 --out " +
+                 shellQuoted(path("through.png")));
   ASSERT_EQ(r.exitCode, 0) << r.output;
   EXPECT_NE(r.output.find("in_collision"), std::string::npos) << r.output;
   image = visgrab::render::readPng(path("through.png"));
@@ -107,16 +105,16 @@ TEST_F(RenderCli, GraspStripFromTheRunsResults) {
 
 TEST_F(RenderCli, MontageAndOverlay) {
   RunResult r =
-      visgrab("render" + results() + " --scene " + kScene +
-              " --montage --size 160x120 --columns 3 --out " + shellQuoted(path("montage.png")));
+      runVisgrab("render" + results() + " --scene " + kScene +
+                 " --montage --size 160x120 --columns 3 --out " + shellQuoted(path("montage.png")));
   ASSERT_EQ(r.exitCode, 0) << r.output;
   EXPECT_NE(r.output.find("2 grasps"), std::string::npos) << r.output;
   auto image = visgrab::render::readPng(path("montage.png"));
   EXPECT_EQ(image.width, 3 * (160 + 2));
   EXPECT_EQ(image.height, 36 + (120 + 30 + 2) + 30);
 
-  r = visgrab("render" + results() + " --scene " + kScene + " --grasp good --overlay --out " +
-              shellQuoted(path("overlay.png")));
+  r = runVisgrab("render" + results() + " --scene " + kScene + " --grasp good --overlay --out " +
+                 shellQuoted(path("overlay.png")));
   ASSERT_EQ(r.exitCode, 0) << r.output;
   image = visgrab::render::readPng(path("overlay.png"));
   const auto left =
@@ -151,10 +149,11 @@ TEST_F(RenderCli, ReportPicturesOfSeveralScenes) {
     plan += line;
   }
   visgrab::test::writeFile(path("two.csv"), plan);
-  RunResult r = visgrab("run --db " + db() + " --grasps " + shellQuoted(path("two.csv")) +
-                        " --out " + shellQuoted(path("two")) + " --quiet");
+  RunResult r = runVisgrab("run --db " + db() + " --grasps " + shellQuoted(path("two.csv")) +
+                           " --out " + shellQuoted(path("two")) + " --quiet");
   ASSERT_EQ(r.exitCode, 0) << r.output;
-  r = visgrab("analyze " + shellQuoted(path("two")) + " --out " + shellQuoted(path("two-report")));
+  r = runVisgrab("analyze " + shellQuoted(path("two")) + " --out " +
+                 shellQuoted(path("two-report")));
   ASSERT_EQ(r.exitCode, 0) << r.output;
   EXPECT_EQ(r.output.find("not drawn"), std::string::npos) << r.output;
   // Both held grasps are their group's best: one picture per table.
@@ -183,8 +182,8 @@ TEST_F(RenderCli, GraspNIsTheScenesNthRowOfTrialsCsv) {
   line(kScene, "second", "through", 0.02);
   line(kScene, "first", "good", 0.06);
   visgrab::test::writeFile(path("mixed.csv"), plan);
-  RunResult r = visgrab("run --db " + db() + " --grasps " + shellQuoted(path("mixed.csv")) +
-                        " --out " + shellQuoted(path("mixed")) + " --quiet");
+  RunResult r = runVisgrab("run --db " + db() + " --grasps " + shellQuoted(path("mixed.csv")) +
+                           " --out " + shellQuoted(path("mixed")) + " --quiet");
   ASSERT_EQ(r.exitCode, 0) << r.output;
   std::vector<visgrab::results::TrialRecord> rows;
   for (const auto& t : visgrab::results::readResults(path("mixed")).trials) {
@@ -197,8 +196,8 @@ TEST_F(RenderCli, GraspNIsTheScenesNthRowOfTrialsCsv) {
                                     " --results " + shellQuoted(path("mixed"))}) {
     for (std::size_t n = 1; n <= rows.size(); ++n) {
       SCOPED_TRACE(inputs + " --grasp " + std::to_string(n));
-      r = visgrab("render" + inputs + " --scene " + kScene + " --grasp " + std::to_string(n) +
-                  " --size 120x90 --out " + shellQuoted(path("mixed.png")));
+      r = runVisgrab("render" + inputs + " --scene " + kScene + " --grasp " + std::to_string(n) +
+                     " --size 120x90 --out " + shellQuoted(path("mixed.png")));
       ASSERT_EQ(r.exitCode, 0) << r.output;
       const std::string outcome(rwsim::trial::outcomeName(rows[n - 1].outcome));
       EXPECT_NE(r.output.find(", " + outcome + ", hand"), std::string::npos) << r.output;
@@ -250,8 +249,8 @@ class RenderProtocolCli : public ::testing::Test {
                                         std::pair{"custom", shellQuoted(path("mine/myshake.xml"))},
                                         std::pair{"moved", shellQuoted(path("mine/moved.xml"))}}) {
       const RunResult r =
-          visgrab("run --db " + db() + " --grasps " + shellQuoted(path("grasps.csv")) +
-                  " --protocol " + protocol + " --out " + shellQuoted(path(out)) + " --quiet");
+          runVisgrab("run --db " + db() + " --grasps " + shellQuoted(path("grasps.csv")) +
+                     " --protocol " + protocol + " --out " + shellQuoted(path(out)) + " --quiet");
       ASSERT_EQ(r.exitCode, 0) << r.output;
     }
     fs::create_directories(path("elsewhere"));
@@ -279,8 +278,8 @@ class RenderProtocolCli : public ::testing::Test {
   // Renders `grasp` of `run` with `more` options; the picture is `out`.
   static RunResult render(const std::string& run, const std::string& grasp, const std::string& more,
                           const std::string& out) {
-    return visgrab("render" + results(run) + " --scene " + kScene + " --grasp " + grasp +
-                   " --size 120x90 " + more + " --out " + shellQuoted(path(out)));
+    return runVisgrab("render" + results(run) + " --scene " + kScene + " --grasp " + grasp +
+                      " --size 120x90 " + more + " --out " + shellQuoted(path(out)));
   }
 
   static visgrab::test::TempDir* dir_;
@@ -307,8 +306,8 @@ TEST_F(RenderProtocolCli, AShakeRunReplaysWithTheShake) {
   }
   // The montage simulates nothing it has a record of, but replays with the shake all the same.
   const RunResult montage =
-      visgrab("render" + results("shake") + " --scene " + kScene +
-              " --montage --size 120x90 --out " + shellQuoted(path("montage.png")));
+      runVisgrab("render" + results("shake") + " --scene " + kScene +
+                 " --montage --size 120x90 --out " + shellQuoted(path("montage.png")));
   ASSERT_EQ(montage.exitCode, 0) << montage.output;
   EXPECT_NE(montage.output.find("2 grasps"), std::string::npos) << montage.output;
 }
@@ -372,8 +371,8 @@ TEST_F(RenderProtocolCli, ACustomProtocolRunReplaysWithItsFile) {
   EXPECT_NE(r.output.find("pass --protocol FILE"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(path("moved.png")));
   // The scene alone replays nothing: drawn.
-  r = visgrab("render" + results("moved") + " --scene " + kScene + " --size 120x90 --out " +
-              shellQuoted(path("moved-scene.png")));
+  r = runVisgrab("render" + results("moved") + " --scene " + kScene + " --size 120x90 --out " +
+                 shellQuoted(path("moved-scene.png")));
   EXPECT_EQ(r.exitCode, 0) << r.output;
 
   for (const std::string id : {"good", "high"}) {
@@ -391,15 +390,15 @@ TEST_F(RenderProtocolCli, ACustomProtocolRunReplaysWithItsFile) {
 TEST_F(RenderProtocolCli, ReportPicturesUseTheRunsProtocol) {
   for (const std::string run : {"shake", "custom"}) {
     SCOPED_TRACE(run);
-    const RunResult r = visgrab("analyze " + shellQuoted(path(run)) + " --bootstrap 0 --out " +
-                                shellQuoted(path(run + "-report")));
+    const RunResult r = runVisgrab("analyze " + shellQuoted(path(run)) + " --bootstrap 0 --out " +
+                                   shellQuoted(path(run + "-report")));
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_EQ(r.output.find("not drawn"), std::string::npos) << r.output;
     EXPECT_FALSE(fs::is_empty(path(run + "-report") / "images"));
   }
 
-  const RunResult r = visgrab("analyze " + shellQuoted(path("moved")) + " --bootstrap 0 --out " +
-                              shellQuoted(path("moved-report")));
+  const RunResult r = runVisgrab("analyze " + shellQuoted(path("moved")) + " --bootstrap 0 --out " +
+                                 shellQuoted(path("moved-report")));
   ASSERT_EQ(r.exitCode, 0) << r.output;
   EXPECT_NE(r.output.find("not drawn: the run's trials ran the protocol \"myshake\""),
             std::string::npos)
@@ -430,7 +429,7 @@ TEST_F(RenderCli, MistakesAreUsageErrors) {
       {"render --db " + shellQuoted(path("nowhere")) + " --scene " + kScene + out, 1, "nowhere"},
   };
   for (const Case& c : cases) {
-    const RunResult r = visgrab(c.args);
+    const RunResult r = runVisgrab(c.args);
     EXPECT_EQ(r.exitCode, c.exitCode) << c.args << "\n" << r.output;
     EXPECT_NE(r.output.find(c.message), std::string::npos) << c.args << "\n" << r.output;
   }

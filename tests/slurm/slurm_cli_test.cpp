@@ -13,12 +13,14 @@
 #include "shard_test_grasps.hpp"
 #include "support/test_database.hpp"
 #include "support/test_support.hpp"
+#include "support/visgrab_cli.hpp"
 #include "visgrab/taskio/grasp_list.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 using visgrab::test::runProgram;
+using visgrab::test::runVisgrab;
 using visgrab::test::shellQuoted;
 
 std::string fileBytes(const fs::path& f) {
@@ -50,12 +52,11 @@ class SlurmCommand : public ::testing::Test {
 TEST_F(SlurmCommand, DryRunPrintsTheScriptsAndWritesNothing) {
   const fs::path out = tmp_.path() / "sweep";
   const auto r =
-      runProgram(VISGRAB_BINARY,
-                 "slurm" + common() + " --grasps " + shellQuoted(grasps()) + " --hand " +
-                     shellQuoted(visgrab::test::sourceDir() / "scenes/hands/pg70") +
-                     " --shards 3 --cpus-per-task 4 --partition short --time 0:10:00 --account lab "
-                     "--mem 2G --sbatch-option=--qos=low --dry-run --out " +
-                     shellQuoted(out));
+      runVisgrab("slurm" + common() + " --grasps " + shellQuoted(grasps()) + " --hand " +
+                 shellQuoted(visgrab::test::sourceDir() / "scenes/hands/pg70") +
+                 " --shards 3 --cpus-per-task 4 --partition short --time 0:10:00 --account lab "
+                 "--mem 2G --sbatch-option=--qos=low --dry-run --out " +
+                 shellQuoted(out));
   ASSERT_EQ(r.exitCode, 0) << r.output;
   // 2 grasp sets x 2 hands x 3 shards.
   EXPECT_TRUE(contains(r.output, "#SBATCH --array=0-11\n")) << r.output;
@@ -78,9 +79,8 @@ TEST_F(SlurmCommand, DryRunPrintsTheScriptsAndWritesNothing) {
 
 TEST_F(SlurmCommand, ScriptsRunWithoutSlurmGiveTheOneMachineResults) {
   const fs::path out = tmp_.path() / "sweep";
-  auto r = runProgram(
-      VISGRAB_BINARY,
-      "slurm" + common() + " --shards 3 --cpus-per-task 2 --no-pictures --out " + shellQuoted(out));
+  auto r = runVisgrab("slurm" + common() + " --shards 3 --cpus-per-task 2 --no-pictures --out " +
+                      shellQuoted(out));
   ASSERT_EQ(r.exitCode, 0) << r.output;
   const fs::path scripts = out / "slurm";
   EXPECT_TRUE(fs::is_directory(scripts / "logs"));
@@ -101,8 +101,7 @@ TEST_F(SlurmCommand, ScriptsRunWithoutSlurmGiveTheOneMachineResults) {
   EXPECT_TRUE(fs::exists(out / "report" / "report.md"));
 
   const fs::path whole = tmp_.path() / "whole";
-  r = runProgram(VISGRAB_BINARY,
-                 "run" + common() + " --quiet --threads 2 --out " + shellQuoted(whole));
+  r = runVisgrab("run" + common() + " --quiet --threads 2 --out " + shellQuoted(whole));
   ASSERT_EQ(r.exitCode, 0) << r.output;
   for (const auto name : {"trials.csv", "run.csv"}) {
     EXPECT_EQ(fileBytes(out / "results" / "top" / name), fileBytes(whole / name)) << name;
@@ -114,8 +113,8 @@ TEST_F(SlurmCommand, RepeatOptionsReachEveryShardAndTheMergeWritesGraspsCsv) {
   const fs::path noise = visgrab::test::writeFile(
       tmp_.path() / "n.xml", "<NoiseModel>\n  <Friction sigma=\"0.2\"/>\n</NoiseModel>\n");
   const std::string repeats = " --repeats 3 --seed 5 --noise " + shellQuoted(noise);
-  auto r = runProgram(VISGRAB_BINARY, "slurm" + common() + repeats +
-                                          " --shards 2 --no-analyze --out " + shellQuoted(out));
+  auto r = runVisgrab("slurm" + common() + repeats + " --shards 2 --no-analyze --out " +
+                      shellQuoted(out));
   ASSERT_EQ(r.exitCode, 0) << r.output;
   const std::string script = fileBytes(out / "slurm" / "trials.sbatch");
   EXPECT_TRUE(contains(script, "'--repeats' '3' '--seed' '5' '--noise' '" + noise.string() + "'"))
@@ -128,16 +127,14 @@ TEST_F(SlurmCommand, RepeatOptionsReachEveryShardAndTheMergeWritesGraspsCsv) {
   r = runProgram("/bin/bash", shellQuoted(out / "slurm" / "merge.sbatch"));
   ASSERT_EQ(r.exitCode, 0) << r.output;
   const fs::path whole = tmp_.path() / "whole";
-  r = runProgram(VISGRAB_BINARY,
-                 "run" + common() + repeats + " --quiet --threads 2 --out " + shellQuoted(whole));
+  r = runVisgrab("run" + common() + repeats + " --quiet --threads 2 --out " + shellQuoted(whole));
   ASSERT_EQ(r.exitCode, 0) << r.output;
   for (const auto name : {"trials.csv", "run.csv", "grasps.csv"}) {
     EXPECT_EQ(fileBytes(out / "results" / "top" / name), fileBytes(whole / name)) << name;
   }
   // An option of the adaptive rule without --adaptive is refused before anything is written.
-  r = runProgram(VISGRAB_BINARY, "slurm" + common() + repeats +
-                                     " --adaptive-alpha 0.1 --shards 2 --out " +
-                                     shellQuoted(tmp_.path() / "bad"));
+  r = runVisgrab("slurm" + common() + repeats + " --adaptive-alpha 0.1 --shards 2 --out " +
+                 shellQuoted(tmp_.path() / "bad"));
   EXPECT_NE(r.exitCode, 0);
   EXPECT_TRUE(contains(r.output, "--adaptive-alpha and --adaptive-margin need --adaptive"))
       << r.output;
@@ -147,8 +144,8 @@ TEST_F(SlurmCommand, RepeatOptionsReachEveryShardAndTheMergeWritesGraspsCsv) {
 TEST_F(SlurmCommand, TheProtocolReachesEveryShardAndTheMergeKeepsItsRecord) {
   const fs::path out = tmp_.path() / "sweep";
   const fs::path shake = visgrab::test::sourceDir() / "scenes/protocols/shake.xml";
-  auto r = runProgram(VISGRAB_BINARY, "slurm" + common() + " --protocol shake" +
-                                          " --shards 2 --no-analyze --out " + shellQuoted(out));
+  auto r = runVisgrab("slurm" + common() + " --protocol shake" + " --shards 2 --no-analyze --out " +
+                      shellQuoted(out));
   ASSERT_EQ(r.exitCode, 0) << r.output;
   const std::string script = fileBytes(out / "slurm" / "trials.sbatch");
   EXPECT_TRUE(contains(script, "'--protocol' '" + shake.string() + "'")) << script;
@@ -160,16 +157,16 @@ TEST_F(SlurmCommand, TheProtocolReachesEveryShardAndTheMergeKeepsItsRecord) {
   r = runProgram("/bin/bash", shellQuoted(out / "slurm" / "merge.sbatch"));
   ASSERT_EQ(r.exitCode, 0) << r.output;
   const fs::path whole = tmp_.path() / "whole";
-  r = runProgram(VISGRAB_BINARY, "run" + common() + " --protocol " + shellQuoted(shake) +
-                                     " --quiet --threads 2 --out " + shellQuoted(whole));
+  r = runVisgrab("run" + common() + " --protocol " + shellQuoted(shake) +
+                 " --quiet --threads 2 --out " + shellQuoted(whole));
   ASSERT_EQ(r.exitCode, 0) << r.output;
   for (const auto name : {"trials.csv", "run.csv"}) {
     EXPECT_EQ(fileBytes(out / "results" / "top" / name), fileBytes(whole / name)) << name;
   }
   EXPECT_TRUE(contains(fileBytes(whole / "run.csv"), "\nprotocol,shake,,,,,,\n"));
   // An unknown protocol is refused before anything is written.
-  r = runProgram(VISGRAB_BINARY, "slurm" + common() + " --protocol wobble --shards 2 --out " +
-                                     shellQuoted(tmp_.path() / "bad"));
+  r = runVisgrab("slurm" + common() + " --protocol wobble --shards 2 --out " +
+                 shellQuoted(tmp_.path() / "bad"));
   EXPECT_EQ(r.exitCode, 2) << r.output;
   EXPECT_TRUE(contains(r.output, "unknown protocol \"wobble\"")) << r.output;
   EXPECT_FALSE(fs::exists(tmp_.path() / "bad"));
@@ -183,8 +180,8 @@ TEST_F(SlurmCommand, SubmitChainsTheMergeJobOnTheArraysId) {
           "\nif [ \"$#\" = 2 ]; then echo '4242;cluster'; else echo 4243; fi\n");
   fs::permissions(sbatch, fs::perms::owner_all);
   const fs::path out = tmp_.path() / "sweep";
-  auto r = runProgram(VISGRAB_BINARY, "slurm" + common() + " --shards 2 --submit --sbatch " +
-                                          shellQuoted(sbatch) + " --out " + shellQuoted(out));
+  auto r = runVisgrab("slurm" + common() + " --shards 2 --submit --sbatch " + shellQuoted(sbatch) +
+                      " --out " + shellQuoted(out));
   ASSERT_EQ(r.exitCode, 0) << r.output;
   EXPECT_TRUE(contains(r.output, "trials job 4242, merge job 4243")) << r.output;
   EXPECT_EQ(fileBytes(calls), "--parsable " + (out / "slurm/trials.sbatch").string() +
@@ -192,36 +189,34 @@ TEST_F(SlurmCommand, SubmitChainsTheMergeJobOnTheArraysId) {
                                   (out / "slurm/merge.sbatch").string() + "\n");
   // An sbatch that prints no job id, or fails: a clear error.
   visgrab::test::writeFile(sbatch, "#!/bin/sh\necho 'sbatch: error: invalid partition'\n");
-  r = runProgram(VISGRAB_BINARY, "slurm" + common() + " --shards 2 --submit --sbatch " +
-                                     shellQuoted(sbatch) + " --out " + shellQuoted(out));
+  r = runVisgrab("slurm" + common() + " --shards 2 --submit --sbatch " + shellQuoted(sbatch) +
+                 " --out " + shellQuoted(out));
   EXPECT_EQ(r.exitCode, 1);
   EXPECT_TRUE(contains(r.output, "expected a job id")) << r.output;
   visgrab::test::writeFile(sbatch, "#!/bin/sh\nexit 3\n");
-  r = runProgram(VISGRAB_BINARY, "slurm" + common() + " --shards 2 --submit --sbatch " +
-                                     shellQuoted(sbatch) + " --out " + shellQuoted(out));
+  r = runVisgrab("slurm" + common() + " --shards 2 --submit --sbatch " + shellQuoted(sbatch) +
+                 " --out " + shellQuoted(out));
   EXPECT_EQ(r.exitCode, 1);
   EXPECT_TRUE(contains(r.output, "failed (exit code 3)")) << r.output;
 }
 
 TEST_F(SlurmCommand, ShardOptionsAndMergeMistakesAreClearErrors) {
-  auto r = runProgram(VISGRAB_BINARY, "run" + common() + " --shard 3 --of 2 --out " +
-                                          shellQuoted(tmp_.path() / "x"));
+  auto r =
+      runVisgrab("run" + common() + " --shard 3 --of 2 --out " + shellQuoted(tmp_.path() / "x"));
   EXPECT_EQ(r.exitCode, 2);
   EXPECT_TRUE(contains(r.output, "--shard 3 is beyond --of 2")) << r.output;
-  r = runProgram(VISGRAB_BINARY,
-                 "run" + common() + " --shard 1 --out " + shellQuoted(tmp_.path() / "x"));
+  r = runVisgrab("run" + common() + " --shard 1 --out " + shellQuoted(tmp_.path() / "x"));
   EXPECT_EQ(r.exitCode, 2);
   EXPECT_TRUE(contains(r.output, "--shard K and --of N go together")) << r.output;
-  r = runProgram(VISGRAB_BINARY,
-                 "run" + common() + " --shard 0 --of 2 --out " + shellQuoted(tmp_.path() / "x"));
+  r = runVisgrab("run" + common() + " --shard 0 --of 2 --out " + shellQuoted(tmp_.path() / "x"));
   EXPECT_EQ(r.exitCode, 2) << r.output;
   EXPECT_FALSE(fs::exists(tmp_.path() / "x"));
-  r = runProgram(VISGRAB_BINARY, "merge " + shellQuoted(tmp_.path()) + " --out " +
-                                     shellQuoted(tmp_.path() / "merged"));
+  r = runVisgrab("merge " + shellQuoted(tmp_.path()) + " --out " +
+                 shellQuoted(tmp_.path() / "merged"));
   EXPECT_EQ(r.exitCode, 1);
   EXPECT_TRUE(contains(r.output, "not the result folder of a shard")) << r.output;
-  r = runProgram(VISGRAB_BINARY, "slurm" + common() + " --shards 2 --dry-run --submit --out " +
-                                     shellQuoted(tmp_.path() / "s"));
+  r = runVisgrab("slurm" + common() + " --shards 2 --dry-run --submit --out " +
+                 shellQuoted(tmp_.path() / "s"));
   EXPECT_EQ(r.exitCode, 2) << r.output;
 }
 

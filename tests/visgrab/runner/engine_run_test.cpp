@@ -17,6 +17,7 @@
 #include "rwsim/trial/grasp_outcome.hpp"
 #include "support/test_database.hpp"
 #include "support/test_support.hpp"
+#include "support/visgrab_cli.hpp"
 #include "visgrab/database/database.hpp"
 #include "visgrab/results/results_file.hpp"
 #include "visgrab/runner/benchmark_runner.hpp"
@@ -152,12 +153,11 @@ TEST_F(EngineRun, TheDatabasesIndexHashIsRecordedAndReplaysCheckIt) {
   EXPECT_NE(original.find("\ndatabase_hash," + hash + ",,,,,,\n"), std::string::npos) << original;
 
   const auto render = [&] {
-    return visgrab::test::runProgram(
-        VISGRAB_BINARY, "render --results " + visgrab::test::shellQuoted(options_.out) +
-                            " --scene " +
-                            db::sceneIdOf(db::SceneConditions::single(db::Texture::kPlain, 13, 1)) +
-                            " --method known --grasp around --size 64x48 --out " +
-                            visgrab::test::shellQuoted(tmp_.path() / "r.png"));
+    return visgrab::test::runVisgrab(
+        "render --results " + visgrab::test::shellQuoted(options_.out) + " --scene " +
+        db::sceneIdOf(db::SceneConditions::single(db::Texture::kPlain, 13, 1)) +
+        " --method known --grasp around --size 64x48 --out " +
+        visgrab::test::shellQuoted(tmp_.path() / "r.png"));
   };
   // Another database at the recorded path (here: another recorded hash).
   std::string replaced = original;
@@ -202,14 +202,14 @@ TEST_F(EngineRun, TheCommandLineRefusesAnUnknownEngine) {
   const std::string args = "run --db " + visgrab::test::shellQuoted(options_.database) +
                            " --grasps " + visgrab::test::shellQuoted(options_.grasps[0]) +
                            " --out " + visgrab::test::shellQuoted(options_.out) + " --quiet";
-  const auto bad = visgrab::test::runProgram(VISGRAB_BINARY, args + " --engine bullet");
+  const auto bad = visgrab::test::runVisgrab(args + " --engine bullet");
   EXPECT_EQ(bad.exitCode, 2) << bad.output;
   EXPECT_NE(bad.output.find("--engine: unknown engine 'bullet' (expected one of ode, mujoco)"),
             std::string::npos)
       << bad.output;
   EXPECT_FALSE(fs::exists(options_.out / "trials.csv"));
   if (!rwsim::engines::isAvailable("mujoco")) {
-    const auto absent = visgrab::test::runProgram(VISGRAB_BINARY, args + " --engine mujoco");
+    const auto absent = visgrab::test::runVisgrab(args + " --engine mujoco");
     EXPECT_EQ(absent.exitCode, 2) << absent.output;
     EXPECT_NE(absent.output.find("libmujoco-dev"), std::string::npos) << absent.output;
   }
@@ -247,13 +247,12 @@ TEST(EngineRunMujoco, EveryTestDatabaseSceneRunsToAnOutcome) {
   visgrab::test::TempDir tmp;
   visgrab::taskio::writeGraspList(grasps, tmp.path() / "grasps.txt");
   const fs::path out = tmp.path() / "results";
-  const auto run = visgrab::test::runProgram(
-      VISGRAB_BINARY, "run --db " + visgrab::test::shellQuoted(database.root()) + " --grasps " +
-                          visgrab::test::shellQuoted(tmp.path() / "grasps.txt") + " --out " +
-                          visgrab::test::shellQuoted(out) + " --hand " +
-                          visgrab::test::shellQuoted(visgrab::test::sourceDir() /
-                                                     "scenes/hands/sdh/sdh.grasp.xml") +
-                          " --engine mujoco --threads 2 --quiet");
+  const auto run = visgrab::test::runVisgrab(
+      "run --db " + visgrab::test::shellQuoted(database.root()) + " --grasps " +
+      visgrab::test::shellQuoted(tmp.path() / "grasps.txt") + " --out " +
+      visgrab::test::shellQuoted(out) + " --hand " +
+      visgrab::test::shellQuoted(visgrab::test::sourceDir() / "scenes/hands/sdh/sdh.grasp.xml") +
+      " --engine mujoco --threads 2 --quiet");
   ASSERT_EQ(run.exitCode, 0) << run.output;
   const auto results = visgrab::results::readResults(out);
   EXPECT_EQ(results.sources.engine, "mujoco");

@@ -29,6 +29,7 @@
 #include "rw/math/rpy.hpp"
 #include "support/test_database.hpp"
 #include "support/test_support.hpp"
+#include "support/visgrab_cli.hpp"
 #include "visgrab/database/database.hpp"
 #include "visgrab/taskio/grasp_list.hpp"
 
@@ -99,9 +100,9 @@ class InterruptedRun : public ::testing::Test {
   static void SetUpTestSuite() {
     shared_ = std::make_unique<visgrab::test::TempDir>();
     visgrab::taskio::writeGraspList(grasps(), shared_->path() / "grasps.txt");
-    const auto whole = visgrab::test::runProgram(
-        VISGRAB_BINARY, commonArgs() + " --threads 1 --out " +
-                            visgrab::test::shellQuoted(shared_->path() / "whole"));
+    const auto whole =
+        visgrab::test::runVisgrab(commonArgs() + " --threads 1 --out " +
+                                  visgrab::test::shellQuoted(shared_->path() / "whole"));
     ASSERT_EQ(whole.exitCode, 0) << whole.output;
   }
   static void TearDownTestSuite() { shared_.reset(); }
@@ -182,9 +183,8 @@ class InterruptedRun : public ::testing::Test {
       EXPECT_LT(lineCount(out / "trials.csv"), lineCount(wholeDir() / "trials.csv"))
           << "the run was not stopped before its end";
     }
-    const auto resumed =
-        visgrab::test::runProgram(VISGRAB_BINARY, commonArgs() + " --threads 1 --resume --out " +
-                                                      visgrab::test::shellQuoted(out));
+    const auto resumed = visgrab::test::runVisgrab(commonArgs() + " --threads 1 --resume --out " +
+                                                   visgrab::test::shellQuoted(out));
     ASSERT_EQ(resumed.exitCode, 0) << resumed.output;
     EXPECT_EQ(fileBytes(out / "trials.csv"), fileBytes(wholeDir() / "trials.csv"));
     EXPECT_EQ(fileBytes(out / "run.csv"), fileBytes(wholeDir() / "run.csv"));
@@ -339,7 +339,7 @@ TEST_F(InterruptedRun, AnUnreadableSceneFileStopsTheRunAndResumeCompletesIt) {
                            visgrab::test::shellQuoted(shared_->path() / "grasps.txt") + " --hand " +
                            visgrab::test::shellQuoted(handFile()) + " --quiet --out " +
                            visgrab::test::shellQuoted(out);
-  const auto run = visgrab::test::runProgram(VISGRAB_BINARY, args + " --threads 2");
+  const auto run = visgrab::test::runVisgrab(args + " --threads 2");
   EXPECT_EQ(run.exitCode, 1) << run.output;
   // The scene loader's diagnostic: the file, then the system's reason.
   EXPECT_NE(run.output.find(missing.string() + ": error: cannot read the file: no such file"),
@@ -348,7 +348,7 @@ TEST_F(InterruptedRun, AnUnreadableSceneFileStopsTheRunAndResumeCompletesIt) {
   EXPECT_GE(lineCount(out / "trials.csv"), 1u + 6u) << "the scenes before it did not run";
   EXPECT_LT(lineCount(out / "trials.csv"), lineCount(wholeDir() / "trials.csv"));
   fs::rename(tmp.path() / "saved.dwc.xml", missing);
-  const auto resumed = visgrab::test::runProgram(VISGRAB_BINARY, args + " --threads 1 --resume");
+  const auto resumed = visgrab::test::runVisgrab(args + " --threads 1 --resume");
   ASSERT_EQ(resumed.exitCode, 0) << resumed.output;
   EXPECT_EQ(fileBytes(out / "trials.csv"), fileBytes(wholeDir() / "trials.csv"));
   auto withoutDatabase = [](std::string text) {

@@ -23,6 +23,7 @@
 #include "shard_test_grasps.hpp"
 #include "support/test_database.hpp"
 #include "support/test_support.hpp"
+#include "support/visgrab_cli.hpp"
 #include "visgrab/results/csv.hpp"
 #include "visgrab/results/grasp_summary.hpp"
 #include "visgrab/results/results_file.hpp"
@@ -305,23 +306,23 @@ TEST_F(RepeatedRun, BadRepeatOptionsAreClearErrors) {
                              visgrab::test::shellQuoted(visgrab::test::testDatabasePath()) +
                              " --grasps " + visgrab::test::shellQuoted(graspFile()) +
                              " --quiet --out " + visgrab::test::shellQuoted(tmp_.path() / "bad");
-  const auto zero = visgrab::test::runProgram(VISGRAB_BINARY, common + " --repeats 0");
+  const auto zero = visgrab::test::runVisgrab(common + " --repeats 0");
   EXPECT_NE(zero.exitCode, 0);
   EXPECT_NE(zero.output.find("--repeats"), std::string::npos) << zero.output;
-  const auto noiseAlone = visgrab::test::runProgram(VISGRAB_BINARY, common + " --noise x.xml");
+  const auto noiseAlone = visgrab::test::runVisgrab(common + " --noise x.xml");
   EXPECT_NE(noiseAlone.exitCode, 0);
   EXPECT_NE(noiseAlone.output.find("--noise needs --repeats N"), std::string::npos)
       << noiseAlone.output;
-  const auto alpha = visgrab::test::runProgram(
-      VISGRAB_BINARY, common + " --repeats 3 --adaptive --adaptive-alpha 1.5");
+  const auto alpha =
+      visgrab::test::runVisgrab(common + " --repeats 3 --adaptive --adaptive-alpha 1.5");
   EXPECT_NE(alpha.exitCode, 0);
   EXPECT_NE(alpha.output.find("--adaptive-alpha needs a number between 0 and 1"), std::string::npos)
       << alpha.output;
   const fs::path negative =
       visgrab::test::writeFile(tmp_.path() / "negative.xml",
                                "<NoiseModel>\n  <Hand translation=\"-0.001\"/>\n</NoiseModel>\n");
-  const auto bad = visgrab::test::runProgram(
-      VISGRAB_BINARY, common + " --repeats 3 --noise " + visgrab::test::shellQuoted(negative));
+  const auto bad = visgrab::test::runVisgrab(common + " --repeats 3 --noise " +
+                                             visgrab::test::shellQuoted(negative));
   EXPECT_NE(bad.exitCode, 0);
   EXPECT_NE(bad.output.find(negative.string() + ":2"), std::string::npos) << bad.output;
   EXPECT_FALSE(fs::exists(tmp_.path() / "bad" / "trials.csv"));

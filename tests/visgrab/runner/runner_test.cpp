@@ -19,6 +19,7 @@
 #include "rw/math/rpy.hpp"
 #include "support/test_database.hpp"
 #include "support/test_support.hpp"
+#include "support/visgrab_cli.hpp"
 #include "visgrab/database/database.hpp"
 #include "visgrab/results/results_file.hpp"
 #include "visgrab/runner/benchmark_runner.hpp"
@@ -226,9 +227,8 @@ TEST(BenchmarkRun, AKilledRunResumesToTheSameResults) {
                              " --grasps " + visgrab::test::shellQuoted(tmp.path() / "grasps.txt") +
                              " --hand " + visgrab::test::shellQuoted(handFile()) + " --quiet";
   // Uninterrupted, one thread.
-  const auto whole =
-      visgrab::test::runProgram(VISGRAB_BINARY, common + " --threads 1 --out " +
-                                                    visgrab::test::shellQuoted(tmp.path() / "a"));
+  const auto whole = visgrab::test::runVisgrab(common + " --threads 1 --out " +
+                                               visgrab::test::shellQuoted(tmp.path() / "a"));
   ASSERT_EQ(whole.exitCode, 0) << whole.output;
   // Killed once some trials are written, then resumed with two threads.
   const fs::path killedOut = tmp.path() / "b";
@@ -257,26 +257,25 @@ TEST(BenchmarkRun, AKilledRunResumesToTheSameResults) {
   waitpid(pid, &status, 0);
   ASSERT_TRUE(WIFSIGNALED(status)) << "the run finished before it could be killed";
   ASSERT_GE(lines, 7u);
-  const auto resumed =
-      visgrab::test::runProgram(VISGRAB_BINARY, common + " --threads 2 --resume --out " +
-                                                    visgrab::test::shellQuoted(killedOut));
+  const auto resumed = visgrab::test::runVisgrab(common + " --threads 2 --resume --out " +
+                                                 visgrab::test::shellQuoted(killedOut));
   ASSERT_EQ(resumed.exitCode, 0) << resumed.output;
   EXPECT_NE(resumed.output.find("resumed"), std::string::npos) << resumed.output;
   EXPECT_EQ(fileBytes(killedOut / "trials.csv"), fileBytes(tmp.path() / "a" / "trials.csv"));
   EXPECT_EQ(fileBytes(killedOut / "run.csv"), fileBytes(tmp.path() / "a" / "run.csv"));
   // The analyses of the two runs side by side.
-  const auto report = visgrab::test::runProgram(
-      VISGRAB_BINARY, "analyze " + visgrab::test::shellQuoted(tmp.path() / "a") + " " +
-                          visgrab::test::shellQuoted(killedOut) + " --out " +
-                          visgrab::test::shellQuoted(tmp.path() / "report"));
+  const auto report =
+      visgrab::test::runVisgrab("analyze " + visgrab::test::shellQuoted(tmp.path() / "a") + " " +
+                                visgrab::test::shellQuoted(killedOut) + " --out " +
+                                visgrab::test::shellQuoted(tmp.path() / "report"));
   ASSERT_EQ(report.exitCode, 0) << report.output;
   const std::string html = fileBytes(tmp.path() / "report" / "report.html");
   EXPECT_NE(html.find("<svg"), std::string::npos);
   EXPECT_NE(html.find("known"), std::string::npos);
   EXPECT_TRUE(fs::exists(tmp.path() / "report" / "report.md"));
   // Without --resume an existing result folder is refused.
-  const auto again = visgrab::test::runProgram(
-      VISGRAB_BINARY, common + " --out " + visgrab::test::shellQuoted(killedOut));
+  const auto again =
+      visgrab::test::runVisgrab(common + " --out " + visgrab::test::shellQuoted(killedOut));
   EXPECT_EQ(again.exitCode, 1) << again.output;
   EXPECT_NE(again.output.find("--resume"), std::string::npos) << again.output;
 }
