@@ -156,18 +156,24 @@ Closing close(double speed, const rwsim::trial::ProtocolPhase& phase, double jaw
   return out;
 }
 
+// `c` held the box, its jaws closed at `speed` m/s and no faster, and touched the box after the
+// 1 cm gap: contacts are reported from the contact margin on (0.5 mm apart), so the first one
+// comes when the jaw is between 9.5 and 10 mm along, at q / speed s (within a 5 ms step), later
+// than `after` s.
+void expectTouchedAtSpeed(const Closing& c, double speed, double after) {
+  EXPECT_EQ(c.result.outcome, GraspOutcome::kStable) << c.result.detail;
+  EXPECT_GE(c.qTouch, 0.01 - 0.0005 - 1e-9);
+  EXPECT_LE(c.qTouch, 0.01 + 1e-4);
+  EXPECT_NEAR(c.firstTouch, c.qTouch / speed, 0.0051);
+  EXPECT_GT(c.firstTouch, after);
+  EXPECT_LE(c.fastestJaw, speed * (1 + 1e-6));
+}
+
 TEST(ClosingSpeed, JawsReachTheBoxAfterTheGapOverTheCap) {
   // Each jaw has 1 cm to go: at 0.02 m/s it touches after 0.5 s (the velocity motor reaches the
-  // capped speed in the first step: 20 N on 0.1 kg is 200 m/s^2, 0.1 ms to 0.02 m/s). Contacts
-  // are reported from the contact margin on (0.5 mm apart), so the first one comes when the jaw
-  // is between 9.5 and 10 mm along, at q / 0.02 s.
-  const Closing capped = close(0.02, pull());
-  EXPECT_EQ(capped.result.outcome, GraspOutcome::kStable) << capped.result.detail;
-  EXPECT_GE(capped.qTouch, 0.01 - 0.0005 - 1e-9);
-  EXPECT_LE(capped.qTouch, 0.01 + 1e-4);
-  EXPECT_NEAR(capped.firstTouch, capped.qTouch / 0.02, 0.0051);
-  EXPECT_GT(capped.firstTouch, 0.47);
-  EXPECT_LE(capped.fastestJaw, 0.02 * (1 + 1e-6));
+  // capped speed in the first step: 20 N on 0.1 kg is 200 m/s^2, 0.1 ms to 0.02 m/s), at
+  // q / 0.02 s with q between 9.5 and 10 mm.
+  expectTouchedAtSpeed(close(0.02, pull()), 0.02, 0.47);
   // Without the cap the PD (P 10/s on a 4 cm error, 0.4 m/s) gets there ten times sooner.
   const Closing free = close(0.0, pull());
   EXPECT_EQ(free.result.outcome, GraspOutcome::kStable) << free.result.detail;
@@ -181,12 +187,7 @@ TEST(ClosingSpeed, TheDevicesLimitWinsWhenItIsBelowTheCap) {
   // with the jaw between 9.5 and 10 mm along (contact margin 0.5 mm, as above), at q / 0.01 s:
   // between 0.95 and 1 s, twice the 0.5 s the cap alone gives.
   const Closing limited = close(0.02, pull(), 0.01, true);
-  EXPECT_EQ(limited.result.outcome, GraspOutcome::kStable) << limited.result.detail;
-  EXPECT_GE(limited.qTouch, 0.01 - 0.0005 - 1e-9);
-  EXPECT_LE(limited.qTouch, 0.01 + 1e-4);
-  EXPECT_NEAR(limited.firstTouch, limited.qTouch / 0.01, 0.0051);
-  EXPECT_GT(limited.firstTouch, 0.94);
-  EXPECT_LE(limited.fastestJaw, 0.01 * (1 + 1e-6));
+  expectTouchedAtSpeed(limited, 0.01, 0.94);
   // It closes at the limit, not below it (the motor reaches 0.01 m/s in 0.05 ms, as above).
   EXPECT_GT(limited.fastestJaw, 0.01 * (1 - 1e-3));
   // The same jaws unclamped (RobWork's default) ignore the device's limit: the cap's 0.5 s.
@@ -202,12 +203,7 @@ TEST(ClosingSpeed, TheCapWinsWhenItIsBelowTheDevicesLimit) {
   // commands min(0.02, 0.04) = 0.02 m/s (the PD alone would ask 10/s * 4 cm = 0.4 m/s), so the
   // first contact comes at q / 0.02 s, between 0.475 and 0.5 s, and no jaw passes 0.02 m/s.
   const Closing capped = close(0.02, pull(), 0.04, true);
-  EXPECT_EQ(capped.result.outcome, GraspOutcome::kStable) << capped.result.detail;
-  EXPECT_GE(capped.qTouch, 0.01 - 0.0005 - 1e-9);
-  EXPECT_LE(capped.qTouch, 0.01 + 1e-4);
-  EXPECT_NEAR(capped.firstTouch, capped.qTouch / 0.02, 0.0051);
-  EXPECT_GT(capped.firstTouch, 0.47);
-  EXPECT_LE(capped.fastestJaw, 0.02 * (1 + 1e-6));
+  expectTouchedAtSpeed(capped, 0.02, 0.47);
   EXPECT_GT(capped.fastestJaw, 0.02 * (1 - 1e-3));
 }
 
