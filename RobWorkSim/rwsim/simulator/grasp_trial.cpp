@@ -82,6 +82,12 @@ std::shared_ptr<detail::TrialData> prepare(const dynamics::DynamicWorkCell& dwc,
           : (wc.findFrame(setup.hand + ".TCP").valid() ? setup.hand + ".TCP" : base.name);
   data->tcp = wc.findFrame(tcpName);
   if (!data->tcp.valid()) throw std::invalid_argument("no frame named '" + tcpName + "'");
+  if (setup.protocol.usesJawFrame() && !setup.X_tcp_jaw) {
+    throw std::invalid_argument("the protocol \"" + setup.protocol.name +
+                                "\" gives an axis in the jaw frame, but hand '" + setup.hand +
+                                "' declares no jaw frame (<JawFrame> in its grasp description, "
+                                "docs/grasp-utilities.md)");
+  }
   return data;
 }
 
@@ -445,11 +451,21 @@ bool TrialRun::settle(double time) {
   return true;
 }
 
-// The phase's axis in world coordinates (unit length).
-Vector3D worldAxis(const trial::ProtocolPhase& phase, const Transform3D& X_W_tcp) {
-  const Vector3D axis =
-      phase.frame == trial::AxisFrame::kTcp ? X_W_tcp.linear() * phase.axis : phase.axis;
-  return axis.normalized();
+// A phase's axis in world coordinates (unit length) and the point a rotation turns about.
+struct PhaseAxis {
+  Vector3D axis;
+  Vector3D centre;
+};
+
+// The axis of `phase` (given in its frame: the world, the TCP at X_W_tcp, or the jaw frame at
+// X_W_tcp X_tcp_jaw) and the origin of the TCP (of the jaw frame for frame "jaw").
+PhaseAxis phaseAxis(const trial::ProtocolPhase& phase, Transform3D X_W_tcp,
+                    const std::optional<Transform3D>& X_tcp_jaw) {
+  if (phase.frame == trial::AxisFrame::kJaw) X_W_tcp = X_W_tcp * X_tcp_jaw.value();
+  const Vector3D axis = phase.frame == trial::AxisFrame::kWorld
+                            ? phase.axis
+                            : Vector3D(X_W_tcp.linear() * phase.axis);
+  return {axis.normalized(), X_W_tcp.translation()};
 }
 
 bool TrialRun::pull(const trial::ProtocolPhase& phase) {
@@ -457,19 +473,18 @@ bool TrialRun::pull(const trial::ProtocolPhase& phase) {
   const Transform3D X_W_tcp =
       rw::kinematics::worldTransform(dwc_.workcell().frames(), sim_.state(), data_.tcp);
   Transform3D X_end = X_W_base;
-  X_end.translation() += phase.distance * worldAxis(phase, X_W_tcp);
+  X_end.translation() += phase.distance * phaseAxis(phase, X_W_tcp, setup_.X_tcp_jaw).axis;
   return followRamp(phase, X_W_base, X_end, "pull");
 }
 
 // The base follows X_W_base0 moved by s(t) = A (1 - cos(2 pi f t)) along the axis, or turned by
-// s(t) about the axis through the TCP origin: at rest at the start and after every period, peak
-// acceleration A (2 pi f)^2.
+// s(t) about the axis through the TCP origin (the jaw frame's for frame "jaw"): at rest at the
+// start and after every period, peak acceleration A (2 pi f)^2.
 bool TrialRun::shake(const trial::ProtocolPhase& phase) {
   const Transform3D X_W_base0 = sim_.bodyPose(data_.baseBody);
   const Transform3D X_W_tcp0 =
       rw::kinematics::worldTransform(dwc_.workcell().frames(), sim_.state(), data_.tcp);
-  const Vector3D u = worldAxis(phase, X_W_tcp0);
-  const Vector3D centre = X_W_tcp0.translation();
+  const auto [u, centre] = phaseAxis(phase, X_W_tcp0, setup_.X_tcp_jaw);
   const double omega = 2.0 * std::numbers::pi * phase.frequency;
   const double duration = phase.cycles / phase.frequency;
   const auto pose = [&](double t) {

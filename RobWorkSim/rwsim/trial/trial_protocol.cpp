@@ -1,5 +1,6 @@
 #include "rwsim/trial/trial_protocol.hpp"
 
+#include <algorithm>
 #include <array>
 #include <charconv>
 #include <cmath>
@@ -23,7 +24,7 @@ using rw::common::DiagnosticSink;
 using rw::common::XmlElement;
 using rw::math::Vector3D;
 
-constexpr std::array<std::string_view, 2> kFrames{"world", "tcp"};
+constexpr std::array<std::string_view, 3> kFrames{"world", "tcp", "jaw"};
 constexpr std::array<std::string_view, 2> kClosingRules{"rest", "force"};
 constexpr std::array<std::string_view, 2> kMotions{"translation", "rotation"};
 constexpr std::array<std::string_view, 2> kSuccessRules{"hand-contact", "two-fingers"};
@@ -68,7 +69,7 @@ std::string vector(const Vector3D& v) {
   return number(v.x()) + " " + number(v.y()) + " " + number(v.z());
 }
 
-const char* frameName(AxisFrame f) { return f == AxisFrame::kTcp ? "tcp" : "world"; }
+std::string frameName(AxisFrame f) { return std::string(kFrames[static_cast<std::size_t>(f)]); }
 
 // Reads one attribute that must be > 0 (or >= 0 with `zeroAllowed`); keeps `value` when absent
 // and optional.
@@ -174,6 +175,11 @@ bool TrialProtocol::isLift() const {
   TrialProtocol named = *this;
   named.name = "lift";
   return named == TrialProtocol::lift();
+}
+
+bool TrialProtocol::usesJawFrame() const {
+  return std::any_of(phases.begin(), phases.end(),
+                     [](const ProtocolPhase& p) { return p.frame == AxisFrame::kJaw; });
 }
 
 void checkProtocol(const TrialProtocol& protocol) {

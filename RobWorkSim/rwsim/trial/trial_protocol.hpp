@@ -37,6 +37,10 @@ enum class AxisFrame {
   kWorld,
   /// The hand's TCP frame at the start of the phase (z: approach for every project hand).
   kTcp,
+  /// The hand's parallel-jaw frame at the start of the phase (GraspTrialSetup::X_tcp_jaw: z the
+  /// approach, x the closing axis, whatever the TCP's axes; a rotation turns about its origin,
+  /// the centre between the pads).
+  kJaw,
 };
 
 /// How a trial judges the grasp after the phases.
@@ -107,6 +111,9 @@ struct TrialProtocol {
   /// True when this is the paper's protocol in every field but the name (a run records nothing
   /// for it: its files stay as before protocols existed).
   bool isLift() const;
+  /// True when a phase gives its axis in the hand's jaw frame (AxisFrame::kJaw): the hand must
+  /// declare one (GraspTrialSetup::X_tcp_jaw).
+  bool usesJawFrame() const;
   /// Field-wise equality.
   friend bool operator==(const TrialProtocol&, const TrialProtocol&) = default;
 };

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -61,6 +62,10 @@ struct GraspTrialSetup {
   std::string controller = "GraspController";
   /// TCP frame (full name); empty: "<hand>.TCP" if it exists, else the hand's base frame.
   std::string tcpFrame;
+  /// The hand's parallel-jaw frame in its TCP frame (z the approach, x the closing axis, origin
+  /// between the pads), which protocol axes in frame "jaw" (AxisFrame::kJaw) are given in; none:
+  /// the hand has none, and such a protocol is an error.
+  std::optional<rw::math::Transform3D> X_tcp_jaw;
   /// What the trial does after placing the hand and how it judges the grasp (gravity, closing
   /// rule, motion phases, success rule); default: the paper's lift of 10 cm.
   TrialProtocol protocol;

@@ -51,8 +51,20 @@ rwsim::simulator::GraspTrialSetup trialSetup(const grasp::HandGraspSetup& hand,
   setup.hand = hand.deviceName();
   setup.controller = hand.controllerName();
   setup.tcpFrame = hand.tcpFrameName();
+  if (const grasp::JawFrame* jaw = hand.jawFrame()) setup.X_tcp_jaw = jaw->X_tcp_jaw;
   setup.simulator = rwsim::simulator::optionsFromEngineProperties(dwc);
   return setup;
+}
+
+void SceneLoader::setProtocol(rwsim::trial::TrialProtocol protocol) {
+  if (protocol.usesJawFrame() && hand_->jawFrame() == nullptr) {
+    throw std::invalid_argument("the protocol \"" + protocol.name +
+                                "\" gives an axis in the jaw frame, but the hand of " +
+                                hand_->description().file +
+                                " declares no jaw frame (<JawFrame> in its grasp description, "
+                                "docs/grasp-utilities.md)");
+  }
+  protocol_ = std::move(protocol);
 }
 
 void SceneLoader::setTimeStep(std::optional<double> dt) {

@@ -18,8 +18,8 @@
 namespace visgrab::session {
 
 /// The trial setup the benchmark uses for `hand` in the scene `dwc`: the hand's device,
-/// controller and TCP frame from its grasp description, the simulator options from the dwc's
-/// PhysicsEngine properties, the rest GraspTrialSetup's defaults.
+/// controller, TCP frame and jaw frame (if it declares one) from its grasp description, the
+/// simulator options from the dwc's PhysicsEngine properties, the rest GraspTrialSetup's defaults.
 rwsim::simulator::GraspTrialSetup trialSetup(const grasp::HandGraspSetup& hand,
                                              const rwsim::dynamics::DynamicWorkCell& dwc);
 
@@ -62,7 +62,9 @@ class SceneLoader {
   /// See setTimeStep.
   std::optional<double> timeStep() const { return timeStep_; }
   /// The trial protocol of every scene's trials (`--protocol`; default: the paper's lift).
-  void setProtocol(rwsim::trial::TrialProtocol protocol) { protocol_ = std::move(protocol); }
+  /// @throws std::invalid_argument naming the protocol and the hand's description when the
+  /// protocol gives an axis in the jaw frame and the hand declares none.
+  void setProtocol(rwsim::trial::TrialProtocol protocol);
   /// See setProtocol.
   const rwsim::trial::TrialProtocol& protocol() const { return protocol_; }
 

@@ -67,8 +67,20 @@ TEST(SimCli, GraspTakesATrialProtocol) {
   const RunResult lift = runVisgrab("grasp " + scene() + kCylinder + " --protocol lift");
   ASSERT_EQ(lift.exitCode, 0) << lift.output;
   EXPECT_EQ(lift.output, plain.output);
-  // The shake runs (no gravity, two fingers judged); its verdict is the trial's.
-  const RunResult shake = runVisgrab("grasp " + scene() + kCylinder + " --protocol shake");
+  // The shake shakes along and about the hand's jaw frame: a device named alone has none, so
+  // it is refused, saying what to give instead.
+  const RunResult bare = runVisgrab("grasp " + scene() + kCylinder + " --protocol shake");
+  EXPECT_EQ(bare.exitCode, 2) << bare.output;
+  EXPECT_NE(bare.output.find("--protocol: \"shake\" gives an axis in the hand's jaw frame, which "
+                             "device SchunkHand has none of: give --hand a hand description"),
+            std::string::npos)
+      << bare.output;
+  // With the SDH's description it runs (no gravity, two fingers judged); its verdict is the
+  // trial's.
+  const RunResult shake =
+      runVisgrab("grasp " + scene() + " --hand '" +
+                 (visgrab::test::sourceDir() / "scenes/hands/sdh").string() +
+                 "' --pose 0 0 0.05 0 180 0 --preshape SDH_CYL --protocol shake");
   ASSERT_EQ(shake.exitCode, 0) << shake.output;
   EXPECT_NE(shake.output.find("outcome: "), std::string::npos) << shake.output;
   // An unknown name lists the known protocols; a bad file names its line.

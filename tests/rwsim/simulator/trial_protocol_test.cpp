@@ -9,6 +9,8 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
+#include <stdexcept>
 #include <string>
 
 #include "engine_steps.hpp"
@@ -75,13 +77,19 @@ TEST(TrialProtocolFile, ShakeXmlHasTheDocumentedValues) {
   const auto& along = shake.phases[0];
   EXPECT_EQ(along.kind, PhaseKind::kShake);
   EXPECT_FALSE(along.rotation);
-  EXPECT_EQ(along.frame, rwsim::trial::AxisFrame::kTcp);
+  // Along the approach and about the closing axis, whatever the TCP's axes: the jaw frame's.
+  EXPECT_EQ(along.frame, rwsim::trial::AxisFrame::kJaw);
+  EXPECT_TRUE(shake.usesJawFrame());
+  EXPECT_FALSE(TrialProtocol::lift().usesJawFrame());
   EXPECT_EQ(along.axis, Vector3D::UnitZ());
   // Peak acceleration A (2 pi f)^2 = 0.02 (10 pi)^2 = 19.74 m/s^2, 2 g.
   EXPECT_NEAR(along.amplitude * std::pow(2 * std::numbers::pi * along.frequency, 2), 19.74, 0.01);
   const auto& about = shake.phases[1];
   EXPECT_TRUE(about.rotation);
+  EXPECT_EQ(about.frame, rwsim::trial::AxisFrame::kJaw);
   EXPECT_EQ(about.axis, Vector3D::UnitX());
+  EXPECT_NE(rwsim::trial::describe(shake).find("shake about 1 0 0 (jaw)"), std::string::npos)
+      << rwsim::trial::describe(shake);
   EXPECT_NEAR(about.amplitude, 15 * std::numbers::pi / 180, 1e-15);
   EXPECT_EQ(shake.success, rwsim::trial::SuccessRule::kTwoFingers);
   EXPECT_NE(rwsim::trial::protocolHash(shake), rwsim::trial::protocolHash(TrialProtocol::lift()));
@@ -262,6 +270,82 @@ TEST(ShakeProtocol, ABoxBesideTheJawsIsMissed) {
   // nothing.
   const auto r = shakeTrial(0.2, 20.0, at(0.2, 0, 0));
   EXPECT_EQ(r.outcome, GraspOutcome::kMissed) << describe(r);
+}
+
+// Half a turn-shake (cycles 0.5: the hand ends turned 2 A = 0.5 rad) about `axis` in `frame`.
+TrialProtocol halfTurn(rwsim::trial::AxisFrame frame, const Vector3D& axis) {
+  TrialProtocol p = halfShake();
+  p.name = "half-turn";
+  rwsim::trial::ProtocolPhase& turn = p.phases.front();
+  turn.rotation = true;
+  turn.frame = frame;
+  turn.axis = axis;
+  turn.amplitude = 0.25;
+  return p;
+}
+
+GraspTrialResult turnTrial(const TrialProtocol& protocol,
+                           const std::optional<Transform3D>& X_tcp_jaw) {
+  const auto dwc = floatingBoxAndGripper(0.2, 20.0);
+  GraspTrialSetup setup = gripperSetup();
+  setup.protocol = protocol;
+  setup.X_tcp_jaw = X_tcp_jaw;
+  const GraspTrial trial(*dwc, setup);
+  return trial.run(gripperGrasp(at(0, 0, 0)), dwc->workcell().defaultState());
+}
+
+void expectNear(const Vector3D& a, const Vector3D& b, double tolerance) {
+  EXPECT_LT((a - b).norm(), tolerance) << a.transpose() << " vs " << b.transpose();
+}
+
+TEST(ShakeProtocol, AJawFrameAxisIsTheHandsClosingAxisWhateverTheTcpsAxes) {
+  // The test gripper's jaws close along its TCP's y (faces at |y| = 0.04), as the SDH's fingers
+  // 2 and 3 do: its jaw frame (x the closing axis, z the approach) is the TCP turned 90 degrees
+  // about z. A turn about the jaw frame's x is a turn about the TCP's y, not its x.
+  const Transform3D X_tcp_jaw(
+      rw::math::Rotation3D(Eigen::AngleAxisd(std::numbers::pi / 2, Vector3D::UnitZ())));
+  const auto jaw = turnTrial(halfTurn(rwsim::trial::AxisFrame::kJaw, Vector3D::UnitX()), X_tcp_jaw);
+  const auto tcpY = turnTrial(halfTurn(rwsim::trial::AxisFrame::kTcp, Vector3D::UnitY()), {});
+  EXPECT_EQ(jaw.outcome, GraspOutcome::kStable) << describe(jaw);
+  EXPECT_EQ(jaw.outcome, tcpY.outcome);
+  // The same motion (the axes differ by cos 90 degrees' rounding, 6e-17).
+  expectNear(jaw.handLift, tcpY.handLift, 1e-9);
+  expectNear(jaw.objectLift, tcpY.objectLift, 1e-6);
+  // A turn about the jaw frame's x goes through the jaw frame's origin. The gripper's base is
+  // at its TCP, so a turn through the TCP leaves it where it is; with the pads' centre c 2 cm
+  // behind the TCP (c = (0, 0, -0.02)) the base at 0 ends at c + R (0 - c) = (I - R) c, R the
+  // turn by theta = 0.5 rad. About the TCP's y (the closing axis), R (0, 0, z) = (z sin theta, 0,
+  // z cos theta), so (I - R) c = (0.02 sin theta, 0, -0.02 (1 - cos theta)) = (0.009589, 0,
+  // -0.002448); about the TCP's x, R (0, 0, z) = (0, -z sin theta, z cos theta) and the base
+  // moves (0, -0.02 sin theta, -0.02 (1 - cos theta)) instead.
+  expectNear(tcpY.handLift, Vector3D::Zero(), 1e-9);
+  const double theta = 0.5;
+  Transform3D behind = X_tcp_jaw;
+  behind.translation() = Vector3D(0, 0, -0.02);
+  const auto pivot = turnTrial(halfTurn(rwsim::trial::AxisFrame::kJaw, Vector3D::UnitX()), behind);
+  expectNear(pivot.handLift, Vector3D(0.02 * std::sin(theta), 0, -0.02 * (1 - std::cos(theta))),
+             1e-6);
+  Transform3D behindTcp = Transform3D::Identity();
+  behindTcp.translation() = Vector3D(0, 0, -0.02);
+  const auto aboutX =
+      turnTrial(halfTurn(rwsim::trial::AxisFrame::kJaw, Vector3D::UnitX()), behindTcp);
+  expectNear(aboutX.handLift, Vector3D(0, -0.02 * std::sin(theta), -0.02 * (1 - std::cos(theta))),
+             1e-6);
+
+  // A hand without a jaw frame cannot run such a protocol: an error naming the protocol and the
+  // hand, before any trial.
+  const auto dwc = floatingBoxAndGripper(0.2, 20.0);
+  GraspTrialSetup setup = gripperSetup();
+  setup.protocol = halfTurn(rwsim::trial::AxisFrame::kJaw, Vector3D::UnitX());
+  try {
+    const GraspTrial trial(*dwc, setup);
+    ADD_FAILURE() << "a jaw-frame protocol ran on a hand without a jaw frame";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("the protocol \"half-turn\" gives an axis in the jaw "
+                                         "frame, but hand 'Gripper' declares no jaw frame"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(ShakeProtocol, TheLiftProtocolFromItsFileGivesTheDefaultTrialBitForBit) {

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "rw/common/text_file.hpp"
 #include "rw/math/rpy.hpp"
 #include "support/test_database.hpp"
 #include "support/test_support.hpp"
@@ -153,6 +154,49 @@ TEST(SceneLoader, RedirectsTheDatabasesHandFilesToTheGivenHand) {
   const auto dwc = loader.load(database().scene(kFirstScene));
   EXPECT_TRUE(dwc->findDevice("PG70").valid());
   EXPECT_FALSE(dwc->findDevice("SchunkHand").valid());
+}
+
+// The trial set-up carries the hand's jaw frame. The SDH's, worked from its files: ParallelTCP
+// is Base turned 90 degrees about z at (0, 0, 0.177), TCP is Base at (0, 0, 0.15); the jaw frame
+// lies in ParallelTCP at (0, 0.01905, 0.00398) with its axes. In the TCP: turned 90 degrees
+// about z (jaw x = TCP y, fingers 2 and 3 close along Base y), at Rz(90)(0, 0.01905, 0.00398) +
+// (0, 0, 0.027) = (-0.01905, 0, 0.03098).
+TEST(SceneLoader, TheTrialSetUpCarriesTheHandsJawFrameAndAJawProtocolNeedsOne) {
+  const auto sdh = visgrab::grasp::loadHandGraspSetup(handsFolder() / "sdh");
+  visgrab::session::SceneLoader loader(database(), *sdh);
+  const auto dwc = loader.load(database().scene(kFirstScene));
+  const auto setup = visgrab::session::trialSetup(*sdh, *dwc);
+  ASSERT_TRUE(setup.X_tcp_jaw.has_value());
+  EXPECT_LT((setup.X_tcp_jaw->linear() * Vector3D::UnitX() - Vector3D::UnitY()).norm(), 1e-9);
+  EXPECT_LT((setup.X_tcp_jaw->linear() * Vector3D::UnitZ() - Vector3D::UnitZ()).norm(), 1e-9);
+  EXPECT_LT((setup.X_tcp_jaw->translation() - Vector3D(-0.01905, 0, 0.03098)).norm(), 1e-9);
+  const auto shake =
+      rwsim::trial::loadTrialProtocol(visgrab::test::sourceDir() / "scenes/protocols/shake.xml");
+  ASSERT_TRUE(shake.usesJawFrame());
+  EXPECT_NO_THROW(loader.setProtocol(shake));
+
+  // The SDH's description without its <JawFrame> element: the shake is refused when it is set,
+  // naming the protocol and the hand's description; the lift is not.
+  std::string text = rw::common::readTextFileOrThrow(handsFolder() / "sdh/sdh.grasp.xml");
+  const auto jaw = text.find("<JawFrame");
+  ASSERT_NE(jaw, std::string::npos);
+  text.erase(jaw, text.find("/>", jaw) + 2 - jaw);
+  const auto bare =
+      visgrab::grasp::loadHandGraspSetupFromString(text, handsFolder() / "sdh/nojaw.grasp.xml");
+  ASSERT_EQ(bare->jawFrame(), nullptr);
+  visgrab::session::SceneLoader bareLoader(database(), *bare);
+  EXPECT_FALSE(visgrab::session::trialSetup(*bare, *dwc).X_tcp_jaw.has_value());
+  try {
+    bareLoader.setProtocol(shake);
+    ADD_FAILURE() << "the shake was set for a hand without a jaw frame";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "the protocol \"shake\" gives an axis in the jaw frame, but the hand of " +
+                  bare->description().file +
+                  " declares no jaw frame (<JawFrame> in its grasp description, "
+                  "docs/grasp-utilities.md)");
+  }
+  EXPECT_NO_THROW(bareLoader.setProtocol(rwsim::trial::TrialProtocol::lift()));
 }
 
 TEST(SceneSelection, SelectsByTheFilterAndNamesABadWord) {
