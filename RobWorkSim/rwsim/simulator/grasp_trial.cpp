@@ -484,7 +484,11 @@ bool TrialRun::shake(const trial::ProtocolPhase& phase) {
   const Transform3D X_W_base0 = sim_.bodyPose(data_.baseBody);
   const Transform3D X_W_tcp0 =
       rw::kinematics::worldTransform(dwc_.workcell().frames(), sim_.state(), data_.tcp);
-  const auto [u, centre] = phaseAxis(phase, X_W_tcp0, setup_.X_tcp_jaw);
+  // Named copies, not a structured binding: the lambda below captures them (clang 14, the fuzz
+  // build's compiler, refuses to capture a binding).
+  const PhaseAxis along = phaseAxis(phase, X_W_tcp0, setup_.X_tcp_jaw);
+  const Vector3D u = along.axis;
+  const Vector3D centre = along.centre;
   const double omega = 2.0 * std::numbers::pi * phase.frequency;
   const double duration = phase.cycles / phase.frequency;
   const auto pose = [&](double t) {
