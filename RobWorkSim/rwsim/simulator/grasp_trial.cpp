@@ -82,12 +82,7 @@ std::shared_ptr<detail::TrialData> prepare(const dynamics::DynamicWorkCell& dwc,
           : (wc.findFrame(setup.hand + ".TCP").valid() ? setup.hand + ".TCP" : base.name);
   data->tcp = wc.findFrame(tcpName);
   if (!data->tcp.valid()) throw std::invalid_argument("no frame named '" + tcpName + "'");
-  if (setup.protocol.usesJawFrame() && !setup.X_tcp_jaw) {
-    throw std::invalid_argument("the protocol \"" + setup.protocol.name +
-                                "\" gives an axis in the jaw frame, but hand '" + setup.hand +
-                                "' declares no jaw frame (<JawFrame> in its grasp description, "
-                                "docs/grasp-utilities.md)");
-  }
+  setup.protocol.requireJawFrame(setup.X_tcp_jaw.has_value(), "hand '" + setup.hand + "'");
   return data;
 }
 

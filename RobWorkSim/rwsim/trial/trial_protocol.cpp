@@ -182,6 +182,14 @@ bool TrialProtocol::usesJawFrame() const {
                      [](const ProtocolPhase& p) { return p.frame == AxisFrame::kJaw; });
 }
 
+void TrialProtocol::requireJawFrame(bool handHasJawFrame, const std::string& hand) const {
+  if (handHasJawFrame || !usesJawFrame()) return;
+  throw std::invalid_argument("the protocol \"" + name + "\" gives an axis in the jaw frame, but " +
+                              hand +
+                              " declares no jaw frame (<JawFrame> in its grasp description, "
+                              "docs/grasp-utilities.md)");
+}
+
 void checkProtocol(const TrialProtocol& protocol) {
   const auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
   const auto nonNegative = [](double v) { return std::isfinite(v) && v >= 0.0; };

@@ -57,13 +57,8 @@ rwsim::simulator::GraspTrialSetup trialSetup(const grasp::HandGraspSetup& hand,
 }
 
 void SceneLoader::setProtocol(rwsim::trial::TrialProtocol protocol) {
-  if (protocol.usesJawFrame() && hand_->jawFrame() == nullptr) {
-    throw std::invalid_argument("the protocol \"" + protocol.name +
-                                "\" gives an axis in the jaw frame, but the hand of " +
-                                hand_->description().file +
-                                " declares no jaw frame (<JawFrame> in its grasp description, "
-                                "docs/grasp-utilities.md)");
-  }
+  protocol.requireJawFrame(hand_->jawFrame() != nullptr,
+                           "the hand of " + hand_->description().file);
   protocol_ = std::move(protocol);
 }
 
