@@ -447,14 +447,13 @@ int runGrasp(const Arguments& a) {
   rwsim::simulator::GraspTrialSetup setup = graspTrialSetup(command, scene);
   if (const auto protocol = protocolOption(a)) {
     setup.protocol = rwsim::trial::loadTrialProtocol(*protocol);
-    if (setup.protocol.usesJawFrame() && !setup.X_tcp_jaw) {
-      throw UsageError(
-          "--protocol: \"" + setup.protocol.name + "\" gives an axis in the hand's jaw frame, " +
-          (scene.description
-               ? "which " + scene.description->description().file + " does not declare"
-               : "which device " + setup.hand + " has none of") +
-          ": give --hand a hand description with a <JawFrame> (e.g. its folder in scenes/hands) "
-          "or a protocol whose axes are in frame \"tcp\" or \"world\"");
+    try {
+      setup.protocol.requireJawFrame(setup.X_tcp_jaw.has_value(),
+                                     scene.description
+                                         ? "the hand of " + scene.description->description().file
+                                         : "device " + setup.hand);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(std::string("--protocol: ") + e.what());
     }
   }
   const std::string engineName = engineOption(a);

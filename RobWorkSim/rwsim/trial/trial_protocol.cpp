@@ -184,10 +184,11 @@ bool TrialProtocol::usesJawFrame() const {
 
 void TrialProtocol::requireJawFrame(bool handHasJawFrame, const std::string& hand) const {
   if (handHasJawFrame || !usesJawFrame()) return;
-  throw std::invalid_argument("the protocol \"" + name + "\" gives an axis in the jaw frame, but " +
-                              hand +
-                              " declares no jaw frame (<JawFrame> in its grasp description, "
-                              "docs/grasp-utilities.md)");
+  throw std::invalid_argument(
+      "the protocol \"" + name + "\" gives an axis in the jaw frame, but " + hand +
+      " declares no jaw frame (<JawFrame> in its grasp description, docs/grasp-utilities.md): "
+      "give a hand description that declares one (as every hand in scenes/hands does) or a "
+      "protocol whose axes are in frame \"tcp\" or \"world\"");
 }
 
 void checkProtocol(const TrialProtocol& protocol) {

@@ -115,8 +115,9 @@ struct TrialProtocol {
   /// declare one (GraspTrialSetup::X_tcp_jaw).
   bool usesJawFrame() const;
   /// @throws std::invalid_argument when the protocol uses the jaw frame and the hand has none:
-  /// "the protocol "P" gives an axis in the jaw frame, but `hand` declares no jaw frame (...)",
-  /// `hand` naming it ("hand 'Gripper'", "the hand of FILE").
+  /// "the protocol "P" gives an axis in the jaw frame, but `hand` declares no jaw frame (...):
+  /// give ...", `hand` naming it ("hand 'Gripper'", "the hand of FILE", "device D"), the rest
+  /// saying what to give instead.
   void requireJawFrame(bool handHasJawFrame, const std::string& hand) const;
   /// Field-wise equality.
   friend bool operator==(const TrialProtocol&, const TrialProtocol&) = default;

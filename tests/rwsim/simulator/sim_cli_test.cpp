@@ -71,8 +71,9 @@ TEST(SimCli, GraspTakesATrialProtocol) {
   // it is refused, saying what to give instead.
   const RunResult bare = runVisgrab("grasp " + scene() + kCylinder + " --protocol shake");
   EXPECT_EQ(bare.exitCode, 2) << bare.output;
-  EXPECT_NE(bare.output.find("--protocol: \"shake\" gives an axis in the hand's jaw frame, which "
-                             "device SchunkHand has none of: give --hand a hand description"),
+  EXPECT_NE(bare.output.find("--protocol: the protocol \"shake\" gives an axis in the jaw frame, "
+                             "but device SchunkHand declares no jaw frame (<JawFrame> in its grasp "
+                             "description, docs/grasp-utilities.md): give a hand description"),
             std::string::npos)
       << bare.output;
   // With the SDH's description it runs (no gravity, two fingers judged); its verdict is the

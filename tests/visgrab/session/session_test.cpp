@@ -194,7 +194,9 @@ TEST(SceneLoader, TheTrialSetUpCarriesTheHandsJawFrameAndAJawProtocolNeedsOne) {
               "the protocol \"shake\" gives an axis in the jaw frame, but the hand of " +
                   bare->description().file +
                   " declares no jaw frame (<JawFrame> in its grasp description, "
-                  "docs/grasp-utilities.md)");
+                  "docs/grasp-utilities.md): give a hand description that declares one (as "
+                  "every hand in scenes/hands does) or a protocol whose axes are in frame "
+                  "\"tcp\" or \"world\"");
   }
   EXPECT_NO_THROW(bareLoader.setProtocol(rwsim::trial::TrialProtocol::lift()));
 }
