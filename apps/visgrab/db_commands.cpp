@@ -337,10 +337,15 @@ void addDatabaseCommands(CommandLine& cli) {
       &db, "from-acronym",
       "A database of one scene per ACRONYM grasp file: the object floating where its mesh frame "
       "says (no table), its scale, mass, centre of mass, inertia and friction from the file, its "
-      "collision pieces by convex decomposition; no images (docs/database-format.md, \"Scenes "
+      "collision geometry the mesh itself (or its convex decomposition: --collision pieces); no "
+      "images (docs/database-format.md, \"Scenes "
       "from objects alone\"). Import the file's grasps with `visgrab import acronym`.",
       guarded(runFromAcronym));
-  fromAcronym.add_option("FILES", "ACRONYM grasp files (.h5)")->required()->type_name("FILE.h5...");
+  fromAcronym.add_option("FILES", "ACRONYM grasp files (.h5), one scene each, in this order")
+      ->required()
+      ->expected(1, CLI::detail::expected_max_vector_size)
+      ->allow_extra_args()
+      ->type_name("FILE.h5...");
   fromAcronym
       .add_option("--mesh-root",
                   "The folder the files' object/file paths are relative to (ACRONYM's data "

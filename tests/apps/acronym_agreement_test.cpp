@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "rw/common/text_file.hpp"
 #include "support/test_support.hpp"
 #include "support/visgrab_cli.hpp"
 
@@ -56,14 +57,59 @@ double field(const std::vector<std::pair<std::string, std::string>>& row, const 
   return 0.0;
 }
 
+constexpr const char* kAbsent =
+    "ACRONYM's example data is absent: set VISGRAB_ACRONYM_DATA to the folder holding grasps/ "
+    "and meshes/ (or RW_COMPAT_DATA beside it, as .ci/run does)";
+
+fs::path tableExample(const fs::path& data) {
+  return data / "grasps/Table_99cf659ae2fe4b87b72437fd995483b_0.009700376721042367.h5";
+}
+
+TEST(AcronymAgreement, ADatabaseFromSeveralFilesHasOneSceneEachInTheirOrder) {
+  const auto data = visgrab::test::acronymDataDir();
+  if (!data) GTEST_SKIP() << kAbsent;
+  const fs::path h5 = tableExample(*data);
+  ASSERT_TRUE(fs::is_regular_file(h5)) << h5;
+  // The file and a copy named as a second scale of the same mesh: two scenes, the second
+  // named with _2 (docs/database-format.md, "Scenes from objects alone").
+  visgrab::test::TempDir dir;
+  const fs::path copy = dir.path() / "Table_99cf659ae2fe4b87b72437fd995483b_0.02.h5";
+  fs::copy_file(h5, copy);
+  const fs::path db = dir.path() / "db";
+  const RunResult made =
+      runVisgrab("db from-acronym " + shellQuoted(h5) + " " + shellQuoted(copy) + " --mesh-root " +
+                 shellQuoted(*data) + " --out " + shellQuoted(db) + " --quiet");
+  ASSERT_EQ(made.exitCode, 0) << made.output;
+  const RunResult listed = runVisgrab("db list --db " + shellQuoted(db));
+  ASSERT_EQ(listed.exitCode, 0) << listed.output;
+  const std::string first = "plain/single/table_99cf659ae2fe4b87b72437fd995483b/01";
+  const std::string second = "plain/single/table_99cf659ae2fe4b87b72437fd995483b_2/01";
+  EXPECT_NE(listed.output.find(first), std::string::npos) << listed.output;
+  EXPECT_NE(listed.output.find(second), std::string::npos) << listed.output;
+  EXPECT_LT(listed.output.find(first), listed.output.find(second)) << listed.output;
+  // Each file's grasps find the scene made from it.
+  const fs::path grasps = dir.path() / "grasps.csv";
+  const RunResult imported = runVisgrab("import acronym " + shellQuoted(copy) + " --db " +
+                                        shellQuoted(db) + " --out " + shellQuoted(grasps));
+  ASSERT_EQ(imported.exitCode, 0) << imported.output;
+  EXPECT_NE(imported.output.find("2000 grasps imported, 0 rejected"), std::string::npos)
+      << imported.output;
+  const std::string list = rw::common::readTextFileOrThrow(grasps);
+  EXPECT_NE(list.find(second), std::string::npos) << list.substr(0, 400);
+  EXPECT_EQ(list.find(first + ","), std::string::npos) << list.substr(0, 400);
+  // One file twice is one scene asked for twice: refused.
+  const RunResult twice =
+      runVisgrab("db from-acronym " + shellQuoted(h5) + " " + shellQuoted(h5) + " --mesh-root " +
+                 shellQuoted(*data) + " --out " + shellQuoted(dir.path() / "db2") + " --quiet");
+  EXPECT_EQ(twice.exitCode, 1) << twice.output;
+  EXPECT_NE(twice.output.find(h5.filename().string() + " is given twice"), std::string::npos)
+      << twice.output;
+}
+
 TEST(AcronymAgreement, ShakeVerdictsAgainstFlexLabelsOnTheTableExample) {
   const auto data = visgrab::test::acronymDataDir();
-  if (!data) {
-    GTEST_SKIP() << "ACRONYM's example data is absent: set VISGRAB_ACRONYM_DATA to the folder "
-                    "holding grasps/ and meshes/ (or RW_COMPAT_DATA beside it, as .ci/run does)";
-  }
-  const fs::path h5 =
-      *data / "grasps/Table_99cf659ae2fe4b87b72437fd995483b_0.009700376721042367.h5";
+  if (!data) GTEST_SKIP() << kAbsent;
+  const fs::path h5 = tableExample(*data);
   ASSERT_TRUE(fs::is_regular_file(h5)) << h5;
   visgrab::test::TempDir dir;
   const fs::path db = dir.path() / "db";
