@@ -41,8 +41,11 @@ int runLabelAgreement(const Arguments& a, const std::string& dir, const fs::path
   const analysis::AgreementRun run = analysis::readAgreementRun(dir, &warnings);
   for (const auto& w : warnings) std::cerr << w.format() << "\n";
   const std::vector<int> values = importers::readAcronymLabels(labels);
-  const analysis::LabelAgreement agreement =
-      analysis::compareWithLabels(run, values, labels, labelledScene(a, run, labels));
+  const analysis::LabelAgreement agreement = analysis::compareWithLabels(
+      run, values, labels, labelledScene(a, run, labels), a.option("method").value_or(""));
+  if (const std::string note = analysis::labelProtocolNote(agreement); !note.empty()) {
+    std::cerr << note << "\n";
+  }
   std::cout << analysis::labelAgreementSummary(agreement);
   if (const auto out = a.option("out")) {
     analysis::writeLabelAgreement(agreement, *out);
@@ -59,6 +62,7 @@ int runAgreement(const Arguments& a) {
     return runLabelAgreement(a, dirs.front(), *labels);
   }
   if (a.option("scene")) throw UsageError("--scene needs --labels");
+  if (a.option("method")) throw UsageError("--method needs --labels");
   if (dirs.size() != 2) throw UsageError("expected two result folders, RUN_A and RUN_B");
   std::vector<analysis::AgreementRun> runs;
   for (const std::string& dir : dirs) {
@@ -106,9 +110,15 @@ void addAgreementCommands(CommandLine& cli) {
                   "the run's database made from the labels' file)")
       ->type_name("ID");
   agreement
+      .add_option("--method",
+                  "With --labels: the method whose trials ran the labelled grasps (default: the "
+                  "scene's only method)")
+      ->type_name("NAME");
+  agreement
       .add_option("--out",
                   "A folder to write agreement.csv, confusion.csv, disagreements.csv and "
-                  "agreement.md into")
+                  "agreement.md into; with --labels label-agreement.csv, label-confusion.csv "
+                  "and label-disagreements.csv")
       ->type_name("DIR");
 }
 

@@ -1,6 +1,7 @@
 #include "visgrab/analysis/label_agreement.hpp"
 
 #include <cmath>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 
@@ -28,15 +29,46 @@ HeldAgreement tallied(const int cells[2][2], const char* key, const char* name) 
   return h;
 }
 
+// The method whose trials of `sceneId` are compared: `method` if the scene has trials of it,
+// else (empty) the scene's only method.
+std::string comparedMethod(const AgreementRun& run, const std::filesystem::path& labelsFile,
+                           const std::string& sceneId, const std::string& method) {
+  std::set<std::string> methods;
+  for (const results::TrialRecord& t : run.results.trials) {
+    if (t.sceneId == sceneId) methods.insert(t.method);
+  }
+  if (methods.empty()) {
+    throw std::invalid_argument(run.dir.string() + " has no trial of scene " + sceneId +
+                                " to compare with the labels of " + labelsFile.string());
+  }
+  std::string names;
+  for (const std::string& m : methods) names += (names.empty() ? "" : ", ") + m;
+  if (!method.empty()) {
+    if (methods.count(method) == 0) {
+      throw std::invalid_argument(run.dir.string() + " has no trial of method " + method +
+                                  " in scene " + sceneId + " (its methods there: " + names + ")");
+    }
+    return method;
+  }
+  if (methods.size() > 1) {
+    throw std::invalid_argument(run.dir.string() + " ran " + std::to_string(methods.size()) +
+                                " methods in scene " + sceneId + " (" + names +
+                                "): name the one whose grasps are those of " + labelsFile.string() +
+                                " with --method");
+  }
+  return *methods.begin();
+}
+
 }  // namespace
 
 LabelAgreement compareWithLabels(const AgreementRun& run, const std::vector<int>& labels,
                                  const std::filesystem::path& labelsFile,
-                                 const std::string& sceneId) {
+                                 const std::string& sceneId, const std::string& method) {
   LabelAgreement out;
   out.dir = run.dir;
   out.labelsFile = labelsFile;
   out.sceneId = sceneId;
+  out.protocol = run.results.sources.protocol;
   out.labels = static_cast<int>(labels.size());
   for (std::size_t i = 0; i < labels.size(); ++i) {
     if (labels[i] != 0 && labels[i] != 1) {
@@ -44,10 +76,11 @@ LabelAgreement compareWithLabels(const AgreementRun& run, const std::vector<int>
                                   std::to_string(labels[i]) + ", expected 0 or 1");
     }
   }
+  out.method = comparedMethod(run, labelsFile, sceneId, method);
   // The run's outcome per label index (repeat 0: the unperturbed trial).
   std::vector<const results::TrialRecord*> byIndex(labels.size(), nullptr);
   for (const results::TrialRecord& t : run.results.trials) {
-    if (t.sceneId != sceneId || t.repeat != 0) continue;
+    if (t.sceneId != sceneId || t.method != out.method || t.repeat != 0) continue;
     const auto index =
         rw::common::parseInteger(t.graspId, 0, static_cast<long long>(labels.size()) - 1);
     if (!index.error.empty() || byIndex[static_cast<std::size_t>(index.value)] != nullptr) {
@@ -78,13 +111,15 @@ LabelAgreement compareWithLabels(const AgreementRun& run, const std::vector<int>
     if (held != label) out.disagreements.push_back({t->graspId, t->outcome, label});
   }
   if (out.missingTrials == out.labels) {
-    throw std::invalid_argument(run.dir.string() + " has no trial of scene " + sceneId +
-                                " whose grasp id is the index of one of the " +
-                                std::to_string(out.labels) + " labels of " + labelsFile.string() +
-                                " (import the file with `visgrab import acronym` and run it)");
+    throw std::invalid_argument(
+        run.dir.string() + " has no trial of scene " + sceneId + " and method " + out.method +
+        " whose grasp id is the index of one of the " + std::to_string(out.labels) + " labels of " +
+        labelsFile.string() + " (import the file with `visgrab import acronym` and run it)");
   }
   out.held = tallied(all, "all", "every compared grasp");
   out.held.decidedBeforeSimulation = out.decidedBeforeSimulation;
+  // A label is only held or not held: the "same outcome" is the same verdict.
+  out.held.sameOutcome = out.held.bothHeld + out.held.neitherHeld;
   out.simulated = tallied(simulated, "simulated", "grasps simulated (not decided before)");
   out.simulated.sameOutcome = sameSimulated;
   return out;
@@ -93,8 +128,8 @@ LabelAgreement compareWithLabels(const AgreementRun& run, const std::vector<int>
 std::string labelAgreementSummary(const LabelAgreement& g) {
   std::ostringstream s;
   const HeldAgreement& h = g.held;
-  s << "agreement of " << g.dir.string() << " (scene " << g.sceneId << ") with the labels of "
-    << g.labelsFile.string() << "\n";
+  s << "agreement of " << g.dir.string() << " (scene " << g.sceneId << ", method " << g.method
+    << ") with the labels of " << g.labelsFile.string() << "\n";
   s << "  labels: " << g.labels << "; compared " << h.trials << " (" << g.missingTrials
     << " without a trial, " << g.unmatchedTrials << " trials without a label: ignored)\n";
   s << "  decided before simulation (in collision, invalid contacts): " << g.decidedBeforeSimulation
@@ -133,11 +168,25 @@ std::string labelConfusionCsv(const LabelAgreement& g) {
   return text;
 }
 
+std::string labelProtocolNote(const LabelAgreement& g) {
+  if (!g.protocol.empty()) return {};
+  return "note: " + g.dir.string() +
+         " ran the lift protocol (gravity, one lift); ACRONYM's labels come from a shake "
+         "without gravity: run the grasps with --protocol shake to compare like with like "
+         "(docs/protocols.md)";
+}
+
 std::string labelDisagreementsCsv(const LabelAgreement& g) {
-  std::string text = results::csvRecord({"grasp_id", "outcome", "label"});
+  std::string text =
+      results::csvRecord({"scene", "method", "grasp_id", "outcome", "label", "render"});
   for (const LabelDisagreement& d : g.disagreements) {
+    Disagreement trial;
+    trial.sceneId = g.sceneId;
+    trial.method = g.method;
+    trial.graspId = d.graspId;
     text += results::csvRecord(
-        {d.graspId, std::string(rwsim::trial::outcomeName(d.outcome)), d.label ? "1" : "0"});
+        {g.sceneId, g.method, d.graspId, std::string(rwsim::trial::outcomeName(d.outcome)),
+         d.label ? "1" : "0", renderCommand(g.dir, trial, "label-" + d.graspId + ".png")});
   }
   return text;
 }

@@ -31,11 +31,15 @@ struct LabelAgreement {
   std::filesystem::path labelsFile;
   /// The scene whose trials were compared.
   std::string sceneId;
+  /// The method whose trials were compared.
+  std::string method;
+  /// The run's protocol as recorded (results::RunSources::protocol; empty: the lift).
+  std::string protocol;
   /// Labels in the file.
   int labels = 0;
   /// Labels without a trial in the run (grasp ids "0".."labels-1" not run).
   int missingTrials = 0;
-  /// Trials of the scene whose grasp id is not a label's index (ignored).
+  /// Trials of the scene and method whose grasp id is not a label's index (ignored).
   int unmatchedTrials = 0;
   /// Compared grasps decided before simulation (in collision, invalid contacts): counted as
   /// not held, since the grasp failed.
@@ -51,12 +55,20 @@ struct LabelAgreement {
   std::vector<LabelDisagreement> disagreements;
 };
 
-/// Compares the trials of scene `sceneId` in `run` (repeat 0 only) with `labels` (index i is
-/// grasp id "i"; 0 = not held, 1 = held). @throws std::invalid_argument naming the folder and
-/// the labels' file when no trial of the scene has a label's id, or a label is not 0 or 1.
+/// Compares the trials of scene `sceneId` and method `method` in `run` (repeat 0 only) with
+/// `labels` (index i is grasp id "i"; 0 = not held, 1 = held). An empty `method` is the
+/// scene's only method. @throws std::invalid_argument naming the folder and the labels' file
+/// when a label is not 0 or 1, when the scene has no trial of `method`, when `method` is empty
+/// and the scene's trials are of several methods (naming them), or when no compared trial has a
+/// label's id.
 LabelAgreement compareWithLabels(const AgreementRun& run, const std::vector<int>& labels,
                                  const std::filesystem::path& labelsFile,
-                                 const std::string& sceneId);
+                                 const std::string& sceneId, const std::string& method = {});
+
+/// A note for the summary when the run's protocol is the lift (gravity, no shake): ACRONYM's
+/// labels come from a shake without gravity, so the comparison measures another protocol.
+/// Empty for any other protocol.
+std::string labelProtocolNote(const LabelAgreement& agreement);
 
 /// The readable summary: counts, agreement, kappa, held shares, the outcome-by-label table.
 std::string labelAgreementSummary(const LabelAgreement& agreement);
@@ -67,7 +79,8 @@ std::string labelAgreementCsv(const LabelAgreement& agreement);
 /// label-confusion.csv: outcome, not_held, held; one row per outcome.
 std::string labelConfusionCsv(const LabelAgreement& agreement);
 
-/// label-disagreements.csv: grasp_id, outcome, label.
+/// label-disagreements.csv: scene, method, grasp_id, outcome, label, render (the `visgrab
+/// render` command that draws the trial).
 std::string labelDisagreementsCsv(const LabelAgreement& agreement);
 
 /// Writes the three CSV files into `outDir` (made if missing), each atomically.
