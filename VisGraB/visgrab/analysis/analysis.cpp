@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "rw/common/number_text.hpp"
 #include "rw/common/task_pool.hpp"
 #include "visgrab/analysis/attempts.hpp"
 #include "visgrab/analysis/detail/scene_tally.hpp"
@@ -243,22 +244,45 @@ double SuccessCount::percentOf(int i) const {
   return grasps > 0 ? 100.0 * byObject[static_cast<std::size_t>(i)] / grasps : kNaN;
 }
 
-namespace {
-
-/// The checks of analyze()'s options.
-void checkOptions(const AnalysisOptions& options) {
-  if (options.randomTrials < 1) throw std::invalid_argument("randomTrials must be at least 1");
-  if (options.maxAttempts < 0) throw std::invalid_argument("maxAttempts must not be negative");
+std::optional<OptionProblem> checkOptions(const AnalysisOptions& options) {
+  auto problem = [](std::string field, std::string cli, std::string python, std::string what) {
+    return OptionProblem{std::move(field), std::move(cli), std::move(python), std::move(what)};
+  };
+  if (options.randomTrials < 1) {
+    return problem("randomTrials", "", "",
+                   "must be at least 1, got " + std::to_string(options.randomTrials));
+  }
+  if (options.maxAttempts < 0) {
+    return problem("maxAttempts", "", "",
+                   "must not be negative, got " + std::to_string(options.maxAttempts));
+  }
   if (!(options.ciLevel > 0.0 && options.ciLevel < 1.0)) {
-    throw std::invalid_argument("ciLevel must be between 0 and 1, got " +
-                                std::to_string(options.ciLevel));
+    return problem(
+        "ciLevel", "--ci-level", "ci_level",
+        "must be between 0 and 1 (exclusive), got " + rw::common::shortestText(options.ciLevel));
   }
-  if (options.bootstrapResamples < 0) {
-    throw std::invalid_argument("bootstrapResamples must not be negative");
+  if (options.bootstrapResamples != 0 && options.bootstrapResamples < kMinBootstrapResamples) {
+    return problem("bootstrapResamples", "--bootstrap", "bootstrap",
+                   "must be 0 (no intervals) or at least " +
+                       std::to_string(kMinBootstrapResamples) + ", got " +
+                       std::to_string(options.bootstrapResamples) +
+                       (options.bootstrapResamples > 0
+                            ? " (the interval's ends would be the extremes of a few resamples, "
+                              "which need not contain the estimate)"
+                            : ""));
   }
-  if (options.permutations < 1) throw std::invalid_argument("permutations must be at least 1");
-  if (options.threads < 1) throw std::invalid_argument("threads must be at least 1");
+  if (options.permutations < 1) {
+    return problem("permutations", "", "",
+                   "must be at least 1, got " + std::to_string(options.permutations));
+  }
+  if (options.threads < 1) {
+    return problem("threads", "--threads", "threads",
+                   "must be at least 1, got " + std::to_string(options.threads));
+  }
+  return std::nullopt;
 }
+
+namespace {
 
 /// The members of `group` among `scenes`.
 std::vector<const SceneTally*> members(const ConditionGroup& group,
@@ -384,7 +408,9 @@ void addStatistics(Analysis& a, const std::vector<RunResults>& runs,
 }  // namespace
 
 Analysis analyze(const std::vector<RunResults>& runs, const AnalysisOptions& options) {
-  checkOptions(options);
+  if (const auto problem = checkOptions(options)) {
+    throw std::invalid_argument(problem->field + " " + problem->problem);
+  }
   Analysis a;
   a.options = options;
   a.groups = conditionGroups();
@@ -392,6 +418,16 @@ Analysis analyze(const std::vector<RunResults>& runs, const AnalysisOptions& opt
   for (std::size_t r = 0; r < runs.size(); ++r) {
     a.runLabels.push_back(runs[r].label.empty() ? "run " + std::to_string(r + 1) : runs[r].label);
     for (const std::string& m : runs[r].methods) ++methodUses[m];
+    // The label names the run's columns and keys its bootstrap streams: two runs of one label
+    // would show as one and draw the same resamples.
+    for (std::size_t q = 0; q < r; ++q) {
+      if (a.runLabels[q] == a.runLabels[r]) {
+        throw std::invalid_argument("runs " + std::to_string(q + 1) + " and " +
+                                    std::to_string(r + 1) + " have the same label '" +
+                                    a.runLabels[r] +
+                                    "' (results::readResultFolders labels folders apart)");
+      }
+    }
   }
   // Columns and their scene tallies.
   std::vector<std::vector<SceneTally>> tallies;

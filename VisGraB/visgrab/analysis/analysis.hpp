@@ -20,6 +20,12 @@ namespace visgrab::analysis {
 /// Number of grasp outcomes (rwsim::trial::kOutcomeTable order).
 inline constexpr std::size_t kOutcomeCount = rwsim::trial::kOutcomeTable.size();
 
+/// Fewest bootstrap resamples behind an interval (docs/report.md, "Error bars"): the ends of a
+/// 95 % percentile interval are quantiles of the B resampled values, and with a handful of values
+/// they are the extremes of a few draws, which need not even contain the estimate (B = 1 gives
+/// [x, x] for one resample's x).
+inline constexpr int kMinBootstrapResamples = 100;
+
 /// Settings of the analyses.
 struct AnalysisOptions {
   /// Randomized trials for the success-vs-attempts curve (paper: 20).
@@ -30,8 +36,9 @@ struct AnalysisOptions {
   int maxAttempts = 0;
   /// Confidence level of the intervals, in (0, 1).
   double ciLevel = 0.95;
-  /// Resamples of the scene bootstrap behind every interval; 0: no intervals, and with them no
-  /// overall success rates and no comparisons (the report as it was before intervals existed).
+  /// Resamples of the scene bootstrap behind every interval: 0 (no intervals, and with them no
+  /// overall success rates and no comparisons: the report as it was before intervals existed)
+  /// or at least kMinBootstrapResamples.
   int bootstrapResamples = 2000;
   /// Seed of the bootstrap and permutation streams (each estimate's stream is derived from it and
   /// the estimate's group, column and kind: docs/report.md, "Error bars").
@@ -302,13 +309,33 @@ struct Analysis {
   std::vector<RobustRate> robust;
 };
 
+/// An option of analyze() out of range, named as each front end names it.
+struct OptionProblem {
+  /// The AnalysisOptions field, e.g. "ciLevel".
+  std::string field;
+  /// The `visgrab analyze` option ("--ci-level"; empty when the CLI has none).
+  std::string cliOption;
+  /// The Python visgrab.analyze argument ("ci_level"; empty when Python has none).
+  std::string pythonArgument;
+  /// What is wrong, after the name: e.g. "must be between 0 and 1 (exclusive), got 1.5" (the
+  /// value as its shortest text).
+  std::string problem;
+};
+
+/// The first option of `options` out of range (field order), nullopt when all are in range: the
+/// one check behind analyze(), `visgrab analyze` and Python's visgrab.analyze.
+std::optional<OptionProblem> checkOptions(const AnalysisOptions& options);
+
 /// Runs the five analyses on `runs` (each run's methods become columns), with the overall
 /// success rates, every estimate's scene-bootstrap interval and the comparisons of the columns
 /// (unless options.bootstrapResamples is 0), and the robust rates of runs with repeats. The
 /// paper's analyses read only the unperturbed trials (repeat 0). Trials of a scene not in the
 /// run's scene list are analysed with that scene added (conditions from the trial).
-/// @throws std::invalid_argument for options out of range (randomTrials < 1, maxAttempts < 0,
-/// ciLevel outside (0, 1), bootstrapResamples < 0, permutations < 1, threads < 1).
+/// @throws std::invalid_argument "FIELD PROBLEM" for options out of range (checkOptions:
+/// randomTrials < 1, maxAttempts < 0, ciLevel outside (0, 1), bootstrapResamples neither 0 nor
+/// at least kMinBootstrapResamples, permutations < 1, threads < 1), and for two runs of the same
+/// label (RunResults::label; an empty one is "run N"): it names their columns and keys their
+/// bootstrap streams (results::readResultFolders gives result folders distinct labels).
 Analysis analyze(const std::vector<results::RunResults>& runs, const AnalysisOptions& options = {});
 
 }  // namespace visgrab::analysis

@@ -10,9 +10,11 @@
 #include <span>
 #include <sstream>
 #include <stdexcept>
+#include <system_error>
 #include <tuple>
 #include <unordered_map>
 #include <utility>
+#include <variant>
 
 #include "visgrab/database/atomic_file.hpp"
 #include "visgrab/results/csv.hpp"
@@ -266,6 +268,13 @@ int databaseOrder(const std::string& id) {
   return c ? database::sceneIndex(*c) : database::kSceneCount;
 }
 
+// A result folder's name: its path's last part (a trailing separator dropped).
+std::string folderName(const fs::path& dir) {
+  fs::path name = dir;
+  if (!name.has_filename()) name = name.parent_path();
+  return name.filename().string();
+}
+
 std::string readWholeFile(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) fail(path.string(), 0, "cannot open the file");
@@ -378,6 +387,13 @@ TrialsFile parseTrials(std::string_view text, const std::string& file) {
         columns[i]->parse(f[i], t);
       } catch (const std::invalid_argument& e) {
         fail(file, lineNo, e.what());
+      }
+      // A number is finite; NaN is only written as an empty q_gws or q_gws_unit ("not computed").
+      const TrialValue value = columns[i]->value(t);
+      if (const double* number = std::get_if<double>(&value);
+          number && !std::isfinite(*number) && !f[i].empty()) {
+        fail(file, lineNo,
+             "column " + std::string(columns[i]->name) + ": '" + f[i] + "' is not a finite number");
       }
     }
     if (out.version == 1) {
@@ -537,12 +553,26 @@ void sortTrials(std::vector<TrialRecord>& trials, const std::vector<RunScene>& s
 RunResults readResults(const fs::path& dir, std::vector<Diagnostic>* warnings) {
   const fs::path runPath = dir / kRunFileName;
   const fs::path trialsPath = dir / kTrialsFileName;
+  std::error_code error;
+  const fs::file_status status = fs::status(dir, error);
+  if (!fs::exists(status)) {
+    fail(dir.string(), 0, "no such result folder (the folder does not exist)");
+  }
+  if (!fs::is_directory(status)) {
+    fail(dir.string(), 0, "is a file, not a result folder (a folder holding trials.csv)");
+  }
   RunResults run;
   const bool haveRun = fs::exists(runPath);
   if (haveRun) run = parseRunFile(readWholeFile(runPath), runPath.string());
   if (!fs::exists(trialsPath)) fail(trialsPath.string(), 0, "no trials file in the result folder");
   const std::string text = readWholeFile(trialsPath);
   TrialsFile trials = parseTrials(text, trialsPath.string());
+  if (trials.completeBytes == 0) {
+    // The writer starts such a file afresh; a reader has no run to read.
+    fail(trialsPath.string(), 1,
+         std::string(text.empty() ? "empty file" : "the column line is cut off") +
+             " (expected the column line '" + trialsColumns() + "')");
+  }
   if (haveRun && trials.repeated != run.repeats.repeated()) {
     fail(trialsPath.string(), 1,
          trials.repeated
@@ -595,10 +625,75 @@ RunResults readResults(const fs::path& dir, std::vector<Diagnostic>* warnings) {
                    });
   run.trials = std::move(trials.trials);
   sortTrials(run.trials, run.scenes, run.methods);
-  fs::path name = dir;
-  if (!name.has_filename()) name = name.parent_path();
-  run.label = name.filename().string();
+  run.label = folderName(dir);
   return run;
+}
+
+std::vector<std::string> distinctLabels(const std::vector<fs::path>& dirs) {
+  // Each folder's absolute path, its name last (a trailing separator or "." dropped).
+  std::vector<std::vector<std::string>> parts;
+  for (const fs::path& dir : dirs) {
+    std::vector<std::string>& p = parts.emplace_back();
+    for (const fs::path& part : fs::absolute(dir).lexically_normal()) {
+      if (!part.empty() && part != "." && part != part.root_path()) {
+        p.push_back(part.string());
+      }
+    }
+    if (p.empty()) p.push_back(dir.string());
+  }
+  // The trailing `n` parts of folder i, joined with '/'.
+  auto tail = [&parts](std::size_t i, std::size_t n) {
+    const std::vector<std::string>& p = parts[i];
+    std::string text;
+    for (std::size_t k = p.size() - std::min(n, p.size()); k < p.size(); ++k) {
+      text += (text.empty() ? "" : "/") + p[k];
+    }
+    return text;
+  };
+  std::vector<std::string> names;
+  for (const fs::path& dir : dirs) names.push_back(folderName(dir));
+  std::vector<std::string> labels;
+  for (std::size_t i = 0; i < dirs.size(); ++i) {
+    // The name (as readResults gives it) when no other folder has it; else the fewest trailing
+    // parts that no other folder ends in. Labels of different lengths differ (a part holds no
+    // '/'), and of the same length differ by construction, so the labels are distinct.
+    if (std::count(names.begin(), names.end(), names[i]) == 1) {
+      labels.push_back(names[i]);
+      continue;
+    }
+    std::size_t n = 1;
+    auto clashes = [&] {
+      for (std::size_t j = 0; j < dirs.size(); ++j) {
+        if (j != i && tail(j, n) == tail(i, n)) return true;
+      }
+      return false;
+    };
+    while (n < parts[i].size() && clashes()) ++n;
+    labels.push_back(tail(i, n));
+  }
+  return labels;
+}
+
+std::vector<RunResults> readResultFolders(const std::vector<fs::path>& dirs,
+                                          std::vector<Diagnostic>* warnings) {
+  std::vector<RunResults> runs;
+  runs.reserve(dirs.size());
+  for (const fs::path& dir : dirs) runs.push_back(readResults(dir, warnings));
+  for (std::size_t i = 0; i < dirs.size(); ++i) {
+    for (std::size_t j = 0; j < i; ++j) {
+      std::error_code error;
+      if (fs::equivalent(dirs[i], dirs[j], error)) {
+        throw std::invalid_argument("result folder " + dirs[j].string() + " is given twice (" +
+                                    (dirs[i] == dirs[j] ? "as result " + std::to_string(j + 1) +
+                                                              " and " + std::to_string(i + 1)
+                                                        : "also as " + dirs[i].string()) +
+                                    "): a run compared with itself");
+      }
+    }
+  }
+  const std::vector<std::string> labels = distinctLabels(dirs);
+  for (std::size_t i = 0; i < runs.size(); ++i) runs[i].label = labels[i];
+  return runs;
 }
 
 void writeResults(const fs::path& dir, const RunResults& run) {

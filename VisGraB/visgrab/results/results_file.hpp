@@ -82,7 +82,8 @@ struct TrialsFile {
 /// Reads trials.csv text of version 4, 3, 2 or 1; `file` names it in errors. A last record without
 /// its line break is torn (see TrialsFile) and dropped, whatever it holds. @throws
 /// rw::common::LoadError with `file:line` (the line where the record starts; the message gives
-/// the column) for a wrong column line or version, a malformed record, an unknown outcome, a
+/// the column) for a wrong column line or version, a malformed record, a number that is not
+/// finite (`nan`, `inf`: only an empty q_gws or q_gws_unit stands for NaN), an unknown outcome, a
 /// RobWork code that does not match the outcome, or a trial (scene, method, grasp, repeat) given
 /// twice.
 TrialsFile parseTrials(std::string_view text, const std::string& file);
@@ -102,9 +103,22 @@ void sortTrials(std::vector<TrialRecord>& trials, const std::vector<RunScene>& s
 /// conditions; scenes only in trials.csv are added (conditions from the id, warning when run.csv
 /// exists), so are methods; trials are sorted with sortTrials; label is the folder's name.
 /// A torn last record of trials.csv is dropped with a warning in `warnings` (if given).
-/// @throws rw::common::LoadError (file:line) for corrupt files or a missing trials.csv.
+/// @throws rw::common::LoadError (file:line) for a folder that does not exist or is a file, a
+/// missing trials.csv, one without its column line (empty, or cut off in it), or corrupt files.
 RunResults readResults(const std::filesystem::path& dir,
                        std::vector<rw::common::Diagnostic>* warnings = nullptr);
+
+/// Reads the result folders `dirs` (readResults each, in order) to be compared side by side and
+/// labels each run so the labels tell them apart: the folder's name (as readResults), and for
+/// folders whose names are the same, the shortest trailing part of their absolute paths that
+/// differs from every other folder's (`benchA/results`, `benchB/results`).
+/// @throws rw::common::LoadError as readResults; std::invalid_argument when one folder is given
+/// twice (also under two paths to it).
+std::vector<RunResults> readResultFolders(const std::vector<std::filesystem::path>& dirs,
+                                          std::vector<rw::common::Diagnostic>* warnings = nullptr);
+
+/// The labels readResultFolders gives folders `dirs` (no check that they exist or differ).
+std::vector<std::string> distinctLabels(const std::vector<std::filesystem::path>& dirs);
 
 /// Writes `run` as a result folder (run.csv and trials.csv in canonical order, with the repeat
 /// columns when run.repeats.repeated()), each file atomically. @throws std::runtime_error if a file

@@ -194,12 +194,95 @@ TEST(IntervalsTest, OptionsOutOfRangeAreRefused) {
   AnalysisOptions negative;
   negative.bootstrapResamples = -1;
   EXPECT_THROW(analyze({test_runs::twoSceneRun()}, negative), std::invalid_argument);
+  // Fewer than kMinBootstrapResamples (but not 0): one resample's value x gives [x, x], which
+  // need not contain the estimate.
+  for (const int few : {1, 2, 99}) {
+    AnalysisOptions o;
+    o.bootstrapResamples = few;
+    try {
+      analyze({test_runs::twoSceneRun()}, o);
+      ADD_FAILURE() << few;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_EQ(std::string(e.what()),
+                "bootstrapResamples must be 0 (no intervals) or at least 100, got " +
+                    std::to_string(few) +
+                    " (the interval's ends would be the extremes of a few resamples, which need "
+                    "not contain the estimate)");
+    }
+  }
+  AnalysisOptions hundred;
+  hundred.bootstrapResamples = kMinBootstrapResamples;
+  EXPECT_NO_THROW(analyze({test_runs::twoSceneRun()}, hundred));
   AnalysisOptions noPermutation;
   noPermutation.permutations = 0;
   EXPECT_THROW(analyze({test_runs::twoSceneRun()}, noPermutation), std::invalid_argument);
   AnalysisOptions noThread;
   noThread.threads = 0;
   EXPECT_THROW(analyze({test_runs::twoSceneRun()}, noThread), std::invalid_argument);
+}
+
+TEST(IntervalsTest, EachFrontEndNamesTheOptionItsOwnWay) {
+  AnalysisOptions o;
+  o.ciLevel = 1.5;
+  auto problem = checkOptions(o);
+  ASSERT_TRUE(problem);
+  EXPECT_EQ(problem->field, "ciLevel");
+  EXPECT_EQ(problem->cliOption, "--ci-level");
+  EXPECT_EQ(problem->pythonArgument, "ci_level");
+  // The number as given (its shortest text), not std::to_string's 1.500000.
+  EXPECT_EQ(problem->problem, "must be between 0 and 1 (exclusive), got 1.5");
+  o.ciLevel = 0.95;
+  o.bootstrapResamples = 1;
+  problem = checkOptions(o);
+  ASSERT_TRUE(problem);
+  EXPECT_EQ(problem->cliOption, "--bootstrap");
+  EXPECT_EQ(problem->pythonArgument, "bootstrap");
+  o.bootstrapResamples = 0;
+  EXPECT_FALSE(checkOptions(o));
+  o.threads = 0;
+  problem = checkOptions(o);
+  ASSERT_TRUE(problem);
+  EXPECT_EQ(problem->pythonArgument, "threads");
+  EXPECT_EQ(problem->problem, "must be at least 1, got 0");
+}
+
+TEST(IntervalsTest, RunsOfTheSameFolderNameGetTheirOwnStreams) {
+  // Two runs of the same trials, labelled as results::readResultFolders labels
+  // benchA/results and benchB/results: the labels key the streams (docs/report.md, "The seed"),
+  // so their intervals differ by the bootstrap's noise, and each is what it is alone.
+  results::RunResults a = test_runs::runA();
+  a.label = "benchA/results";
+  results::RunResults b = test_runs::runA();
+  b.label = "benchB/results";
+  const Analysis both = analyze({a, b});
+  ASSERT_EQ(both.columns.size(), 2u);
+  EXPECT_EQ(both.columns[0].label, "benchA/results: A");
+  EXPECT_EQ(both.columns[1].label, "benchB/results: A");
+  const Analysis aloneB = analyze({b});
+  int differ = 0;
+  int defined = 0;
+  for (std::size_t g = 0; g < both.groups.size(); ++g) {
+    const results::Interval& x = both.results[g][0].success.rateCi;
+    const results::Interval& y = both.results[g][1].success.rateCi;
+    const results::Interval& z = aloneB.results[g][0].success.rateCi;
+    if (!x.defined()) continue;
+    ++defined;
+    differ += x.low != y.low || x.high != y.high ? 1 : 0;
+    EXPECT_EQ(y.low, z.low);
+    EXPECT_EQ(y.high, z.high);
+  }
+  EXPECT_GT(defined, 3);
+  EXPECT_GT(differ, 0);
+  // The same label twice cannot be told apart: refused.
+  b.label = a.label;
+  try {
+    analyze({a, b});
+    ADD_FAILURE() << "no error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "runs 1 and 2 have the same label 'benchA/results' (results::readResultFolders "
+              "labels folders apart)");
+  }
 }
 
 }  // namespace

@@ -617,5 +617,131 @@ TEST(ResultsFileTest, MissingRunFileDerivesScenesFromIds) {
   EXPECT_EQ(back.trials[0].conditions, back.scenes[0].conditions);
 }
 
+// The message of the LoadError readResults(dir) throws ("" when it reads).
+std::string readError(const std::filesystem::path& dir) {
+  try {
+    readResults(dir);
+  } catch (const rw::common::LoadError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(ResultsFileTest, BadResultFoldersSayWhatIsWrong) {
+  test::TempDir dir;
+  // A folder that does not exist: said of the folder, not of a trials.csv inside it.
+  const std::filesystem::path missing = dir.path() / "nonexist";
+  EXPECT_EQ(readError(missing),
+            missing.string() + ": error: no such result folder (the folder does not exist)");
+  // A file given as the folder.
+  const std::filesystem::path file = dir.path() / "base.csv";
+  test::writeFile(file, "a,b\n");
+  EXPECT_EQ(readError(file), file.string() +
+                                 ": error: is a file, not a result folder (a folder holding "
+                                 "trials.csv)");
+  // A folder without trials.csv.
+  std::filesystem::create_directories(dir.path() / "empty");
+  EXPECT_EQ(readError(dir.path() / "empty"), (dir.path() / "empty" / "trials.csv").string() +
+                                                 ": error: no trials file in the result folder");
+}
+
+TEST(ResultsFileTest, TrialsFileWithoutItsColumnLineIsAnErrorAtLine1) {
+  test::TempDir dir;
+  const std::filesystem::path trials = dir.path() / "trials.csv";
+  // 0 bytes: no run to report on (not a report of 0 grasps).
+  test::writeFile(trials, "");
+  EXPECT_EQ(readError(dir.path()), trials.string() +
+                                       ":1: error: empty file (expected the column line '" +
+                                       trialColumnLine(false) + "')");
+  // Cut off inside the column line.
+  test::writeFile(trials, "scene,method,gr");
+  EXPECT_EQ(readError(dir.path()), trials.string() +
+                                       ":1: error: the column line is cut off (expected the "
+                                       "column line '" +
+                                       trialColumnLine(false) + "')");
+  // The column line alone is a run without trials: read, no error.
+  test::writeFile(trials, trialsHeader());
+  EXPECT_EQ(readError(dir.path()), "");
+  EXPECT_TRUE(readResults(dir.path()).trials.empty());
+}
+
+TEST(ResultsFileTest, NumbersThatAreNotFiniteAreErrorsNamingTheColumn) {
+  // docs/report.md: numbers are shortest round-trip decimals; only an empty q_gws or q_gws_unit
+  // means "not computed". A nan or inf elsewhere would make a mean silently undefined.
+  const std::string h = trialsHeader();
+  const std::string good = "s,m,g,0,stable,1,0.9,0.5,0.25,5,1.2,0,\"\"\n";
+  expectLoadError(h + good + "s,m,g2,0,stable,1,nan,0.5,0.25,5,1.2,0,\"\"\n", "r/trials.csv:3",
+                  "column q_lift: 'nan' is not a finite number");
+  expectLoadError(h + "s,m,g2,0,stable,1,0.9,inf,0.25,5,1.2,0,\"\"\n", "r/trials.csv:2",
+                  "column q_gws: 'inf' is not a finite number");
+  expectLoadError(h + "s,m,g2,0,stable,1,0.9,0.5,nan,5,1.2,0,\"\"\n", "r/trials.csv:2",
+                  "column q_gws_unit: 'nan' is not a finite number");
+  expectLoadError(h + "s,m,g2,0,stable,1,0.9,0.5,0.25,5,-inf,0,\"\"\n", "r/trials.csv:2",
+                  "column simulated_time: '-inf' is not a finite number");
+  expectLoadError(std::string(kVersion1Header) + "s,m,g,0,stable,1,nan,0.0625,5,1.5,\"\"\n",
+                  "r/trials.csv:3", "column q_lift: 'nan' is not a finite number");
+  // Empty Q fields stay "not computed".
+  const TrialsFile file = parseTrials(h + "s,m,g2,0,stable,1,0.9,,,5,1.2,0,\"\"\n", "t");
+  ASSERT_EQ(file.trials.size(), 1u);
+  EXPECT_TRUE(std::isnan(file.trials[0].qGws));
+  EXPECT_TRUE(std::isnan(file.trials[0].qGwsUnit));
+}
+
+TEST(ResultsFileTest, FoldersOfTheSameNameGetLabelsThatTellThemApart) {
+  namespace fs = std::filesystem;
+  test::TempDir dir;
+  // The layout `visgrab benchmark` writes: BENCH/results.
+  const fs::path a = dir.path() / "benchA" / "results";
+  const fs::path b = dir.path() / "benchB" / "results";
+  const fs::path other = dir.path() / "other";
+  for (const fs::path& p : {a, b, other}) {
+    fs::create_directories(p);
+    writeResults(p, smallRun());
+  }
+  const std::vector<RunResults> runs = readResultFolders({a, b, other});
+  ASSERT_EQ(runs.size(), 3u);
+  EXPECT_EQ(runs[0].label, "benchA/results");
+  EXPECT_EQ(runs[1].label, "benchB/results");
+  // A name no other folder has stays the name, as readResults gives it.
+  EXPECT_EQ(runs[2].label, "other");
+  EXPECT_EQ(readResultFolders({a, other})[0].label, "results");
+  EXPECT_EQ(readResultFolders({a})[0].label, "results");
+  // docs/python.md's example: "results" and "other/results", the first relative to the working
+  // directory: the shortest trailing parts of the absolute paths that differ.
+  EXPECT_EQ(distinctLabels({"/w/x/results", "/w/x/other/results"}),
+            (std::vector<std::string>{"x/results", "other/results"}));
+  // Each label as short as it can be: b/a/r and c/a/r need 3 parts, d/r 2, the unique e 1.
+  EXPECT_EQ(distinctLabels({"/b/a/r", "/c/a/r", "/d/r/", "/e"}),
+            (std::vector<std::string>{"b/a/r", "c/a/r", "d/r", "e"}));
+  // A trailing separator and "." do not count as parts.
+  EXPECT_EQ(distinctLabels({"/p/./results/", "/q/results"}),
+            (std::vector<std::string>{"p/results", "q/results"}));
+}
+
+TEST(ResultsFileTest, OneFolderGivenTwiceIsRefused) {
+  namespace fs = std::filesystem;
+  test::TempDir dir;
+  const fs::path a = dir.path() / "benchA" / "results";
+  fs::create_directories(a);
+  writeResults(a, smallRun());
+  try {
+    readResultFolders({a, a});
+    FAIL() << "no error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()), "result folder " + a.string() +
+                                         " is given twice (as result 1 and 2): a run compared "
+                                         "with itself");
+  }
+  // Under another path to it.
+  const fs::path again = dir.path() / "benchA" / "." / "results" / "";
+  try {
+    readResultFolders({a, again});
+    FAIL() << "no error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()), "result folder " + a.string() + " is given twice (also as " +
+                                         again.string() + "): a run compared with itself");
+  }
+}
+
 }  // namespace
 }  // namespace visgrab::results
