@@ -335,10 +335,11 @@ void Exporter::writeBody(std::size_t b, int depth) {
       }
       const auto& lim = frame.limits();
       const bool limited = std::isfinite(lim.lower) && std::isfinite(lim.upper);
+      const bool revolute = frame.type() == rw::kinematics::FrameType::kRevolute;
       out_ += in + "<joint name=\"" + attr(body.name) + "\" type=\"" +
-              (frame.type() == rw::kinematics::FrameType::kRevolute ? "hinge" : "slide") +
-              "\" axis=\"0 0 1\" armature=\"" + num(options_.motorArmature) + "\" limited=\"" +
-              (limited ? "true" : "false") + "\"" +
+              (revolute ? "hinge" : "slide") + "\" axis=\"0 0 1\" armature=\"" +
+              num(revolute ? options_.motorArmature : options_.prismaticMotorArmature) +
+              "\" limited=\"" + (limited ? "true" : "false") + "\"" +
               (limited ? " range=\"" + num(lim.lower) + " " + num(lim.upper) + "\"" : "") + "/>\n";
     } else {
       out_ += in + "<freejoint name=\"" + attr(body.name) + "\"/>\n";
@@ -424,8 +425,11 @@ void Exporter::writeActuatorsAndEqualities() {
       if (!f.isActiveJoint()) continue;
       names.push_back(f.name());
       const double limit = rd.forceLimits[k];
+      const double gain = f.type() == rw::kinematics::FrameType::kRevolute
+                              ? options_.motorGain
+                              : options_.prismaticMotorGain;
       out_ += "    <velocity name=\"" + attr(f.name()) + "\" joint=\"" + attr(f.name()) +
-              "\" kv=\"" + num(options_.motorGain) +
+              "\" kv=\"" + num(gain) +
               "\" ctrllimited=\"false\" forcelimited=\"true\" forcerange=\"" + num(-limit) + " " +
               num(limit) + "\"/>\n";
     }

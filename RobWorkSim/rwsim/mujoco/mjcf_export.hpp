@@ -34,12 +34,14 @@ struct MjcfModel {
 /// options.roundSegments-gons; Plane on a fixed body); mass, centre of mass and full inertia; a
 /// hinge or slide joint with limits for each link, a free joint for each other rigid body, six
 /// joints (slides and hinges at the frame origin, armature options.kinematicArmature) for each
-/// kinematic body; a torque-limited velocity servo (gain options.motorGain, force range the
-/// dwc's ForceLimit) per active joint; each dependent joint as a joint equality (MuJoCo's
-/// equality has no force limit, the ODE engine's coupling motor has); gravity; the solver
-/// options; and one explicit contact pair per pair of shapes the project's contact detection
-/// checks (a rigid body involved, not joint-connected, allowed by the proximity setup) with the
-/// pair's Coulomb friction from the material map (all other contacts off).
+/// kinematic body; a torque-limited velocity servo (gain options.motorGain on a revolute joint,
+/// options.prismaticMotorGain on a prismatic one, force range the dwc's ForceLimit) per active
+/// joint, and every link joint the armature of its type (motorArmature, prismaticMotorArmature);
+/// each dependent joint as a joint equality (MuJoCo's equality has no force limit, the ODE engine's
+/// coupling motor has); gravity; the solver options; and one explicit contact pair per pair of
+/// shapes the project's contact detection checks (a rigid body involved, not joint-connected,
+/// allowed by the proximity setup) with the pair's Coulomb friction from the material map (all
+/// other contacts off).
 /// @throws std::invalid_argument naming the frame (and body) for geometry MuJoCo cannot
 /// represent faithfully (a non-convex or flat mesh, a tube, a plane on a moving body), naming
 /// the body for a device link that is not on a joint frame, a device joint without a link body,

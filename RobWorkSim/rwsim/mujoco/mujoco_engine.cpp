@@ -566,16 +566,17 @@ class MujocoEngineFactory final : public trial::EngineFactory {
   std::string settings() const override {
     const MujocoOptions& o = model_->options;
     const int v = mj_version();
-    char text[512];
-    std::snprintf(
-        text, sizeof(text),
-        "MuJoCo %d.%d.%d; step %.9g s; %s; %s; %s cone impratio %.9g; solref %.9g %.9g; "
-        "motor kv %.9g armature %.9g; kinematic mass %.9g kg armature %.9g; %d segments per round; "
-        "max speed %.9g m/s, escape %.9g m",
-        v / 100, v / 10 % 10, v % 10, o.timeStep, o.solver.c_str(), o.integrator.c_str(),
-        o.cone.c_str(), o.impratio, o.solrefTimeConstant, o.solrefDampingRatio, o.motorGain,
-        o.motorArmature, o.kinematicMass, o.kinematicArmature, o.roundSegments, o.maxSpeed,
-        o.escapeDistance);
+    char text[640];
+    std::snprintf(text, sizeof(text),
+                  "MuJoCo %d.%d.%d; step %.9g s; %s; %s; %s cone impratio %.9g; solref %.9g %.9g; "
+                  "motor kv %.9g armature %.9g; prismatic motor kv %.9g armature %.9g; kinematic "
+                  "mass %.9g kg armature %.9g; %d segments per round; "
+                  "max speed %.9g m/s, escape %.9g m",
+                  v / 100, v / 10 % 10, v % 10, o.timeStep, o.solver.c_str(), o.integrator.c_str(),
+                  o.cone.c_str(), o.impratio, o.solrefTimeConstant, o.solrefDampingRatio,
+                  o.motorGain, o.motorArmature, o.prismaticMotorGain, o.prismaticMotorArmature,
+                  o.kinematicMass, o.kinematicArmature, o.roundSegments, o.maxSpeed,
+                  o.escapeDistance);
     return text;
   }
 

@@ -23,8 +23,9 @@ struct CompiledModel;
 ///
 /// Model differences from the ODE engine (rwsim::simulator::Simulator):
 ///  - Motors: a velocity servo torque = kv (target - velocity) clipped to the force limit
-///    (MujocoOptions::motorGain), not a velocity constraint that reaches the limit for any
-///    speed error; a loaded joint therefore lags its target by load / kv.
+///    (MujocoOptions::motorGain for a revolute joint, prismaticMotorGain for a prismatic one),
+///    not a velocity constraint that reaches the limit for any speed error; a loaded joint
+///    therefore lags its target by load / kv.
 ///  - A dependent (coupled) joint is a joint equality, which has no force limit (ODE's coupling
 ///    motor has its owner's).
 ///  - Contacts are MuJoCo's soft constraints (solref, elliptic cones, impratio) found by MuJoCo's
