@@ -39,7 +39,10 @@ void addMergeCommands(CommandLine& cli) {
       ->expected(1, CLI::detail::expected_max_vector_size)
       ->allow_extra_args()
       ->type_name("");
-  merge.add_option("--out", "The result folder to write (trials.csv, run.csv)")
+  merge
+      .add_option("--out",
+                  "The result folder to write (trials.csv, run.csv); one that already holds "
+                  "results is refused, as by `visgrab run`")
       ->required()
       ->type_name("RESULTS");
 }

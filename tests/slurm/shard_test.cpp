@@ -1,7 +1,8 @@
 // Shards of a benchmark run (visgrab::runner, no Slurm): the plan covers every scene's grasps
 // exactly once, the merged shards are byte-identical to a one-machine run whatever the thread
-// counts, a stopped or cut-off shard resumes to the same result, and the merge refuses shards
-// that are missing, given twice, of other runs, torn, changed or unfinished, naming the folder.
+// counts (shards without scenes too), a stopped or cut-off shard resumes to the same result, and
+// the merge refuses shards that are missing, given twice, of other runs or engines, torn, changed
+// or unfinished, naming the folder, and an output folder that holds results.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -469,6 +470,122 @@ TEST_F(ShardedRun, MergeRefusesAFolderThatIsNoShardOrTheOutput) {
     ADD_FAILURE() << "merged into a shard";
   } catch (const std::runtime_error& err) {
     EXPECT_NE(std::string(err.what()).find("also the output folder"), std::string::npos);
+  }
+}
+
+TEST_F(ShardedRun, MergeRefusesAnOutputFolderThatHoldsResults) {
+  const auto dirs = shards(3);
+  const fs::path out = tmp_.path() / "merged";
+  mergeShards(dirs, out);
+  visgrab::test::writeFile(out / "report.md", "an old report\n");
+  const std::string trials = fileBytes(out / "trials.csv");
+  // Merging again (or another run) into it would leave the old report beside new results.
+  std::string e = mergeError(dirs);
+  EXPECT_NE(e.find(out.string() + " already holds results (trials.csv); merge into another folder "
+                                  "(--out) or remove it first"),
+            std::string::npos)
+      << e;
+  EXPECT_EQ(fileBytes(out / "trials.csv"), trials);
+  // run.csv alone is results too.
+  fs::remove(out / "trials.csv");
+  e = mergeError(dirs);
+  EXPECT_NE(e.find(out.string() + " already holds results (run.csv)"), std::string::npos) << e;
+  // A folder without results (here: only the old report) is written into.
+  fs::remove(out / "run.csv");
+  mergeShards(dirs, out);
+  expectSameAsWhole(out);
+}
+
+// A run whose work is one scene (--scenes selects it alone), cut into three shards: shard 2 holds
+// the scene (its grasps' midpoint, 1 of 2 grasps, is at 1/2 of the run: block floor(1 * 3 / 2) = 1,
+// the second), shards 1 and 3 hold no scene at all.
+TEST(ShardWithoutScenes, IsAValidShardAndTheMergeEqualsOneRun) {
+  visgrab::test::TempDir tmp;
+  const fs::path grasps = tmp.path() / "one-scene.txt";
+  visgrab::taskio::writeGraspList(
+      visgrab::test::cylinderGrasps({visgrab::test::kTestSceneIds[0]}, 2, "top"), grasps);
+  const auto options = [&](const fs::path& out) {
+    RunOptions o;
+    o.database = visgrab::test::testDatabasePath();
+    o.grasps = {grasps};
+    o.hand = visgrab::test::sdhHandFile();
+    o.out = out;
+    o.scenes = std::string(visgrab::test::kTestSceneIds[0]);
+    o.threads = 1;
+    return o;
+  };
+  visgrab::runner::runBenchmark(options(tmp.path() / "whole"));
+  std::vector<fs::path> dirs;
+  for (int k = 1; k <= 3; ++k) {
+    RunOptions o = options(tmp.path() / ("shard-" + std::to_string(k)));
+    o.shard = ShardSpec{k, 3};
+    visgrab::runner::runBenchmark(o);
+    dirs.push_back(o.out);
+  }
+  const auto whole = visgrab::results::readResults(tmp.path() / "whole");
+  ASSERT_FALSE(whole.sources.engineSettings.empty());
+  for (const int k : {1, 3}) {
+    const auto part = visgrab::results::readResults(dirs[static_cast<std::size_t>(k - 1)]);
+    EXPECT_TRUE(part.scenes.empty()) << "shard " << k;
+    EXPECT_TRUE(part.trials.empty()) << "shard " << k;
+    // The engine settings a scene gives, recorded without a scene of its own.
+    EXPECT_EQ(part.sources.engineSettings, whole.sources.engineSettings) << "shard " << k;
+  }
+  const fs::path merged = tmp.path() / "merged";
+  const auto summary = mergeShards({dirs[2], dirs[0], dirs[1]}, merged);
+  EXPECT_EQ(summary.trials, whole.trials.size());
+  for (const auto name : {visgrab::results::kTrialsFileName, visgrab::results::kRunFileName}) {
+    EXPECT_EQ(fileBytes(merged / name), fileBytes(tmp.path() / "whole" / name)) << name;
+  }
+
+  // An empty shard without the engine_settings record (as an older visgrab wrote it; shard.txt's
+  // hash updated to match): the merge says which settings differ, and --resume repairs it.
+  std::string run = fileBytes(dirs[0] / "run.csv");
+  const auto at = run.find("engine_settings,");
+  ASSERT_NE(at, std::string::npos) << run;
+  run.erase(at, run.find('\n', at) + 1 - at);
+  visgrab::test::writeFile(dirs[0] / "run.csv", run);
+  auto record = visgrab::runner::readShardRecord(dirs[0]);
+  record.runHash = visgrab::runner::contentHash(run);
+  visgrab::runner::writeShardRecord(dirs[0], record);
+  try {
+    mergeShards(dirs, tmp.path() / "merged-2");
+    ADD_FAILURE() << "merged a shard without engine settings";
+  } catch (const std::runtime_error& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("ran ode with different engine settings: none (no engine_settings record in "
+                     "run.csv) and \"" +
+                     whole.sources.engineSettings + "\""),
+              std::string::npos)
+        << m;
+    EXPECT_NE(m.find("run it again with --resume"), std::string::npos) << m;
+    EXPECT_EQ(m.find("ode and ode"), std::string::npos) << m;
+  }
+  RunOptions again = options(dirs[0]);
+  again.shard = ShardSpec{1, 3};
+  again.resume = true;
+  visgrab::runner::runBenchmark(again);
+  mergeShards(dirs, tmp.path() / "merged-3");
+  EXPECT_EQ(fileBytes(tmp.path() / "merged-3" / "run.csv"),
+            fileBytes(tmp.path() / "whole" / "run.csv"));
+
+  // A shard recorded as another engine's (its run.csv edited, the hash updated): the engines are
+  // named.
+  run = fileBytes(dirs[2] / "run.csv");
+  run.insert(run.find("engine_settings,"), "engine,mujoco,,,,,,\n");
+  visgrab::test::writeFile(dirs[2] / "run.csv", run);
+  record = visgrab::runner::readShardRecord(dirs[2]);
+  record.runHash = visgrab::runner::contentHash(run);
+  visgrab::runner::writeShardRecord(dirs[2], record);
+  try {
+    mergeShards(dirs, tmp.path() / "merged-4");
+    ADD_FAILURE() << "merged shards of two engines";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find(dirs[2].string() +
+                                         " ran on different engines: ode and mujoco; a run's "
+                                         "shards must all run on one engine"),
+              std::string::npos)
+        << e.what();
   }
 }
 

@@ -200,6 +200,46 @@ TEST_F(SlurmCommand, SubmitChainsTheMergeJobOnTheArraysId) {
   EXPECT_TRUE(contains(r.output, "failed (exit code 3)")) << r.output;
 }
 
+// The walkthrough of docs/cluster.md on one scene: of two shards, the first holds no scene (the
+// scene's grasp midpoint is in the second half of the work); the merge equals one run, and a
+// second merge into the same folder is refused and changes nothing.
+TEST_F(SlurmCommand, AShardWithoutScenesMergesAndTheMergeNeverOverwritesResults) {
+  const fs::path one = tmp_.path() / "one.txt";
+  visgrab::taskio::writeGraspList(
+      visgrab::test::cylinderGrasps({visgrab::test::kTestSceneIds[0]}, 2, "top"), one);
+  const std::string inputs = " --db " + shellQuoted(visgrab::test::testDatabasePath()) +
+                             " --grasps " + shellQuoted(one) + " --hand " +
+                             shellQuoted(visgrab::test::sdhHandFile()) + " --scenes " +
+                             std::string(visgrab::test::kTestSceneIds[0]) + " --threads 1 --quiet";
+  const fs::path whole = tmp_.path() / "whole";
+  auto r = runVisgrab("run" + inputs + " --out " + shellQuoted(whole));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  std::string shards;
+  for (const int k : {1, 2}) {
+    const fs::path dir = tmp_.path() / ("sh" + std::to_string(k));
+    r = runVisgrab("run" + inputs + " --shard " + std::to_string(k) + " --of 2 --out " +
+                   shellQuoted(dir));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    shards += " " + shellQuoted(dir);
+  }
+  EXPECT_FALSE(contains(fileBytes(tmp_.path() / "sh1" / "run.csv"), "\nscene,"));
+  const fs::path merged = tmp_.path() / "merged";
+  r = runVisgrab("merge" + shards + " --out " + shellQuoted(merged));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_TRUE(contains(r.output, "2 shards merged: 2 trials, 1 scenes")) << r.output;
+  for (const auto name : {"trials.csv", "run.csv"}) {
+    EXPECT_EQ(fileBytes(merged / name), fileBytes(whole / name)) << name;
+  }
+  const std::string run = fileBytes(merged / "run.csv");
+  r = runVisgrab("merge" + shards + " --out " + shellQuoted(merged));
+  EXPECT_EQ(r.exitCode, 1) << r.output;
+  EXPECT_TRUE(contains(r.output, "error: " + merged.string() +
+                                     " already holds results (trials.csv); merge into another "
+                                     "folder (--out) or remove it first"))
+      << r.output;
+  EXPECT_EQ(fileBytes(merged / "run.csv"), run);
+}
+
 TEST_F(SlurmCommand, ShardOptionsAndMergeMistakesAreClearErrors) {
   auto r =
       runVisgrab("run" + common() + " --shard 3 --of 2 --out " + shellQuoted(tmp_.path() / "x"));

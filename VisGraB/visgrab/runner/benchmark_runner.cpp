@@ -461,15 +461,28 @@ void writeRunFile(RunPlan& plan, results::ResultsWriter& writer) {
   writer.writeRun(plan.run);
 }
 
+/// The scene a fresh run of the whole work (every shard) probes first: its first scene with
+/// grasps, else its first scene; null for a run without scenes.
+std::optional<SceneGraspList> wholeRunProbe(const RunPlan& plan) {
+  for (const SceneGraspList& s : plan.order.scenes) {
+    if (!s.grasps.empty()) return SceneGraspList{s.entry, {}};
+  }
+  if (plan.order.scenes.empty()) return std::nullopt;
+  return SceneGraspList{plan.order.scenes.front().entry, {}};
+}
+
 /// A hand that does not fit (a missing dynamics file, a device or controller the scene's
 /// dynamics lack) fails every scene: reported once, as the run's error, not per grasp. The probe
-/// is the first pending scene, else (a finished run resumed) the run's first. Returns the
-/// engine's settings in that scene (empty for a run without scenes).
-std::string checkHandFits(const PendingWork& pending, const RunPlan& plan,
+/// is the first pending scene, else (a finished run resumed, a shard without grasps or without
+/// scenes) `wholeRun`, the scene a fresh run of the whole work probes: so a shard without work
+/// records the engine settings that the other shards and one run of the whole work record, and
+/// fails, as they do, for a hand that cannot run. Returns the engine's settings in that scene
+/// (empty for a run without scenes).
+std::string checkHandFits(const PendingWork& pending, const std::optional<SceneGraspList>& wholeRun,
                           const session::SceneLoader& loader, const fs::path& handFile) {
-  const SceneGraspList* scene = !pending.scenes.empty()      ? pending.scenes.front()
-                                : !plan.order.scenes.empty() ? &plan.order.scenes.front()
-                                                             : nullptr;
+  const SceneGraspList* scene = !pending.scenes.empty() ? pending.scenes.front()
+                                : wholeRun              ? &*wholeRun
+                                                        : nullptr;
   if (scene == nullptr) return {};
   try {
     const SceneRunner probe(*scene, loader);
@@ -660,6 +673,7 @@ RunSummary runBenchmark(const RunOptions& options,
   plan.run.sources.protocolHash = protocolRecord.protocolHash;
   plan.run.sources.protocolFile = protocolRecord.protocolFile;
   std::optional<ShardRecord> shard;
+  const std::optional<SceneGraspList> wholeRun = wholeRunProbe(plan);
   if (options.shard) {
     restrictToShard(plan, *options.shard);
     shard = startShard(options);
@@ -668,7 +682,7 @@ RunSummary runBenchmark(const RunOptions& options,
   writerOptions.repeated = repeats.record.repeated();
   results::ResultsWriter writer(options.out, writerOptions);
   PendingWork pending = pendingScenes(plan.order.scenes, writer, repeats.count);
-  plan.run.sources.engineSettings = checkHandFits(pending, plan, loader, options.hand);
+  plan.run.sources.engineSettings = checkHandFits(pending, wholeRun, loader, options.hand);
   checkSameDatabase(options, previous, plan.run.sources);
   checkSameEngine(options, previous, plan.run.sources);
   checkSameProtocol(options, previous, plan.run.sources);

@@ -102,6 +102,37 @@ std::vector<CheckedShard> checkOneRun(std::vector<CheckedShard> shards) {
   return shards;
 }
 
+/// What differs between the engine records of two shards' run.csv (a record without an engine is
+/// ODE's); empty if nothing.
+std::string engineDifference(const results::RunSources& a, const results::RunSources& b) {
+  const std::string engineA = a.engine.empty() ? "ode" : a.engine;
+  const std::string engineB = b.engine.empty() ? "ode" : b.engine;
+  if (engineA != engineB) {
+    return "ran on different engines: " + engineA + " and " + engineB +
+           "; a run's shards must all run on one engine";
+  }
+  if (a.engineSettings == b.engineSettings) return {};
+  const auto settings = [](const std::string& s) {
+    return s.empty() ? std::string("none (no engine_settings record in run.csv)") : '"' + s + '"';
+  };
+  return "ran " + engineA + " with different engine settings: " + settings(a.engineSettings) +
+         " and " + settings(b.engineSettings) +
+         "; a run's shards must all run with one setting (a shard without an engine_settings "
+         "record was written by an older visgrab: run it again with --resume)";
+}
+
+/// Refuses an output folder that holds results already (trials.csv, run.csv or grasps.csv), as
+/// `visgrab run` does: writing over them would leave files of the old results beside the new.
+void checkOutputHoldsNoResults(const fs::path& out) {
+  for (const std::string_view name :
+       {results::kTrialsFileName, results::kRunFileName, results::kGraspsFileName}) {
+    if (fs::exists(out / name)) {
+      throw std::runtime_error(out.string() + " already holds results (" + std::string(name) +
+                               "); merge into another folder (--out) or remove it first");
+    }
+  }
+}
+
 bool sameFolder(const fs::path& a, const fs::path& b) {
   std::error_code ec;
   return fs::exists(a) && fs::exists(b) && fs::equivalent(a, b, ec);
@@ -116,8 +147,9 @@ MergeSummary mergeShards(const std::vector<fs::path>& shardDirs, const fs::path&
     if (sameFolder(dir, out)) {
       throw shardError(dir, "is also the output folder (--out): merge into another folder");
     }
-    checked.push_back(checkShard(dir));
   }
+  checkOutputHoldsNoResults(out);
+  for (const fs::path& dir : shardDirs) checked.push_back(checkShard(dir));
   const std::vector<CheckedShard> shards = checkOneRun(std::move(checked));
 
   results::RunResults merged;
@@ -141,16 +173,10 @@ MergeSummary mergeShards(const std::vector<fs::path>& shardDirs, const fs::path&
       throw std::runtime_error("shard folders " + shards.front().dir.string() + " and " +
                                s.dir.string() +
                                " are shards of different runs: their run.csv lists other methods");
-    } else if (part.sources.engine != merged.sources.engine ||
-               part.sources.engineSettings != merged.sources.engineSettings) {
-      const auto engineOf = [](const results::RunSources& r) {
-        return (r.engine.empty() ? std::string("ode") : r.engine) +
-               (r.engineSettings.empty() ? "" : " (" + r.engineSettings + ")");
-      };
-      throw std::runtime_error(
-          "shard folders " + shards.front().dir.string() + " and " + s.dir.string() +
-          " ran on different engines: " + engineOf(merged.sources) + " and " +
-          engineOf(part.sources) + "; a run's shards must all run on one engine with one setting");
+    } else if (const std::string difference = engineDifference(merged.sources, part.sources);
+               !difference.empty()) {
+      throw std::runtime_error("shard folders " + shards.front().dir.string() + " and " +
+                               s.dir.string() + " " + difference);
     } else if (part.sources.protocol != merged.sources.protocol ||
                part.sources.protocolHash != merged.sources.protocolHash) {
       throw std::runtime_error("shard folders " + shards.front().dir.string() + " and " +

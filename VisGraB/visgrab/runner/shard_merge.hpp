@@ -28,8 +28,10 @@ struct MergeSummary {
 /// @throws std::runtime_error naming the shard folder and what is wrong: no shard.txt, a shard
 /// still running or killed, a trials.csv ending in a torn line or changed since the shard
 /// finished, shards of different runs (naming the inputs that differ), a shard given twice or
-/// missing, `out` being one of the shards; rw::common::LoadError (file:line) for a corrupt
-/// file; rw::common::WriteError if `out` cannot be written.
+/// missing, shards whose run.csv records other engines or engine settings (naming both), `out`
+/// being one of the shards or holding results already (trials.csv, run.csv or grasps.csv: as
+/// `visgrab run`, the merge never writes over results); rw::common::LoadError (file:line) for a
+/// corrupt file; rw::common::WriteError if `out` cannot be written.
 MergeSummary mergeShards(const std::vector<std::filesystem::path>& shardDirs,
                          const std::filesystem::path& out);
 
