@@ -171,18 +171,22 @@ analysis::AnalysisOptions analysisOptions(const Arguments& a) {
   options.bootstrapSeed = static_cast<std::uint64_t>(
       integerOption(a, "seed", static_cast<int>(options.bootstrapSeed), 0));
   options.threads = threadsOption(a);
+  if (const auto problem = analysis::checkOptions(options)) {
+    throw UsageError(problem->cliOption + ": " + problem->problem);
+  }
   return options;
 }
 
 int runAnalyze(const Arguments& a) {
   const auto out = a.option("out");
-  std::vector<results::RunResults> runs;
-  for (const auto& dir : a.positionals()) {
-    std::vector<rw::common::Diagnostic> warnings;
-    runs.push_back(results::readResults(dir, &warnings));
-    for (const auto& w : warnings) std::cerr << w.format() << "\n";
-  }
-  analysis::writeReport(runs, *out, analysisOptions(a),
+  const analysis::AnalysisOptions options = analysisOptions(a);
+  std::vector<fs::path> dirs;
+  for (const auto& dir : a.positionals()) dirs.emplace_back(dir);
+  std::vector<rw::common::Diagnostic> warnings;
+  // Two folders of the same name get labels that tell them apart (benchA/results, ...).
+  const std::vector<results::RunResults> runs = results::readResultFolders(dirs, &warnings);
+  for (const auto& w : warnings) std::cerr << w.format() << "\n";
+  analysis::writeReport(runs, *out, options,
                         pictureDrawer(a, threadsOption(a), a.flag("quiet")));
   std::cout << "report in " << *out << " (report.html, report.md, CSV tables)\n";
   return 0;
@@ -389,8 +393,8 @@ void addRunCommands(CommandLine& cli) {
       ->default_str("0.95");
   analyze
       .add_option("--bootstrap",
-                  "Bootstrap resamples behind every interval and comparison; 0: none (the report "
-                  "without intervals, overall success rates and comparisons)")
+                  "Bootstrap resamples behind every interval and comparison, at least 100; 0: "
+                  "none (the report without intervals, overall success rates and comparisons)")
       ->type_name("B")
       ->default_str("2000")
       ->check(integerAtLeast(0));

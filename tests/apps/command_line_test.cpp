@@ -4,6 +4,9 @@
 #include <gtest/gtest-spi.h>
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -119,15 +122,101 @@ TEST(CommandLineRules, EqualsAndRepeatsAreTheSameForEveryCommand) {
   const RunResult grasps =
       visgrab::test::runVisgrab("run --db " + missing + " --grasps a --grasps=b --out " + missing);
   EXPECT_EQ(grasps.exitCode, 1) << grasps.output;
-  // Several positionals reach the command (which finds no results in the first: exit 1).
+  // Several positionals reach the command (whose first folder does not exist: exit 1).
   const RunResult results =
       visgrab::test::runVisgrab("analyze " + missing + " " + missing + "2 --out " + missing + "3");
   EXPECT_EQ(results.exitCode, 1) << results.output;
-  EXPECT_NE(results.output.find("no-db/trials.csv"), std::string::npos) << results.output;
+  EXPECT_NE(results.output.find("no-db: error: no such result folder"), std::string::npos)
+      << results.output;
   // A missing value names what was expected.
   const RunResult value = visgrab::test::runVisgrab("db list --db");
   EXPECT_EQ(value.exitCode, 2) << value.output;
   EXPECT_NE(value.output.find("--db: expected DIR|MANIFEST"), std::string::npos) << value.output;
+}
+
+// A result folder `dir` whose trials.csv (version 4, docs/report.md) holds `records` after the
+// column line.
+void writeTrials(const std::filesystem::path& dir, const std::string& records) {
+  visgrab::test::writeFile(dir / "trials.csv",
+                           "scene,method,grasp,rank,outcome,robwork_code,q_lift,q_gws,q_gws_unit,"
+                           "object,simulated_time,closing_capped,detail\n" +
+                               records);
+}
+
+// Scene i of method s2EGA1: grasp g0 stable (RobWork code 1) when i is even, else missed (3).
+std::string fourScenes() {
+  std::string records;
+  for (int i = 1; i <= 4; ++i) {
+    const std::string scene = "textured/single/cocacola/0" + std::to_string(i);
+    records += scene + (i % 2 == 0 ? ",s2EGA1,g0,0,stable,1,0.9,0.5,0.25,5,1.2,0,\"\"\n"
+                                   : ",s2EGA1,g0,0,missed,3,0,0,0,0,1.2,0,\"\"\n");
+  }
+  return records;
+}
+
+TEST(AnalyzeCommand, FoldersOfTheSameNameAreToldApart) {
+  visgrab::test::TempDir dir;
+  // The layout `visgrab benchmark` writes: BENCH/results.
+  const auto a = dir.path() / "benchA" / "results";
+  const auto b = dir.path() / "benchB" / "results";
+  writeTrials(a, fourScenes());
+  writeTrials(b, fourScenes());
+  const auto out = dir.path() / "report";
+  const RunResult r = visgrab::test::runVisgrab(
+      "analyze " + visgrab::test::shellQuoted(a) + " " + visgrab::test::shellQuoted(b) +
+      " --no-pictures --quiet --threads 1 --out " + visgrab::test::shellQuoted(out));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  std::ifstream in(out / "report.md");
+  const std::string md((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(md.find("| benchA/results: s2EGA1 | benchB/results: s2EGA1 |"), std::string::npos)
+      << md;
+  EXPECT_EQ(md.find("| results: s2EGA1"), std::string::npos) << md;
+  // One folder given twice (here under two paths) is refused.
+  const RunResult twice = visgrab::test::runVisgrab(
+      "analyze " + visgrab::test::shellQuoted(a) + " " +
+      visgrab::test::shellQuoted(dir.path() / "benchA" / "." / "results") + " --out " +
+      visgrab::test::shellQuoted(dir.path() / "twice"));
+  EXPECT_EQ(twice.exitCode, 1) << twice.output;
+  EXPECT_NE(twice.output.find("results is given twice (also as "), std::string::npos)
+      << twice.output;
+}
+
+TEST(AnalyzeCommand, BadResultFoldersAndOptionsSayWhatIsWrong) {
+  visgrab::test::TempDir dir;
+  const auto analyze = [&dir](const std::filesystem::path& results, const std::string& options) {
+    return visgrab::test::runVisgrab("analyze " + visgrab::test::shellQuoted(results) +
+                                     " --no-pictures --quiet " + options + " --out " +
+                                     visgrab::test::shellQuoted(dir.path() / "report"));
+  };
+  const auto expectError = [](const RunResult& r, int code, const std::string& what) {
+    EXPECT_EQ(r.exitCode, code) << r.output;
+    EXPECT_NE(r.output.find(what), std::string::npos) << r.output;
+  };
+  const auto missing = dir.path() / "nonexist";
+  expectError(analyze(missing, ""), 1,
+              missing.string() + ": error: no such result folder (the folder does not exist)");
+  const auto file = visgrab::test::writeFile(dir.path() / "base.csv", "a\n");
+  expectError(analyze(file, ""), 1, file.string() + ": error: is a file, not a result folder");
+  const auto empty = dir.path() / "empty";
+  visgrab::test::writeFile(empty / "trials.csv", "");
+  expectError(analyze(empty, ""), 1,
+              (empty / "trials.csv").string() +
+                  ":1: error: empty file (expected the column line 'scene,method,");
+  const auto nan = dir.path() / "nan";
+  writeTrials(nan, "textured/single/cocacola/01,s2EGA1,g0,0,stable,1,nan,0.5,0.25,5,1.2,0,\"\"\n");
+  expectError(
+      analyze(nan, ""), 1,
+      (nan / "trials.csv").string() + ":2: error: column q_lift: 'nan' is not a finite number");
+  // Too few resamples: a usage error (exit 2) saying why; 0 and 100 are fine.
+  const auto good = dir.path() / "good";
+  writeTrials(good, fourScenes());
+  for (const std::string few : {"1", "2", "99"}) {
+    expectError(analyze(good, "--bootstrap " + few), 2,
+                "--bootstrap: must be 0 (no intervals) or at least 100, got " + few +
+                    " (the interval's ends would be the extremes of a few resamples");
+  }
+  EXPECT_EQ(analyze(good, "--bootstrap 0").exitCode, 0);
+  EXPECT_EQ(analyze(good, "--bootstrap 100").exitCode, 0);
 }
 
 #ifdef VISGRAB_VIEWER_BINARY
