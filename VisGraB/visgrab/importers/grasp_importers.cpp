@@ -150,7 +150,7 @@ ImportResult importGraspnetArray(const NdArray& array, const std::string& file,
   for (std::size_t i = 0; i < n; ++i) {
     const double* g = array.values.data() + 17 * i;
     std::string why;
-    for (int k = 0; k < 16 && why.empty(); ++k) {
+    for (int k = 0; k < 17 && why.empty(); ++k) {
       if (!std::isfinite(g[k]))
         why = "a non-finite value (NaN or infinity) in column " + std::to_string(k) + " of 17";
     }

@@ -102,7 +102,7 @@ TEST(GraspnetImport, ReadsTheNpyFileInFloat32) {
 
 TEST(GraspnetImport, EachBadGraspIsRejectedWithItsIndexAndTheOthersKept) {
   NdArray a;
-  a.shape = {7, 17};
+  a.shape = {8, 17};
   const Vector3D t(0, 0, 0.4);
   const std::vector<double> scaled{0, 1.1, 0, 0, 0, 1, 1, 0, 0};
   const std::vector<double> mirrored{0, -1, 0, 0, 0, 1, 1, 0, 0};
@@ -113,13 +113,15 @@ TEST(GraspnetImport, EachBadGraspIsRejectedWithItsIndexAndTheOthersKept) {
       graspnetRow(0.9, 0.05, 0.03, mirrored, t),   // 3: a reflection
       graspnetRow(kNaN, 0.05, 0.03, kTopDown, t),  // 4: NaN score
       graspnetRow(0.9, 0.05, -0.01, kTopDown, t),  // 5: negative depth
-      graspnetRow(0.9, 0.05, 0.03, kTopDown, t)};  // 6: good
+      graspnetRow(0.9, 0.05, 0.03, kTopDown, t),   // 6: good
+      graspnetRow(0.9, 0.05, 0.03, kTopDown, t)};  // 7: NaN object id (unused, still bad)
+  rows[7][16] = kNaN;
   for (const auto& row : rows) a.values.insert(a.values.end(), row.begin(), row.end());
   const ImportResult r = importGraspnetArray(a, "g.npy", Transform3D::Identity(), frankaContext());
   ASSERT_EQ(r.grasps.size(), 2u);
   EXPECT_EQ(r.grasps[0].id, "0");
   EXPECT_EQ(r.grasps[1].id, "6");
-  ASSERT_EQ(r.rejected.size(), 5u);
+  ASSERT_EQ(r.rejected.size(), 6u);
   EXPECT_EQ(r.rejected[0].format(),
             "g.npy: grasp 1: width 0.1 m is more than hand \"franka\" opens (expected 0 to its "
             "stroke 0.08 m)");
@@ -134,6 +136,8 @@ TEST(GraspnetImport, EachBadGraspIsRejectedWithItsIndexAndTheOthersKept) {
   EXPECT_EQ(r.rejected[4].format(),
             "g.npy: grasp 5: depth -0.01 m is negative, expected the fingertips' depth beyond "
             "the grasp point (>= 0)");
+  EXPECT_EQ(r.rejected[5].format(),
+            "g.npy: grasp 7: a non-finite value (NaN or infinity) in column 16 of 17");
 }
 
 TEST(GraspnetImport, AWrongShapeRejectsTheFile) {
