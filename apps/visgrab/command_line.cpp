@@ -93,8 +93,9 @@ CommandLine::CommandLine()
       "Run 'visgrab COMMAND --help' (or -h) for a command's options.\n"
       "Options: '--name value' and '--name=value' are the same; an option given twice is an\n"
       "error unless its help says 'repeatable'.\n"
-      "Exit codes: 0 success, 1 bad input (an unreadable or invalid file), 2 a command-line "
-      "mistake.");
+      "Exit codes: 0 success, 1 bad input (an unreadable or invalid file) or a run that ran\n"
+      "no trial, 2 a command-line mistake, 130 or 143 when SIGINT (Ctrl-C) or SIGTERM stopped\n"
+      "a run (its finished trials are kept; --resume continues it).");
 }
 
 CLI::App& CommandLine::addGroup(const std::string& name, const std::string& summary) {
@@ -234,6 +235,14 @@ std::string engineOption(const Arguments& a) {
     throw UsageError(std::string("--engine: ") + e.what());
   }
   return *engine;
+}
+
+std::filesystem::path handOptionPath(const std::string& text, const std::filesystem::path& data) {
+  try {
+    return cli::handPath(text, data);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(std::string("--hand: ") + e.what());
+  }
 }
 
 std::string scenesFilter(const Arguments& a) {

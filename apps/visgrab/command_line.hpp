@@ -141,6 +141,10 @@ double parseNumber(const std::string& option, const std::string& text);
 /// @throws UsageError naming the option for anything else.
 double fractionOption(const Arguments& a, const std::string& name, double def);
 
+/// `text`, a --hand value, as a file: cli::handPath. @throws UsageError ("--hand: unknown hand
+/// ...") for a name that is neither a file nor a hand of `data`.
+std::filesystem::path handOptionPath(const std::string& text, const std::filesystem::path& data);
+
 /// --threads N (default: the number of cores).
 int threadsOption(const Arguments& a);
 

@@ -32,7 +32,7 @@ int runImport(const Arguments& a) {
   }
   const fs::path data = dataFolder(a);
   const auto handText = a.option("hand");
-  const fs::path hand = cli::handPath(handText ? *handText : "franka", data);
+  const fs::path hand = handOptionPath(handText ? *handText : "franka", data);
   const fs::path out = a.option("out").value();
 
   const database::Database db = database::Database::openAny(a.option("db").value());
@@ -43,6 +43,10 @@ int runImport(const Arguments& a) {
   const importers::ImportResult result = importers::importGraspFile(*format, file, target);
   for (const auto& r : result.rejected) std::cerr << r.format() << "\n";
   taskio::writeGraspList(result.grasps, out);
+  if (result.grasps.empty() && result.rejected.empty()) {
+    std::cerr << "warning: " << file.string()
+              << " holds no grasp; the grasp list written is empty (a run of it exits 1)\n";
+  }
   std::cout << result.grasps.size() << " grasps imported, " << result.rejected.size()
             << " rejected; scene " << target.context.sceneId << ", method " << target.context.method
             << ", written to " << out.string() << "\n";

@@ -8,6 +8,7 @@
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <thread>
 
@@ -32,22 +33,48 @@ namespace visgrab::app {
 
 namespace {
 
-// True (with a message) when the run rejected every grasp it read and ran none: a script must
-// notice (exit 1). Some rejected grasps beside trials keep exit 0.
-bool everyGraspRejected(const runner::RunSummary& summary, const char* command) {
-  if (summary.rejected.empty() || summary.trials > 0 || summary.resumed > 0) return false;
-  std::cerr << "visgrab " << command << ": every grasp (" << summary.rejected.size()
-            << ") was rejected; no trial ran\n";
+// True (with a message) when no trial ran and none was found done: every grasp it read was
+// rejected, or (a whole run, not a shard, which may have no work) the grasp files hold no grasp
+// of the run's scenes. A script must notice (exit 1). Some rejected grasps beside trials keep
+// exit 0.
+bool nothingRan(const runner::RunSummary& summary, const char* command, bool shard) {
+  if (summary.trials > 0 || summary.resumed > 0) return false;
+  if (!summary.rejected.empty()) {
+    std::cerr << "visgrab " << command << ": every grasp (" << summary.rejected.size()
+              << ") was rejected; no trial ran\n";
+    return true;
+  }
+  if (shard) return false;
+  std::cerr << "visgrab " << command
+            << ": the grasp files hold no grasp of the run's scenes; no trial ran\n";
   return true;
 }
 
 namespace fs = std::filesystem;
+
+// A note when the run's grasps are of fewer scenes than the run covers: the analyses count the
+// others as scenes where a method suggested no grasp (the paper's rule), which is what a method
+// run on a subset by mistake (no --scenes) does not mean.
+void noteScenesWithoutGrasps(const fs::path& out) {
+  const results::RunResults run = results::readResults(out);
+  std::set<std::string> withGrasps;
+  for (const results::TrialRecord& t : run.trials) withGrasps.insert(t.sceneId);
+  const std::size_t without = run.scenes.size() - std::min(run.scenes.size(), withGrasps.size());
+  if (without == 0 || withGrasps.empty()) return;
+  std::cerr << "note: the grasps are of " << withGrasps.size() << " of the run's "
+            << run.scenes.size() << " scenes; the analyses count the other " << without
+            << " as scenes where a method suggested no grasp (to run only some scenes, give "
+               "--scenes)\n";
+}
 
 // The runner's progress on stderr (none with --quiet).
 std::function<void(const runner::RunProgress&)> runProgress(bool quiet) {
   if (quiet) return {};
   auto reporter = std::make_shared<ProgressReporter>("run", "trials");
   return [reporter](const runner::RunProgress& p) {
+    // The last trial is reported before its scene counts as done: the scene's own report that
+    // follows is the final line.
+    if (p.trialsDone >= p.trialsTotal && p.scenesDone < p.scenesTotal) return;
     reporter->update(
         p.trialsDone, p.trialsTotal,
         "scenes " + std::to_string(p.scenesDone) + "/" + std::to_string(p.scenesTotal));
@@ -79,7 +106,7 @@ std::optional<runner::RunSummary> runStoppable(runner::RunOptions& options, bool
 /// --hand: a folder, a grasp description or a hand's name in DATA/hands (default: the SDH).
 fs::path handOption(const Arguments& a, const fs::path& data) {
   const auto hand = a.option("hand");
-  return hand ? cli::handPath(*hand, data) : data / "hands/sdh/sdh.grasp.xml";
+  return hand ? handOptionPath(*hand, data) : data / "hands/sdh/sdh.grasp.xml";
 }
 
 int runRun(const Arguments& a) {
@@ -133,7 +160,8 @@ int runRun(const Arguments& a) {
   std::cout << "results in " << options.out.string();
   if (options.shard) std::cout << " (" << runner::describe(*options.shard) << ")";
   std::cout << "\n";
-  return everyGraspRejected(summary, "run") ? 1 : 0;
+  if (!options.shard) noteScenesWithoutGrasps(options.out);
+  return nothingRan(summary, "run", options.shard.has_value()) ? 1 : 0;
 }
 
 // The report's pictures (a few trials per method and condition, simulated again and drawn),
@@ -186,8 +214,7 @@ int runAnalyze(const Arguments& a) {
   // Two folders of the same name get labels that tell them apart (benchA/results, ...).
   const std::vector<results::RunResults> runs = results::readResultFolders(dirs, &warnings);
   for (const auto& w : warnings) std::cerr << w.format() << "\n";
-  analysis::writeReport(runs, *out, options,
-                        pictureDrawer(a, threadsOption(a), a.flag("quiet")));
+  analysis::writeReport(runs, *out, options, pictureDrawer(a, threadsOption(a), a.flag("quiet")));
   std::cout << "report in " << *out << " (report.html, report.md, CSV tables)\n";
   return 0;
 }
@@ -283,7 +310,7 @@ int runBenchmarkCommand(const Arguments& a) {
   for (const auto& d : summary.rejected) std::cerr << d.format() << "\n";
   std::cout << summary.trials << " trials run, " << summary.resumed << " resumed, "
             << summary.rejected.size() << " grasps rejected\n";
-  if (everyGraspRejected(summary, "benchmark")) return 1;
+  if (nothingRan(summary, "benchmark", false)) return 1;
   const fs::path reportDir = fs::path(*out) / "report";
   times.start("report");
   analysis::AnalysisOptions reportOptions;  // intervals with the default 2,000 resamples

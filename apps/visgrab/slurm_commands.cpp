@@ -246,7 +246,7 @@ int runSlurm(const Arguments& a) {
   plan.database = abs(a.option("db").value());
   for (const auto& g : a.values("grasps")) plan.grasps.push_back(abs(g));
   for (const auto& h : a.values("hand")) {
-    plan.hands.push_back(abs(cli::handPath(h, dataFolder(a)).string()));
+    plan.hands.push_back(abs(handOptionPath(h, dataFolder(a)).string()));
   }
   if (plan.hands.empty())
     plan.hands.push_back(abs((dataFolder(a) / "hands/sdh/sdh.grasp.xml").string()));

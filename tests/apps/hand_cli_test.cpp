@@ -175,13 +175,45 @@ TEST(HandCli, RunTakesAHandByName) {
                           "\"PG70\" (known: PG70, PG70_SMALL)"),
             std::string::npos)
       << r.output;
+  // A mistyped name is a command-line mistake (exit 2), as --protocol's and --engine's are.
   r = runVisgrab(common + shellQuoted(tmp.path() / "b") + " --hand pg7");
-  EXPECT_EQ(r.exitCode, 1) << r.output;
-  EXPECT_NE(r.output.find("unknown hand \"pg7\""), std::string::npos) << r.output;
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+  EXPECT_NE(r.output.find("--hand: unknown hand \"pg7\""), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("(known: franka, pg70, robotiq2f85, robwork-robotiq, sdh)"),
             std::string::npos)
       << r.output;
   EXPECT_FALSE(std::filesystem::exists(tmp.path() / "b"));
+}
+
+// A run with nothing to run is a failure a script notices (exit 1): a grasp file without grasps
+// (an empty import, say), or one whose grasps are all of scenes outside --scenes.
+TEST(HandCli, ARunWithoutAGraspOfItsScenesExitsOne) {
+  visgrab::test::TempDir tmp;
+  const auto empty = visgrab::test::writeFile(tmp.path() / "empty.csv", "# no grasps\n");
+  const std::string db = shellQuoted(visgrab::test::testDatabasePath());
+  RunResult r = runVisgrab("run --db " + db + " --grasps " + shellQuoted(empty) + " --out " +
+                           shellQuoted(tmp.path() / "a") + " --quiet");
+  EXPECT_EQ(r.exitCode, 1) << r.output;
+  EXPECT_NE(r.output.find("visgrab run: the grasp files hold no grasp of the run's scenes; no "
+                          "trial ran"),
+            std::string::npos)
+      << r.output;
+  const auto other = visgrab::test::writeFile(
+      tmp.path() / "other.csv",
+      std::string(kScene) + ", m, g1, preshape, 0,0,0.5, 1,0,0,0, SDH_CYL\n");
+  r = runVisgrab("run --db " + db + " --grasps " + shellQuoted(other) +
+                 " --scenes textured,tomato --out " + shellQuoted(tmp.path() / "b") + " --quiet");
+  EXPECT_EQ(r.exitCode, 1) << r.output;
+  EXPECT_NE(r.output.find("hold no grasp of the run's scenes"), std::string::npos) << r.output;
+  // Without --scenes the run covers the database's 20 scenes: it runs, and says that the 19
+  // without a grasp count as scenes where the method suggested none.
+  r = runVisgrab("run --db " + db + " --grasps " + shellQuoted(other) + " --out " +
+                 shellQuoted(tmp.path() / "c") + " --quiet");
+  EXPECT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("note: the grasps are of 1 of the run's 20 scenes; the analyses count "
+                          "the other 19 as scenes where a method suggested no grasp"),
+            std::string::npos)
+      << r.output;
 }
 
 }  // namespace
