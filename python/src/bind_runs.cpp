@@ -14,9 +14,12 @@
 #include "common.hpp"
 #include "rw/common/diagnostic.hpp"
 #include "rwsim/engines/engine_registry.hpp"
+#include "visgrab/analysis/analysis.hpp"
 #include "visgrab/analysis/report.hpp"
 #include "visgrab/grasp/grasp_resolver.hpp"
+#include "visgrab/results/csv.hpp"
 #include "visgrab/results/results_file.hpp"
+#include "visgrab/results/statistics.hpp"
 #include "visgrab/results/trial_columns.hpp"
 #include "visgrab/runner/benchmark_runner.hpp"
 #include "visgrab/taskio/grasp_list.hpp"
@@ -83,12 +86,25 @@ py::dict runBenchmark(const fs::path& database, const fs::path& grasps, const fs
     throw py::value_error(std::string(adaptive ? "adaptive" : "noise") +
                           " needs repeats > 1 (repeat 0 is the unperturbed trial)");
   }
+  runner::RunOptions options;
+  if (adaptive && repeats > 1) {
+    // The runner's own check names the CLI's --repeats: the same rule, in the Python names.
+    const int decideAfter = results::repeatsToDecide(options.adaptiveAlpha, options.adaptiveMargin);
+    if (decideAfter >= repeats - 1) {
+      throw py::value_error(
+          "adaptive: the adaptive rule (alpha " + results::formatDouble(options.adaptiveAlpha) +
+          ", margin " + results::formatDouble(options.adaptiveMargin) + ") decides after " +
+          std::to_string(decideAfter) +
+          " agreeing perturbed trials, so with repeats=" + std::to_string(repeats) +
+          " it never stops a grasp early: give repeats=" + std::to_string(decideAfter + 2) +
+          " or more");
+    }
+  }
   try {
     rwsim::engines::checkEngine(engine);
   } catch (const std::invalid_argument& e) {
     throw py::value_error(std::string("engine: ") + e.what());
   }
-  runner::RunOptions options;
   options.database = database;
   options.grasps = {grasps};
   options.out = out;
@@ -283,10 +299,20 @@ input files. Iterating or indexing goes over the trials.
         analysisOptions.bootstrapResamples = bootstrap;
         if (seed) analysisOptions.bootstrapSeed = *seed;
         analysisOptions.threads = threads;
-        std::vector<std::string> warnings;
+        // The one check of `visgrab analyze`, in the Python argument's name.
+        if (const auto problem = analysis::checkOptions(analysisOptions)) {
+          throw py::value_error(
+              (problem->pythonArgument.empty() ? problem->field : problem->pythonArgument) + " " +
+              problem->problem);
+        }
+        std::vector<rw::common::Diagnostic> found;
         std::vector<results::RunResults> runs;
-        runs.reserve(dirs.size());
-        for (const auto& dir : dirs) runs.push_back(readResults(dir, warnings));
+        {
+          py::gil_scoped_release release;
+          runs = results::readResultFolders(dirs, &found);
+        }
+        std::vector<std::string> warnings;
+        for (const auto& w : found) warnings.push_back(w.format());
         view::ReportPictureOptions options;
         options.threads = threads;
         // Its protocols/: the protocol of a run other than the lift's (visgrab.data_folder()).

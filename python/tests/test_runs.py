@@ -245,10 +245,46 @@ def test_analyze_takes_the_clis_interval_options(runs, binary, tmp_path):
     for bad in (dict(ci_level=1.5), dict(bootstrap=-1), dict(seed=-3)):
         with pytest.raises(ValueError):
             visgrab.analyze(dirs, out=tmp_path / "bad", pictures=False, **bad)
+    # The messages name the Python argument and the value as given (the CLI's one check).
+    with pytest.raises(ValueError) as e:
+        visgrab.analyze(dirs, out=tmp_path / "bad", pictures=False, ci_level=1.5)
+    assert str(e.value) == "ci_level must be between 0 and 1 (exclusive), got 1.5"
+    for few in (1, 2, 99):
+        with pytest.raises(ValueError) as e:
+            visgrab.analyze(dirs, out=tmp_path / "bad", pictures=False, bootstrap=few)
+        assert str(e.value).startswith(
+            f"bootstrap must be 0 (no intervals) or at least 100, got {few} ("), str(e.value)
+        bad = cli(binary, "analyze", *dirs, "--out", tmp_path / "bad", "--no-pictures",
+                  "--quiet", "--bootstrap", str(few), check=False)
+        assert bad.returncode == 2 and \
+            f"--bootstrap: must be 0 (no intervals) or at least 100, got {few} (" in bad.stderr
     for option, value in (("--ci-level", "1.5"), ("--bootstrap", "-1"), ("--seed", "x")):
         bad = cli(binary, "analyze", *dirs, "--out", tmp_path / "bad", "--no-pictures",
                   "--quiet", option, value, check=False)
         assert bad.returncode == 2 and option in bad.stderr, (option, bad.stderr)
+
+
+def test_analyze_tells_folders_of_the_same_name_apart(runs, tmp_path):
+    """root/cli/results and root/module/results (both named results) are labelled cli/results
+    and module/results, as the CLI labels them; one folder given twice is refused."""
+    visgrab.analyze([runs["cli"], runs["module"]], out=tmp_path / "r", pictures=False)
+    header, *rows = (tmp_path / "r" / "comparisons.csv").read_text().splitlines()
+    overall = [r for r in rows if r.startswith("overall,")]
+    assert len(overall) == 1 and overall[0].startswith("overall,cli/results: py,module/results: py,")
+    with pytest.raises(ValueError, match="is given twice"):
+        visgrab.analyze([runs["cli"], runs["cli"]], out=tmp_path / "twice", pictures=False)
+    # A run alone keeps its folder's name.
+    visgrab.analyze([runs["cli"]], out=tmp_path / "alone", pictures=False, bootstrap=0)
+    assert "results: py" not in (tmp_path / "alone" / "report.md").read_text()
+
+
+def test_run_option_errors_use_the_python_names(db, runs):
+    """An adaptive rule that could never stop a grasp with this many repeats names repeats=,
+    not the CLI's --repeats."""
+    with pytest.raises(ValueError) as e:
+        visgrab.run(db, runs["grasps"], repeats=2, adaptive=True)
+    assert str(e.value).startswith("adaptive: the adaptive rule (alpha 0.05, margin 0.65)")
+    assert "repeats=2 it never stops" in str(e.value) and "--repeats" not in str(e.value)
 
 
 def test_repeats_run_as_the_cli_runs_them(runs, binary, test_db_path, tmp_path):

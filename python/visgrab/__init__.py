@@ -394,14 +394,19 @@ def analyze(dirs, out, threads=None, pictures=True, ci_level=0.95, bootstrap=200
     with data_folder()'s protocols/NAME.xml when it has the recorded hash, as the CLI's
     --data; docs/protocols.md). Every estimate gets a `ci_level` interval from a scene
     bootstrap of `bootstrap` resamples (--ci-level, --bootstrap; 0 = no intervals, no overall
-    success rates and no comparisons), seeded with `seed` (--seed; None = the CLI's default):
-    the same seed gives the same intervals with any `threads`. Returns the path of report.html.
-    OSError for unreadable result folders, ValueError for options out of range.
+    success rates and no comparisons; else at least 100), seeded with `seed` (--seed; None =
+    the CLI's default): the same seed gives the same intervals with any `threads`. Folders of
+    the same name are labelled by the shortest trailing paths that differ (benchA/results,
+    benchB/results), as the CLI labels them. Returns the path of report.html. OSError for
+    unreadable result folders, ValueError for options out of range (named as here) and for one
+    folder given twice.
     """
     if isinstance(dirs, (str, os.PathLike)):
         dirs = [dirs]
-    if isinstance(bootstrap, bool) or not isinstance(bootstrap, int) or bootstrap < 0:
-        raise ValueError(f"bootstrap must be an integer >= 0, got {bootstrap!r}")
+    if isinstance(bootstrap, bool) or not isinstance(bootstrap, int):
+        raise ValueError(f"bootstrap must be an integer (0 or at least 100), got {bootstrap!r}")
+    if isinstance(ci_level, bool) or not isinstance(ci_level, (int, float)):
+        raise ValueError(f"ci_level must be a number between 0 and 1, got {ci_level!r}")
     if seed is not None and (isinstance(seed, bool) or not isinstance(seed, int) or seed < 0):
         raise ValueError(f"seed must be an integer >= 0, got {seed!r}")
     notes = _visgrab._analyze([os.fspath(d) for d in dirs], os.fspath(out),
