@@ -41,7 +41,7 @@ def test_topdown_method_and_figure7(source_dir, test_db_path, tmp_path):
         assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and png.stat().st_size > 10000
     result = run_example(source_dir, "figure7.py", tmp_path / "nothing", tmp_path / "x.png",
                          cwd=tmp_path)
-    assert result.returncode == 1 and "trials.csv" in result.stderr
+    assert result.returncode == 1 and "nothing: error: no such result folder" in result.stderr
 
 
 def test_graspnet_style_method(source_dir, test_db_path, tmp_path):
