@@ -374,10 +374,10 @@ class TreeBuilder : public xc::DefaultHandler {
 
   void fatalError(const xc::SAXParseException& e) override {
     if (stopped_) return;
-    if (pending_) {
-      reportPending(nullptr);
-      return;
-    }
+    // A document that is not well-formed has no structure to validate: a validation error still
+    // pending (an unclosed <Hand ...> seen as an element with text in it, say) is a consequence,
+    // and the well-formedness error is the one to fix.
+    pending_.reset();
     std::string message = toUtf8(e.getMessage());
     const std::string wrapperEnd = "end of tag '" + std::string(kFragmentElement) + "'";
     if (message.find(wrapperEnd) != std::string::npos) {

@@ -232,6 +232,11 @@ INSTANTIATE_TEST_SUITE_P(
                 "not well-formed XML: expected end of tag 'NoiseModel' (opened at line 1)"},
         BadFile{"Unterminated", "<NoiseModel>\n  <Friction sigma=\"0.1\"/>\n", 2, 26,
                 "not well-formed XML: expected end of tag 'NoiseModel' (opened at line 1)"},
+        // An unclosed part: the missing end tag is the error, not the text the part then seems
+        // to hold.
+        BadFile{"UnclosedPart",
+                "<NoiseModel>\n  <Hand translation=\"0.002\" rotation=\"0.01\">\n</NoiseModel>", 3,
+                3, "not well-formed XML: expected end of tag 'Hand' (opened at line 2)"},
         BadFile{"OtherRoot", "<CameraProfile name=\"x\"/>", 1, 1,
                 "unknown element <CameraProfile>"},
         BadFile{"MisspeltRoot", "<!-- a model -->\n<NoiseModle/>", 2, 1,
