@@ -93,7 +93,8 @@ def test_contact_graspnet_pickled_and_plain_give_the_same_grasps(db, franka, tmp
     plain = tmp_path / "plain.npz"
     np.savez(plain, grasps=np.concatenate(list(pred.values())),
              scores=np.concatenate(list(scores.values())))
-    a = visgrab.import_grasps("contact-graspnet", pickled, db=db, scene=SCENE, hand=franka)
+    a = visgrab.import_grasps("contact-graspnet", pickled, db=db, scene=SCENE, hand=franka,
+                              allow_pickle=True)
     b = visgrab.import_grasps("contact-graspnet", plain, db=db, scene=SCENE, hand=franka)
     assert [g.score for g in a] == pytest.approx([0.3, 0.6, 0.7])
     assert len(a) == len(b) == 3
@@ -103,6 +104,9 @@ def test_contact_graspnet_pickled_and_plain_give_the_same_grasps(db, franka, tmp
     np.testing.assert_allclose(a[0].jaw_position, (camera_pose(db) @ [0, 0, 0.5034, 1])[:3],
                                atol=1e-9)
     assert a[0].width == 0.08
+    # Unpickling is the user's explicit choice: by default (as numpy's load) it is refused.
+    with pytest.raises(ValueError, match="refused by default.*allow_pickle=True.*trusted files"):
+        visgrab.import_grasps("contact-graspnet", pickled, db=db, scene=SCENE, hand=franka)
     with pytest.raises(ValueError, match="trusted files only"):
         visgrab.import_grasps("contact-graspnet", pickled, db=db, scene=SCENE, hand=franka,
                               allow_pickle=False)

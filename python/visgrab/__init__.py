@@ -443,8 +443,9 @@ def _contact_graspnet_arrays(file, allow_pickle):
     if "pred_grasps_cam" not in names or "grasps" in names:
         return None
     if not allow_pickle:
-        raise ValueError(f"{file}: Contact-GraspNet's pickled output (pred_grasps_cam); "
-                         "allow_pickle=True reads it (trusted files only)")
+        raise ValueError(f"{file}: Contact-GraspNet's pickled output (pred_grasps_cam): "
+                         "unpickling runs code from the file, so it is refused by default; "
+                         "import_grasps(..., allow_pickle=True) reads it (trusted files only)")
     with np.load(file, allow_pickle=True) as data:
         grasps = data["pred_grasps_cam"].item()
         scores = data["scores"].item()
@@ -458,7 +459,7 @@ def _contact_graspnet_arrays(file, allow_pickle):
 
 
 def import_grasps(format, file, db, scene=None, hand="franka", method=None, strict=False,
-                  allow_pickle=True):
+                  allow_pickle=False):
     """The grasps of a method's file as jaw grasps, as `visgrab import` reads them.
 
     format: "graspnet" (graspnetAPI's GraspGroup .npy), "contact-graspnet" (a .npz) or
@@ -468,9 +469,10 @@ def import_grasps(format, file, db, scene=None, hand="franka", method=None, stri
     (default the format's name). Each grasp's id is its index in the file and its score is kept.
 
     Contact-GraspNet's inference script saves pickled dicts (pred_grasps_cam, scores per
-    segment): with allow_pickle=True (default) they are read with numpy.load(allow_pickle=True)
-    and concatenated in segment order. Unpickling runs code from the file: use it on trusted
-    files only (allow_pickle=False refuses them; the CLI never unpickles).
+    segment): with allow_pickle=True they are read with numpy.load(allow_pickle=True) and
+    concatenated in segment order. Unpickling runs code from the file: pass it for trusted files
+    only. The default, allow_pickle=False (numpy's own), refuses them with a ValueError saying
+    so; the CLI never unpickles.
 
     Rejected grasps (a width the hand cannot open, a non-orthonormal rotation, NaN, ...) are
     warnings ("file: grasp INDEX: why"), or a ValueError listing them with strict=True. OSError:
