@@ -397,6 +397,25 @@ void checkSameDatabase(const RunOptions& options,
       current.databaseHash + " (generated again or replaced): choose another folder");
 }
 
+/// A resumed folder must cover the same scenes (the same --scenes selection of the same
+/// database): resuming with another selection would widen or narrow the run the analyses read.
+void checkSameScenes(const RunOptions& options, const std::optional<results::RunResults>& previous,
+                     const std::vector<results::RunScene>& current) {
+  if (!previous || previous->scenes.empty()) return;
+  const auto sameIds = [](const results::RunScene& a, const results::RunScene& b) {
+    return a.id == b.id;
+  };
+  if (std::equal(previous->scenes.begin(), previous->scenes.end(), current.begin(), current.end(),
+                 sameIds)) {
+    return;
+  }
+  throw std::runtime_error(
+      options.out.string() + " holds a run of " + std::to_string(previous->scenes.size()) +
+      " scenes; this run selects " + std::to_string(current.size()) +
+      (options.scenes.empty() ? " (no --scenes)" : " (--scenes " + options.scenes + ")") +
+      ": resume it with the --scenes it was started with, or choose another folder");
+}
+
 /// A resumed folder's trials must come from the same engine with the same settings (a run.csv
 /// without an engine record is ODE's). `current` gets the previous settings when this run
 /// simulates nothing (it could not ask the engine).
@@ -683,6 +702,7 @@ RunSummary runBenchmark(const RunOptions& options,
   results::ResultsWriter writer(options.out, writerOptions);
   PendingWork pending = pendingScenes(plan.order.scenes, writer, repeats.count);
   plan.run.sources.engineSettings = checkHandFits(pending, wholeRun, loader, options.hand);
+  checkSameScenes(options, previousRecord, plan.run.scenes);
   checkSameDatabase(options, previous, plan.run.sources);
   checkSameEngine(options, previous, plan.run.sources);
   checkSameProtocol(options, previous, plan.run.sources);

@@ -278,6 +278,21 @@ TEST(BenchmarkRun, AKilledRunResumesToTheSameResults) {
       visgrab::test::runVisgrab(common + " --out " + visgrab::test::shellQuoted(killedOut));
   EXPECT_EQ(again.exitCode, 1) << again.output;
   EXPECT_NE(again.output.find("--resume"), std::string::npos) << again.output;
+  // Resuming with another scene selection is refused (it would change the run the analyses
+  // read), and the folder is left as it was.
+  const auto narrowed = visgrab::test::runVisgrab(common + " --resume --scenes textured --out " +
+                                                  visgrab::test::shellQuoted(killedOut));
+  EXPECT_EQ(narrowed.exitCode, 1) << narrowed.output;
+  EXPECT_NE(narrowed.output.find(" holds a run of " + std::to_string(database().list().size()) +
+                                 " scenes; this run selects "),
+            std::string::npos)
+      << narrowed.output;
+  EXPECT_NE(narrowed.output.find("(--scenes textured): resume it with the --scenes it was "
+                                 "started with"),
+            std::string::npos)
+      << narrowed.output;
+  EXPECT_EQ(fileBytes(killedOut / "trials.csv"), fileBytes(tmp.path() / "a" / "trials.csv"));
+  EXPECT_EQ(fileBytes(killedOut / "run.csv"), fileBytes(tmp.path() / "a" / "run.csv"));
 }
 
 }  // namespace
