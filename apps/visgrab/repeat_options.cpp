@@ -57,10 +57,12 @@ void readRepeatOptions(const Arguments& a, runner::RunOptions& options) {
   }
   if (options.adaptive) {
     const int k = results::repeatsToDecide(options.adaptiveAlpha, options.adaptiveMargin);
-    if (k >= options.repeats - 1) {
+    const int needed =
+        results::minimumAdaptiveRepeats(options.adaptiveAlpha, options.adaptiveMargin);
+    if (options.repeats < needed) {
       throw UsageError("--adaptive decides a grasp after the unperturbed and " + std::to_string(k) +
                        " agreeing perturbed trials: --repeats " + std::to_string(options.repeats) +
-                       " never stops one early (give " + std::to_string(k + 2) +
+                       " never stops one early (give " + std::to_string(needed) +
                        " or more, or a larger --adaptive-margin)");
     }
   }

@@ -8,7 +8,6 @@
 #include <iostream>
 #include <memory>
 #include <optional>
-#include <set>
 #include <string>
 #include <thread>
 
@@ -52,17 +51,14 @@ bool nothingRan(const runner::RunSummary& summary, const char* command, bool sha
 
 namespace fs = std::filesystem;
 
-// A note when the run's grasps are of fewer scenes than the run covers: the analyses count the
+// A note when the run's trials are of fewer scenes than the run covers: the analyses count the
 // others as scenes where a method suggested no grasp (the paper's rule), which is what a method
 // run on a subset by mistake (no --scenes) does not mean.
-void noteScenesWithoutGrasps(const fs::path& out) {
-  const results::RunResults run = results::readResults(out);
-  std::set<std::string> withGrasps;
-  for (const results::TrialRecord& t : run.trials) withGrasps.insert(t.sceneId);
-  const std::size_t without = run.scenes.size() - std::min(run.scenes.size(), withGrasps.size());
-  if (without == 0 || withGrasps.empty()) return;
-  std::cerr << "note: the grasps are of " << withGrasps.size() << " of the run's "
-            << run.scenes.size() << " scenes; the analyses count the other " << without
+void noteScenesWithoutGrasps(const runner::RunSummary& summary) {
+  const int without = summary.scenes - summary.scenesWithTrials;
+  if (without <= 0 || summary.scenesWithTrials == 0) return;
+  std::cerr << "note: the grasps are of " << summary.scenesWithTrials << " of the run's "
+            << summary.scenes << " scenes; the analyses count the other " << without
             << " as scenes where a method suggested no grasp (to run only some scenes, give "
                "--scenes)\n";
 }
@@ -160,7 +156,7 @@ int runRun(const Arguments& a) {
   std::cout << "results in " << options.out.string();
   if (options.shard) std::cout << " (" << runner::describe(*options.shard) << ")";
   std::cout << "\n";
-  if (!options.shard) noteScenesWithoutGrasps(options.out);
+  if (!options.shard) noteScenesWithoutGrasps(summary);
   return nothingRan(summary, "run", options.shard.has_value()) ? 1 : 0;
 }
 

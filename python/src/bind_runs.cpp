@@ -90,14 +90,15 @@ py::dict runBenchmark(const fs::path& database, const fs::path& grasps, const fs
   if (adaptive && repeats > 1) {
     // The runner's own check names the CLI's --repeats: the same rule, in the Python names.
     const int decideAfter = results::repeatsToDecide(options.adaptiveAlpha, options.adaptiveMargin);
-    if (decideAfter >= repeats - 1) {
+    const int needed =
+        results::minimumAdaptiveRepeats(options.adaptiveAlpha, options.adaptiveMargin);
+    if (repeats < needed) {
       throw py::value_error(
           "adaptive: the adaptive rule (alpha " + results::formatDouble(options.adaptiveAlpha) +
           ", margin " + results::formatDouble(options.adaptiveMargin) + ") decides after " +
           std::to_string(decideAfter) +
           " agreeing perturbed trials, so with repeats=" + std::to_string(repeats) +
-          " it never stops a grasp early: give repeats=" + std::to_string(decideAfter + 2) +
-          " or more");
+          " it never stops a grasp early: give repeats=" + std::to_string(needed) + " or more");
     }
   }
   try {

@@ -145,4 +145,11 @@ double pairedPermutationPValue(const std::vector<PairedUnit>& units, int permuta
 /// Returns k.
 int repeatsToDecide(double alpha, double margin);
 
+/// The fewest repeats with which the rule can stop a grasp early: repeat 0, the k agreeing
+/// perturbed trials of repeatsToDecide, and one more (with fewer, every grasp runs them all).
+/// What the runner, the command line and Python check `--repeats` against.
+inline int minimumAdaptiveRepeats(double alpha, double margin) {
+  return repeatsToDecide(alpha, margin) + 2;
+}
+
 }  // namespace visgrab::results

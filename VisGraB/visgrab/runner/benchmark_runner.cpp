@@ -7,6 +7,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <set>
 #include <stdexcept>
 
 #include "rw/common/stop_signals.hpp"
@@ -92,13 +93,15 @@ RepeatPlan planRepeats(const RunOptions& options) {
   plan.record.noise = describe(plan.noise) + "; seed " + std::to_string(options.noiseSeed);
   if (options.adaptive) {
     plan.decideAfter = results::repeatsToDecide(options.adaptiveAlpha, options.adaptiveMargin);
-    if (plan.decideAfter >= options.repeats - 1) {
+    const int needed =
+        results::minimumAdaptiveRepeats(options.adaptiveAlpha, options.adaptiveMargin);
+    if (options.repeats < needed) {
       throw std::invalid_argument(
           "the adaptive rule (alpha " + results::formatDouble(options.adaptiveAlpha) + ", margin " +
           results::formatDouble(options.adaptiveMargin) + ") decides after " +
           std::to_string(plan.decideAfter) + " agreeing perturbed trials, so with " +
           std::to_string(options.repeats) + " repeats it never stops a grasp early: give " +
-          "--repeats " + std::to_string(plan.decideAfter + 2) + " or more, or a larger margin");
+          "--repeats " + std::to_string(needed) + " or more, or a larger margin");
     }
     plan.record.adaptive = "stop when the unperturbed and " + std::to_string(plan.decideAfter) +
                            " perturbed trials agree (alpha " +
@@ -633,10 +636,13 @@ RunSummary finishRun(RunPlan& plan, results::ResultsWriter& writer) {
   }
   RunSummary summary;
   summary.resumed = static_cast<int>(writer.resumedCount());
+  std::set<std::string> scenesWithTrials;
   for (const auto& t : writer.trials()) {
     ++summary.outcomes[std::string(rwsim::trial::outcomeName(t.outcome))];
     ++summary.trials;
+    scenesWithTrials.insert(t.sceneId);
   }
+  summary.scenesWithTrials = static_cast<int>(scenesWithTrials.size());
   summary.trials -= summary.resumed;
   summary.scenes = static_cast<int>(plan.run.scenes.size());
   summary.methods = static_cast<int>(plan.run.methods.size());

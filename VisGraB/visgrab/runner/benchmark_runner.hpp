@@ -106,6 +106,9 @@ struct RunSummary {
   std::map<std::string, int> outcomes;
   /// Scenes of the run and methods seen.
   int scenes = 0;
+  /// Scenes of the run with a trial (this run's or resumed); the analyses count the others as
+  /// scenes where a method suggested no grasp.
+  int scenesWithTrials = 0;
   /// See scenes.
   int methods = 0;
 };
