@@ -7,6 +7,7 @@
 #include <type_traits>
 #include <utility>
 
+#include "visgrab/importers/hdf5_structure.hpp"
 #include "visgrab/importers/npy.hpp"
 
 namespace visgrab::importers {
@@ -70,21 +71,57 @@ class Handle {
 };
 
 // True if every group on `path` and the last link exist (H5Lexists needs each step checked).
-bool linkExists(hid_t file, const std::string& path) {
+// Each object on the way is checked from the file's bytes (Hdf5Structure::checkObject) before
+// libhdf5 reads it: the root group when the file is opened, then each link's target as soon as
+// its address is known. Soft and external links are refused: their targets would be read
+// unchecked (and an external link opens another file).
+// `storage` (if given) receives where the last object's values are.
+bool linkExists(hid_t file, const detail::Hdf5Structure& structure, const std::string& fileName,
+                const std::string& path, detail::Hdf5Structure::Storage* storage = nullptr) {
   std::size_t at = 0;
   while (true) {
     const std::size_t slash = path.find('/', at);
     const std::string prefix = path.substr(0, slash);
     if (prefix.empty() || H5Lexists(file, prefix.c_str(), H5P_DEFAULT) <= 0) return false;
+    H5L_info_t link;
+    if (H5Lget_info(file, prefix.c_str(), &link, H5P_DEFAULT) < 0) {
+      throw ImportError(fileName + ": '" + prefix + "' cannot be read: " + hdf5Reason());
+    }
+    if (link.type != H5L_TYPE_HARD) {
+      throw ImportError(fileName + ": '" + prefix +
+                        "' is a soft or external link (this reader follows hard links only)");
+    }
+    const auto values = structure.checkObject(link.u.address, "'" + prefix + "'");
+    if (storage != nullptr) *storage = values;
     if (slash == std::string::npos) return true;
     at = slash + 1;
+  }
+}
+
+// libhdf5 1.10.8 copies a compact dataset's values from the data its layout message holds
+// without checking that it holds them all (a compact dataset of 0 bytes with 3 values made it
+// read from a null pointer: docs/fuzzing.md, item 7). The values need `bytes` bytes: a compact
+// dataset must hold exactly those, a contiguous one at least those once written.
+void checkStorage(hid_t dataset, std::uint64_t bytes, const std::string& where) {
+  Handle plist(H5Dget_create_plist(dataset), H5Pclose);
+  if (!plist.ok()) throw ImportError(where + " cannot be read: " + hdf5Reason());
+  const H5D_layout_t layout = H5Pget_layout(plist.get());
+  if (layout != H5D_COMPACT && layout != H5D_CONTIGUOUS) return;
+  const hsize_t stored = H5Dget_storage_size(dataset);
+  if ((layout == H5D_COMPACT && stored != bytes) ||
+      (layout == H5D_CONTIGUOUS && stored != 0 && stored < bytes)) {
+    throw ImportError(where + " is damaged: its values need " + std::to_string(bytes) +
+                      " bytes, its " + (layout == H5D_COMPACT ? "compact" : "contiguous") +
+                      " storage holds " + std::to_string(stored));
   }
 }
 
 }  // namespace
 
 Hdf5File::Hdf5File(Hdf5File&& other) noexcept
-    : name_(std::move(other.name_)), file_(std::exchange(other.file_, -1)) {}
+    : name_(std::move(other.name_)),
+      image_(std::move(other.image_)),
+      file_(std::exchange(other.file_, -1)) {}
 
 Hdf5File& Hdf5File::operator=(Hdf5File&& other) noexcept {
   if (this != &other) {
@@ -93,6 +130,7 @@ Hdf5File& Hdf5File::operator=(Hdf5File&& other) noexcept {
       H5Fclose(file_);
     }
     name_ = std::move(other.name_);
+    image_ = std::move(other.image_);
     file_ = std::exchange(other.file_, -1);
   }
   return *this;
@@ -110,41 +148,58 @@ Hdf5File Hdf5File::open(const std::filesystem::path& file) {
   if (!std::filesystem::is_regular_file(file, ec)) {
     throw ImportError(file.string() + ": no such file");
   }
-  QuietHdf5 quiet;
-  if (H5Fis_hdf5(file.string().c_str()) <= 0) {
-    H5Eclear2(H5E_DEFAULT);
-    throw ImportError(file.string() + ": not an HDF5 file (expected an .h5 file)");
+  {
+    QuietHdf5 quiet;
+    if (H5Fis_hdf5(file.string().c_str()) <= 0) {
+      H5Eclear2(H5E_DEFAULT);
+      throw ImportError(file.string() + ": not an HDF5 file (expected an .h5 file)");
+    }
   }
-  Hdf5File out;
-  out.name_ = file.string();
-  out.file_ = H5Fopen(file.string().c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
-  if (out.file_ < 0) throw ImportError(file.string() + ": cannot open it: " + hdf5Reason());
-  return out;
+  // Read whole, so that its metadata can be checked before libhdf5 trusts it (Hdf5Structure).
+  return fromImage(readFileBytes(file, kMaxHdf5FileBytes), file.string(), "cannot open it");
 }
 
 Hdf5File Hdf5File::fromBytes(std::string_view bytes, const std::string& name) {
-  QuietHdf5 quiet;
-  Handle fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
-  if (!fapl.ok() || H5Pset_fapl_core(fapl.get(), 65536, 0) < 0 ||
-      H5Pset_file_image(fapl.get(), const_cast<char*>(bytes.data()), bytes.size()) < 0) {
-    throw ImportError(name + ": cannot hand the file image to HDF5: " + hdf5Reason());
+  if (bytes.size() > kMaxHdf5FileBytes) {
+    throw ImportError(name + ": the file has " + std::to_string(bytes.size()) +
+                      " bytes, more than the " + std::to_string(kMaxHdf5FileBytes) +
+                      " this reader accepts");
   }
+  return fromImage(std::string(bytes), name, "not a readable HDF5 file");
+}
+
+Hdf5File Hdf5File::fromImage(std::string bytes, const std::string& name,
+                             const std::string& failure) {
   Hdf5File out;
   out.name_ = name;
-  out.file_ = H5Fopen(name.c_str(), H5F_ACC_RDONLY, fapl.get());
-  if (out.file_ < 0) throw ImportError(name + ": not a readable HDF5 file: " + hdf5Reason());
+  out.image_ = std::move(bytes);
+  detail::Hdf5Structure(out.image_, name).checkRoot();
+  QuietHdf5 quiet;
+  Handle fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
+  // HDF5's core driver copies the image; no backing store is written.
+  if (!fapl.ok() || H5Pset_fapl_core(fapl.get(), 65536, 0) < 0 ||
+      H5Pset_file_image(fapl.get(), out.image_.data(), out.image_.size()) < 0) {
+    throw ImportError(name + ": cannot hand the file image to HDF5: " + hdf5Reason());
+  }
+  // The core driver tells files apart by name: two images open under one name (the same file
+  // opened twice) would be refused as "file already exists". Each image gets its own.
+  static unsigned long long opened = 0;  // guarded by the library lock (quiet)
+  const std::string image = "visgrab-hdf5-image-" + std::to_string(++opened);
+  out.file_ = H5Fopen(image.c_str(), H5F_ACC_RDONLY, fapl.get());
+  if (out.file_ < 0) throw ImportError(name + ": " + failure + ": " + hdf5Reason());
   return out;
 }
 
 bool Hdf5File::hasDataset(const std::string& path) const {
   QuietHdf5 quiet;
-  if (!linkExists(file_, path)) {
+  if (!linkExists(file_, detail::Hdf5Structure(image_, name_), name_, path)) {
     H5Eclear2(H5E_DEFAULT);
     return false;
   }
   H5O_info_t info;
-  const bool dataset = H5Oget_info_by_name(file_, path.c_str(), &info, H5P_DEFAULT) >= 0 &&
-                       info.type == H5O_TYPE_DATASET;
+  const bool dataset =
+      H5Oget_info_by_name2(file_, path.c_str(), &info, H5O_INFO_BASIC, H5P_DEFAULT) >= 0 &&
+      info.type == H5O_TYPE_DATASET;
   H5Eclear2(H5E_DEFAULT);
   return dataset;
 }
@@ -153,7 +208,8 @@ NdArray Hdf5File::numbers(const std::string& path, int rank, const std::string& 
   const std::string where = name_ + ": dataset '" + path + "'";
   const std::string wanted = expected.empty() ? "" : " (expected " + expected + ")";
   QuietHdf5 quiet;
-  if (!linkExists(file_, path)) throw ImportError(where + " is missing" + wanted);
+  if (!linkExists(file_, detail::Hdf5Structure(image_, name_), name_, path))
+    throw ImportError(where + " is missing" + wanted);
   Handle dataset(H5Dopen2(file_, path.c_str(), H5P_DEFAULT), H5Dclose);
   if (!dataset.ok()) throw ImportError(where + " is not a dataset: " + hdf5Reason());
   Handle type(H5Dget_type(dataset.get()), H5Tclose);
@@ -162,6 +218,13 @@ NdArray Hdf5File::numbers(const std::string& path, int rank, const std::string& 
   const H5T_class_t typeClass = H5Tget_class(type.get());
   if (typeClass != H5T_INTEGER && typeClass != H5T_FLOAT) {
     throw ImportError(where + " is not numeric (integer or float)" + wanted);
+  }
+  // A numeric element is at most 16 bytes (a long double); HDF5 sizes its conversion buffer by
+  // the file's element size, which a damaged file can set to gigabytes (a 4 GB calloc, item 7).
+  const std::size_t elementBytes = H5Tget_size(type.get());
+  if (elementBytes == 0 || elementBytes > 16) {
+    throw ImportError(where + " has elements of " + std::to_string(elementBytes) +
+                      " bytes (a number has 1 to 16)" + wanted);
   }
   const H5S_class_t spaceClass = H5Sget_simple_extent_type(space.get());
   if (spaceClass != H5S_SCALAR && spaceClass != H5S_SIMPLE) {
@@ -189,6 +252,7 @@ NdArray Hdf5File::numbers(const std::string& path, int rank, const std::string& 
   if (rank >= 0 && ndims != rank) {
     throw ImportError(where + " has shape " + out.shapeText() + wanted);
   }
+  checkStorage(dataset.get(), count * elementBytes, where);
   out.values.resize(count);
   if (count > 0 && H5Dread(dataset.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT,
                            out.values.data()) < 0) {
@@ -200,7 +264,11 @@ NdArray Hdf5File::numbers(const std::string& path, int rank, const std::string& 
 std::string Hdf5File::text(const std::string& path) const {
   const std::string where = name_ + ": dataset '" + path + "'";
   QuietHdf5 quiet;
-  if (!linkExists(file_, path)) throw ImportError(where + " is missing (expected a string)");
+  const detail::Hdf5Structure structure(image_, name_);
+  detail::Hdf5Structure::Storage storage;
+  if (!linkExists(file_, structure, name_, path, &storage)) {
+    throw ImportError(where + " is missing (expected a string)");
+  }
   Handle dataset(H5Dopen2(file_, path.c_str(), H5P_DEFAULT), H5Dclose);
   if (!dataset.ok()) throw ImportError(where + " is not a dataset: " + hdf5Reason());
   Handle type(H5Dget_type(dataset.get()), H5Tclose);
@@ -220,6 +288,7 @@ std::string Hdf5File::text(const std::string& path) const {
     if (H5Tset_size(memType.get(), H5T_VARIABLE) < 0) {
       throw ImportError(where + " cannot be read: " + hdf5Reason());
     }
+    structure.checkVariableLengthString(storage, "dataset '" + path + "'");
     char* value = nullptr;
     if (H5Dread(dataset.get(), memType.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, &value) < 0) {
       throw ImportError(where + " cannot be read: " + hdf5Reason());
@@ -235,6 +304,7 @@ std::string Hdf5File::text(const std::string& path) const {
   if (H5Tset_size(memType.get(), size) < 0 || H5Tset_strpad(memType.get(), H5T_STR_NULLPAD) < 0) {
     throw ImportError(where + " cannot be read: " + hdf5Reason());
   }
+  checkStorage(dataset.get(), size, where);
   std::string out(size, '\0');
   if (H5Dread(dataset.get(), memType.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0) {
     throw ImportError(where + " cannot be read: " + hdf5Reason());

@@ -11,10 +11,16 @@
 
 namespace visgrab::importers {
 
+/// The largest HDF5 file these readers take (1 GiB; ACRONYM's grasp files have a few MB).
+inline constexpr std::size_t kMaxHdf5FileBytes = std::size_t{1} << 30;
+
 /// An HDF5 file opened read-only through Debian's libhdf5 (C API): numeric datasets as NdArray
 /// and string datasets by path ("grasps/transforms"). HDF5's own error printing is off while this
 /// reads; its failures become ImportError naming the file, the dataset and HDF5's reason. Calls
-/// into libhdf5 are serialised (Debian's serial build is not thread-safe).
+/// into libhdf5 are serialised (Debian's serial build is not thread-safe). The file is read
+/// whole and the metadata of every object it opens is checked from the bytes before libhdf5
+/// reads it (detail::Hdf5Structure): libhdf5 1.10.8 allocates, and can crash on, sizes and
+/// addresses of a damaged file before checking them.
 class Hdf5File {
  public:
   /// Opens `file`. @throws ImportError naming it (missing, not HDF5, damaged).
@@ -42,7 +48,9 @@ class Hdf5File {
 
  private:
   Hdf5File() = default;
+  static Hdf5File fromImage(std::string bytes, const std::string& name, const std::string& failure);
   std::string name_;
+  std::string image_;    // the file's bytes, checked by detail::Hdf5Structure
   long long file_ = -1;  // hid_t
 };
 

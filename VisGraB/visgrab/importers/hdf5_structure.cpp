@@ -1,0 +1,346 @@
+#include "visgrab/importers/hdf5_structure.hpp"
+
+#include <set>
+#include <utility>
+#include <vector>
+
+#include "visgrab/importers/npy.hpp"
+
+// The layouts read here are those of the HDF5 File Format Specification (version 3.0): the
+// superblock (versions 0-3), object headers (versions 1 and 2, with their continuation chunks),
+// the symbol table, continuation and data layout messages, and the local heap.
+namespace visgrab::importers::detail {
+
+namespace {
+
+constexpr std::string_view kSignature("\x89HDF\r\n\x1a\n", 8);
+constexpr unsigned kContinuationMessage = 0x10;
+constexpr unsigned kSymbolTableMessage = 0x11;
+constexpr unsigned kLayoutMessage = 0x08;
+constexpr unsigned kDatatypeMessage = 0x03;
+constexpr std::uint64_t kVariableLengthClass = 9;
+// A damaged header could chain its continuations in a loop or without end.
+constexpr std::size_t kMaxChunks = 4096;
+
+}  // namespace
+
+Hdf5Structure::Hdf5Structure(std::string_view image, std::string name)
+    : image_(image), name_(std::move(name)) {
+  // HDF5 looks for the superblock at 0, then at 512 and each doubling.
+  std::uint64_t at = 0;
+  while (at + kSignature.size() <= image_.size() && image_.substr(at, 8) != kSignature) {
+    at = at == 0 ? 512 : at * 2;
+  }
+  if (at + kSignature.size() > image_.size()) return;
+  const std::string sb = "the superblock";
+  const auto version = number(at + 8, 1, sb);
+  std::uint64_t rootEntry = 0;
+  if (version <= 1) {
+    offsetBytes_ = number(at + 13, 1, sb);
+    lengthBytes_ = number(at + 14, 1, sb);
+    rootEntry = at + (version == 0 ? 24 : 28);
+  } else if (version <= 3) {
+    offsetBytes_ = number(at + 9, 1, sb);
+    lengthBytes_ = number(at + 10, 1, sb);
+  } else {
+    return;  // a later version: left to libhdf5
+  }
+  for (const std::size_t bytes : {offsetBytes_, lengthBytes_}) {
+    if (bytes != 2 && bytes != 4 && bytes != 8) {
+      damaged(sb, "it gives addresses or lengths of " + std::to_string(bytes) +
+                      " bytes (this reader takes 2, 4 or 8)");
+    }
+  }
+  // libhdf5 takes the superblock's position as the base address that all addresses count from.
+  base_ = at;
+  if (version <= 1) {
+    // Base, free-space, end-of-file and driver addresses, then the root group's symbol table
+    // entry: link name offset, object header address, cache type, reserved, scratch pad.
+    const std::uint64_t entry = rootEntry + 4 * offsetBytes_;
+    rootHeader_ = number(entry + offsetBytes_, offsetBytes_, sb);
+    if (number(entry + 2 * offsetBytes_, 4, sb) == 1) {
+      rootHeapCached_ = true;
+      rootHeap_ = number(entry + 2 * offsetBytes_ + 8 + offsetBytes_, offsetBytes_, sb);
+    }
+  } else {
+    rootHeader_ = number(at + 12 + 3 * offsetBytes_, offsetBytes_, sb);
+  }
+  found_ = true;
+}
+
+std::uint64_t Hdf5Structure::number(std::uint64_t at, std::size_t bytes,
+                                    const std::string& what) const {
+  if (at > image_.size() || bytes > image_.size() - at) {
+    damaged(what, "the file ends at byte " + std::to_string(image_.size()) + ", before byte " +
+                      std::to_string(at + bytes) + " it needs");
+  }
+  std::uint64_t value = 0;
+  for (std::size_t i = 0; i < bytes; ++i) {
+    value |= std::uint64_t{static_cast<unsigned char>(image_[at + i])} << (8 * i);
+  }
+  return value;
+}
+
+bool Hdf5Structure::inside(std::uint64_t address, std::uint64_t length) const {
+  const std::uint64_t size = image_.size();
+  if (undefined(address) || base_ > size || address > size - base_) return false;
+  return length <= size - base_ - address;
+}
+
+bool Hdf5Structure::undefined(std::uint64_t address) const {
+  const std::uint64_t all =
+      offsetBytes_ >= 8 ? ~std::uint64_t{0} : (std::uint64_t{1} << (8 * offsetBytes_)) - 1;
+  return address == all;
+}
+
+void Hdf5Structure::damaged(const std::string& what, const std::string& why) const {
+  throw ImportError(name_ + ": damaged HDF5 file: " + what + ": " + why);
+}
+
+void Hdf5Structure::checkRoot() const {
+  if (!found_) return;
+  checkObject(rootHeader_, "the root group");
+  if (rootHeapCached_) checkHeap(rootHeap_, "the root group");
+}
+
+void Hdf5Structure::checkHeap(std::uint64_t address, const std::string& what) const {
+  // Signature "HEAP", version 0, 3 reserved bytes, data size (L), free list offset (L), data
+  // address (O).
+  const std::uint64_t headerBytes = 8 + 2 * lengthBytes_ + offsetBytes_;
+  if (!inside(address, headerBytes)) {
+    damaged(what, "its name heap (at byte " + std::to_string(address) +
+                      ") lies outside the file of " + std::to_string(image_.size()) + " bytes");
+  }
+  const std::uint64_t at = base_ + address;
+  if (image_.substr(at, 4) != "HEAP" || image_[at + 4] != 0) {
+    damaged(what, "no name heap (local heap, version 0) at byte " + std::to_string(address) +
+                      ", where its symbol table points");
+  }
+  const std::uint64_t size = number(at + 8, lengthBytes_, what);
+  const std::uint64_t data = number(at + 8 + 2 * lengthBytes_, offsetBytes_, what);
+  if (!inside(data, size)) {
+    damaged(what, "its name heap claims " + std::to_string(size) + " bytes at byte " +
+                      (undefined(data) ? std::string("(undefined)") : std::to_string(data)) +
+                      ", outside the file of " + std::to_string(image_.size()) + " bytes");
+  }
+}
+
+void Hdf5Structure::checkMessage(unsigned type, std::uint64_t at, std::uint64_t size,
+                                 const std::string& what, std::uint64_t* continuation,
+                                 std::uint64_t* continuationLength, Storage* storage) const {
+  if (type == kContinuationMessage && size >= offsetBytes_ + lengthBytes_) {
+    *continuation = number(at, offsetBytes_, what);
+    *continuationLength = number(at + offsetBytes_, lengthBytes_, what);
+  } else if (type == kSymbolTableMessage && size >= 2 * offsetBytes_) {
+    checkHeap(number(at + offsetBytes_, offsetBytes_, what), what);
+  } else if (type == kDatatypeMessage && size >= 16 &&
+             (number(at, 1, what) & 0x0f) == kVariableLengthClass) {
+    // Class and version, 3 bytes of class bits, size (4), then the element type: its own class
+    // bits and size (4). libhdf5 sizes its conversion buffer as length x element size.
+    storage->sequenceElementBytes = number(at + 12, 4, what);
+  } else if (type == kLayoutMessage && size >= 2) {
+    // Versions 3 and 4: version, class (0 compact, 1 contiguous, 2 chunked), then
+    // compact: data size (2), the data; contiguous: address (O), size (L);
+    // chunked, version 3: rank + 1, B-tree address, 4-byte chunk sizes with the element size
+    // last; version 4: flags, rank + 1, bytes per size, the sizes, the chunk index.
+    const auto version = number(at, 1, what);
+    if (version != 3 && version != 4) return;
+    const auto layout = number(at + 1, 1, what);
+    if (layout == 0) {
+      const auto bytes = number(at + 2, 2, what);
+      if (bytes > size - 4) {
+        damaged(what, "its compact data claims " + std::to_string(bytes) +
+                          " bytes in a message of " + std::to_string(size));
+      }
+      storage->known = true;
+      storage->at = at + 4;
+      storage->bytes = bytes;
+      return;
+    }
+    if (layout == 1) {
+      const auto address = number(at + 2, offsetBytes_, what);
+      const auto bytes = number(at + 2 + offsetBytes_, lengthBytes_, what);
+      if (!undefined(address) && !inside(address, bytes)) {
+        damaged(what, "its data claims " + std::to_string(bytes) + " bytes at byte " +
+                          std::to_string(address) + ", outside the file of " +
+                          std::to_string(image_.size()) + " bytes");
+      }
+      if (!undefined(address)) {
+        storage->known = true;
+        storage->at = base_ + address;
+        storage->bytes = bytes;
+      }
+      return;
+    }
+    if (layout != 2) return;
+    std::uint64_t dims = 0;
+    std::uint64_t width = 4;
+    std::uint64_t first = 0;
+    if (version == 3) {
+      dims = number(at + 2, 1, what);
+      first = at + 3 + offsetBytes_;
+    } else {
+      dims = number(at + 3, 1, what);
+      width = number(at + 4, 1, what);
+      first = at + 5;
+      if (width == 0 || width > 8)
+        damaged(what, "its chunk sizes have " + std::to_string(width) + " bytes each");
+    }
+    if (first + dims * width > at + size) damaged(what, "its layout message is cut short");
+    std::uint64_t bytes = 1;
+    for (std::uint64_t i = 0; i < dims; ++i) {
+      const std::uint64_t d = number(first + i * width, width, what);
+      if (d != 0 && bytes > kMaxArrayBytes / d) {
+        damaged(what, "its chunks are larger than this reader accepts (" +
+                          std::to_string(kMaxArrayBytes) + " bytes)");
+      }
+      bytes *= d;
+    }
+  }
+}
+
+Hdf5Structure::Storage Hdf5Structure::checkObject(std::uint64_t address,
+                                                  const std::string& what) const {
+  Storage storage;
+  if (!found_) return storage;
+  if (!inside(address, 16)) {
+    damaged(what, "its object header (at byte " + std::to_string(address) +
+                      ") lies outside the file of " + std::to_string(image_.size()) + " bytes");
+  }
+  const std::uint64_t at = base_ + address;
+  bool v2 = false;
+  std::uint64_t messageHeader = 8;
+  std::uint64_t start = 0;
+  std::uint64_t size = 0;
+  if (image_[at] == 1) {
+    // Version 1: version, reserved, message count (2), reference count (4), chunk size (4),
+    // 4 bytes of alignment, then the messages.
+    size = number(at + 8, 4, what);
+    start = address + 16;
+  } else if (image_.substr(at, 4) == "OHDR") {
+    // Version 2: "OHDR", version, flags, [4 times], [2 attribute limits], chunk size (1, 2, 4
+    // or 8 bytes by flags bits 0-1), the messages, a checksum.
+    v2 = true;
+    const auto flags = number(at + 5, 1, what);
+    std::uint64_t pos = 6 + ((flags & 0x20) != 0 ? 16 : 0) + ((flags & 0x10) != 0 ? 4 : 0);
+    const std::size_t width = std::size_t{1} << (flags & 3);
+    size = number(at + pos, width, what);
+    start = address + pos + width;
+    messageHeader = (flags & 0x04) != 0 ? 6 : 4;
+  } else {
+    return storage;  // not an object header this reader knows: libhdf5 refuses it
+  }
+  std::vector<std::pair<std::uint64_t, std::uint64_t>> chunks{{start, size}};
+  std::set<std::uint64_t> seen{start};
+  for (std::size_t c = 0; c < chunks.size(); ++c) {
+    const auto [chunk, length] = chunks[c];
+    if (!inside(chunk, length)) {
+      damaged(what, "its object header claims " + std::to_string(length) + " bytes at byte " +
+                        std::to_string(chunk) + ", outside the file of " +
+                        std::to_string(image_.size()) + " bytes");
+    }
+    std::uint64_t pos = base_ + chunk;
+    const std::uint64_t end = base_ + chunk + length;
+    while (pos + messageHeader <= end) {
+      const auto type = v2 ? number(pos, 1, what) : number(pos, 2, what);
+      const auto bytes = number(pos + (v2 ? 1 : 2), 2, what);
+      const std::uint64_t data = pos + messageHeader;
+      if (bytes > end - data) break;  // libhdf5 refuses the header
+      std::uint64_t next = 0;
+      std::uint64_t nextLength = 0;
+      checkMessage(static_cast<unsigned>(type), data, bytes, what, &next, &nextLength, &storage);
+      if (nextLength != 0 || next != 0) {
+        if (chunks.size() >= kMaxChunks) damaged(what, "its object header has too many chunks");
+        // A version 2 continuation chunk: "OCHK", the messages, a checksum.
+        if (v2 && nextLength < 8) damaged(what, "a continuation chunk of its header is too short");
+        if (!inside(next, nextLength)) {
+          damaged(what, "a continuation of its object header (" + std::to_string(nextLength) +
+                            " bytes at byte " +
+                            (undefined(next) ? std::string("(undefined)") : std::to_string(next)) +
+                            ") lies outside the file of " + std::to_string(image_.size()) +
+                            " bytes");
+        }
+        const std::uint64_t first = v2 ? next + 4 : next;
+        if (seen.insert(first).second) chunks.emplace_back(first, v2 ? nextLength - 8 : nextLength);
+      }
+      pos = data + bytes;
+    }
+  }
+  return storage;
+}
+
+void Hdf5Structure::checkVariableLengthString(const Storage& storage,
+                                              const std::string& what) const {
+  if (!found_) return;
+  // A string's characters are bytes: libhdf5 allocates the string's length times this (a
+  // damaged file asked for 2.7 GB this way).
+  if (storage.sequenceElementBytes != 1) {
+    damaged(what, "its variable-length string has characters of " +
+                      std::to_string(storage.sequenceElementBytes) + " bytes (expected 1)");
+  }
+  if (!storage.known) return;
+  // The stored value: the string's length (4), the collection's address (O), the object's index
+  // in it (4).
+  if (storage.bytes < 8 + offsetBytes_) {
+    damaged(what, "its string reference has " + std::to_string(storage.bytes) + " bytes");
+  }
+  const std::uint64_t length = number(storage.at, 4, what);
+  const std::uint64_t collection = number(storage.at + 4, offsetBytes_, what);
+  const std::uint64_t index = number(storage.at + 4 + offsetBytes_, 4, what);
+  if (length == 0) return;
+  // The collection: "GCOL", version 1, 3 reserved, its size (L) including this header, then the
+  // objects: index (2), reference count (2), reserved (4), size (L), the data padded to 8 bytes;
+  // index 0 is the free space that ends it.
+  const std::uint64_t headerBytes = 8 + lengthBytes_;
+  if (!inside(collection, headerBytes)) {
+    damaged(what,
+            "its string's global heap (at byte " +
+                (undefined(collection) ? std::string("(undefined)") : std::to_string(collection)) +
+                ") lies outside the file of " + std::to_string(image_.size()) + " bytes");
+  }
+  const std::uint64_t at = base_ + collection;
+  if (image_.substr(at, 4) != "GCOL" || image_[at + 4] != 1) {
+    damaged(what, "no global heap (version 1) at byte " + std::to_string(collection) +
+                      ", where its string points");
+  }
+  const std::uint64_t size = number(at + 8, lengthBytes_, what);
+  if (size < headerBytes || !inside(collection, size)) {
+    damaged(what, "its string's global heap claims " + std::to_string(size) + " bytes at byte " +
+                      std::to_string(collection) + ", outside the file of " +
+                      std::to_string(image_.size()) + " bytes");
+  }
+  // Walked as libhdf5 walks it when it loads the collection: an object of index 0 (the free
+  // space) advances by its size, header included; any other by its header and its data padded to
+  // 8 bytes; less room than an object header ends the walk. A step of 0 bytes made libhdf5 loop
+  // for ever, one past the collection's end made it copy past its buffer.
+  const std::uint64_t end = at + size;
+  const std::uint64_t objectHeader = 8 + lengthBytes_;
+  bool found = false;
+  std::uint64_t objectBytes = 0;
+  for (std::uint64_t pos = at + headerBytes; end - pos >= objectHeader;) {
+    const std::uint64_t id = number(pos, 2, what);
+    const std::uint64_t bytes = number(pos + 8, lengthBytes_, what);
+    const std::uint64_t room = end - pos;
+    const std::uint64_t step =
+        id == 0 ? bytes : (bytes > room ? room + 1 : objectHeader + (bytes + 7) / 8 * 8);
+    if (step == 0 || step > room) {
+      damaged(what, (id == 0 ? std::string("the free space") : "object " + std::to_string(id)) +
+                        " of its string's global heap claims " + std::to_string(bytes) +
+                        " bytes, " + (step == 0 ? "none" : "more than the heap holds"));
+    }
+    if (id == index && id != 0) {
+      found = true;  // libhdf5 keeps the last object of an index
+      objectBytes = bytes;
+    }
+    pos += step;
+  }
+  if (found && objectBytes < length) {
+    damaged(what, "its string has " + std::to_string(length) + " bytes, its global heap object " +
+                      std::to_string(index) + " holds " + std::to_string(objectBytes));
+  }
+  if (!found) {
+    damaged(what, "its string's global heap has no object " + std::to_string(index));
+  }
+}
+
+}  // namespace visgrab::importers::detail

@@ -1,0 +1,80 @@
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+namespace visgrab::importers::detail {
+
+/// The parts of an HDF5 file's metadata that Debian's libhdf5 1.10.8 trusts before it checks
+/// them against the file's end, read and checked here from the file's bytes first
+/// (docs/fuzzing.md, item 7). libhdf5 allocates a block of metadata at the size the file claims
+/// and only then finds it past the end of the file, so a damaged file of a few kB made it ask for
+/// up to 2^56 bytes, and a heap whose data address was undefined crashed it. Checked, for each
+/// object Hdf5File opens (the root group, each group on a path, the dataset) before libhdf5 reads
+/// it:
+/// - every continuation chunk of its object header (versions 1 and 2) lies inside the file;
+/// - a symbol-table group's local heap (where libhdf5 keeps the names of its members) has its
+///   signature and its data block lies inside the file;
+/// - a dataset's layout (versions 3 and 4): compact data inside its message, contiguous data
+///   inside the file, chunks of at most kMaxArrayBytes;
+/// - a variable-length string's global heap object (checkVariableLengthString).
+/// Anything this does not know (another header version) is left to libhdf5, which refuses it
+/// before allocating. The file's sizes of offsets and lengths and its base address come from the
+/// superblock (versions 0 to 3), found at byte 0, 512, 1024, ... as HDF5 looks for it.
+class Hdf5Structure {
+ public:
+  /// `image` must outlive this; `name` is the file's name in messages.
+  Hdf5Structure(std::string_view image, std::string name);
+
+  /// True if the superblock was found (the other calls then check; else they do nothing and
+  /// libhdf5 reports the file as it sees it).
+  bool found() const { return found_; }
+  /// Checks the root group's object header (and, for a version 0 or 1 superblock, the name heap
+  /// its symbol table entry caches). @throws ImportError naming the file and what is damaged.
+  void checkRoot() const;
+  /// Where a dataset's values are, as its layout message says (compact: inside the message;
+  /// contiguous: at an address, or nowhere yet). Positions are bytes of the image.
+  struct Storage {
+    bool known = false;  // a compact or contiguous layout with its data written
+    std::uint64_t at = 0;
+    std::uint64_t bytes = 0;
+    std::uint64_t sequenceElementBytes = 0;  // a variable-length type's element size (0: none)
+  };
+  /// Checks the object header at `address` (relative to the base address, as libhdf5 reports it),
+  /// called `what` in messages ("'grasps'"), and returns where its values are (a dataset's).
+  /// @throws ImportError.
+  Storage checkObject(std::uint64_t address, const std::string& what) const;
+  /// Checks the variable-length string that a scalar dataset stored at `storage` refers to: its
+  /// global heap collection ("GCOL") lies inside the file, each object of the collection inside
+  /// the collection, and the referenced object exists and holds the string's length. libhdf5
+  /// copies an object at the size the collection claims for it without these checks (item 6 of
+  /// docs/fuzzing.md: a read 4,040 bytes past its buffer). @throws ImportError.
+  void checkVariableLengthString(const Storage& storage, const std::string& what) const;
+
+ private:
+  // The little-endian unsigned number of `bytes` bytes at absolute byte `at`; throws if the file
+  // ends before it.
+  std::uint64_t number(std::uint64_t at, std::size_t bytes, const std::string& what) const;
+  // True if [address, address + length) relative to the base lies inside the file.
+  bool inside(std::uint64_t address, std::uint64_t length) const;
+  bool undefined(std::uint64_t address) const;
+  void checkHeap(std::uint64_t address, const std::string& what) const;
+  void checkMessage(unsigned type, std::uint64_t at, std::uint64_t size, const std::string& what,
+                    std::uint64_t* continuation, std::uint64_t* continuationLength,
+                    Storage* storage) const;
+  [[noreturn]] void damaged(const std::string& what, const std::string& why) const;
+
+  std::string_view image_;
+  std::string name_;
+  bool found_ = false;
+  std::size_t offsetBytes_ = 8;
+  std::size_t lengthBytes_ = 8;
+  std::uint64_t base_ = 0;
+  std::uint64_t rootHeader_ = 0;
+  std::uint64_t rootHeap_ = 0;
+  bool rootHeapCached_ = false;
+};
+
+}  // namespace visgrab::importers::detail

@@ -1,0 +1,260 @@
+// The HDF5 metadata checks made before libhdf5 reads a file (detail::Hdf5Structure,
+// docs/fuzzing.md item 7): on images built byte by byte here from the HDF5 File Format
+// Specification (superblocks 0 and 2, object headers 1 and 2, the symbol table, continuation and
+// layout messages, the local heap), on files written by libhdf5 and damaged by hand the way the
+// fuzz stage found, and on every input the fuzz stage found (fuzz/regressions/hdf5).
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+#include "import_checks.hpp"
+#include "support/test_support.hpp"
+#include "test_files.hpp"
+#include "visgrab/importers/hdf5_file.hpp"
+#include "visgrab/importers/hdf5_structure.hpp"
+#include "visgrab/importers/npy.hpp"
+
+namespace visgrab::importers {
+namespace {
+
+using detail::Hdf5Structure;
+using test::errorOf;
+
+constexpr std::uint64_t kUndefined = ~std::uint64_t{0};
+
+// Little-endian bytes, appended.
+struct Bytes {
+  std::string s;
+  Bytes& u(std::uint64_t v, int n) {
+    for (int i = 0; i < n; ++i) s.push_back(i < 8 ? static_cast<char>((v >> (8 * i)) & 0xff) : 0);
+    return *this;
+  }
+  Bytes& text(const std::string& t) {
+    s += t;
+    return *this;
+  }
+  Bytes& pad(std::size_t to) {
+    s.resize(to, '\0');
+    return *this;
+  }
+};
+
+const std::string kSignature("\x89HDF\r\n\x1a\n", 8);
+
+// A version 0 superblock (8-byte offsets and lengths) whose root symbol table entry points at
+// byte 96, where the root's version 1 object header follows with `messages` (each: type, data).
+std::string version0File(const std::vector<std::pair<unsigned, std::string>>& messages,
+                         std::size_t total = 1024) {
+  Bytes b;
+  b.text(kSignature).u(0, 1).u(0, 1).u(0, 1).u(0, 1).u(0, 1).u(8, 1).u(8, 1).u(0, 1);
+  b.u(4, 2).u(16, 2).u(0, 4);                               // group K values, flags: byte 24
+  b.u(0, 8).u(kUndefined, 8).u(total, 8).u(kUndefined, 8);  // base, free space, EOF, driver
+  b.u(0, 8).u(96, 8).u(0, 4).u(0, 4).u(0, 16);              // root entry: header at 96
+  EXPECT_EQ(b.s.size(), 96U);
+  std::string body;
+  for (const auto& [type, data] : messages) {
+    Bytes m;
+    m.u(type, 2).u(data.size(), 2).u(0, 1).u(0, 3).text(data);
+    body += m.s;
+  }
+  b.u(1, 1).u(0, 1).u(messages.size(), 2).u(1, 4).u(body.size(), 4).u(0, 4).text(body);
+  return b.pad(total).s;
+}
+
+std::string symbolTable(std::uint64_t heap) { return Bytes().u(300, 8).u(heap, 8).s; }
+
+// A local heap at `at` in `file`: "HEAP", version 0, data size, free list offset, data address.
+void putHeap(std::string& file, std::size_t at, std::uint64_t size, std::uint64_t data) {
+  const std::string heap = Bytes().text("HEAP").u(0, 4).u(size, 8).u(kUndefined, 8).u(data, 8).s;
+  file.replace(at, heap.size(), heap);
+}
+
+std::string errorOfRoot(const std::string& file) {
+  return errorOf([&] { Hdf5Structure(file, "hand.h5").checkRoot(); });
+}
+
+TEST(Hdf5Structure, ASymbolTableGroupsNameHeapMustLieInsideTheFile) {
+  std::string file = version0File({{0x11, symbolTable(512)}});
+  putHeap(file, 512, 88, 544);
+  EXPECT_EQ(errorOfRoot(file), "");  // 88 bytes at 544 end at 632 of 1024
+  putHeap(file, 512, 480, 544);
+  EXPECT_EQ(errorOfRoot(file), "");  // ends exactly at the file's end
+  putHeap(file, 512, 481, 544);
+  EXPECT_EQ(errorOfRoot(file),
+            "hand.h5: damaged HDF5 file: the root group: its name heap claims 481 bytes at byte "
+            "544, outside the file of 1024 bytes");
+  // The fuzz stage's findings: a claimed size of 2^48 (libhdf5 allocated it before reading) and
+  // an undefined data address (libhdf5 read from a null pointer).
+  putHeap(file, 512, std::uint64_t{1} << 48, 544);
+  EXPECT_NE(errorOfRoot(file).find("claims 281474976710656 bytes at byte 544"), std::string::npos);
+  putHeap(file, 512, 88, kUndefined);
+  EXPECT_NE(errorOfRoot(file).find("claims 88 bytes at byte (undefined)"), std::string::npos);
+  // A symbol table that points where no heap is, or outside the file.
+  EXPECT_NE(errorOfRoot(version0File({{0x11, symbolTable(600)}})).find("no name heap"),
+            std::string::npos);
+  EXPECT_NE(errorOfRoot(version0File({{0x11, symbolTable(5000)}}))
+                .find("its name heap (at byte 5000) lies outside the file of 1024 bytes"),
+            std::string::npos);
+}
+
+TEST(Hdf5Structure, ContinuationChunksMustLieInsideTheFileAndAreFollowed) {
+  const auto continuation = [](std::uint64_t at, std::uint64_t length) {
+    return Bytes().u(at, 8).u(length, 8).s;
+  };
+  EXPECT_EQ(errorOfRoot(version0File({{0x10, continuation(100000, 512)}})),
+            "hand.h5: damaged HDF5 file: the root group: a continuation of its object header "
+            "(512 bytes at byte 100000) lies outside the file of 1024 bytes");
+  EXPECT_NE(errorOfRoot(version0File({{0x10, continuation(512, 3539992592)}}))
+                .find("(3539992592 bytes at byte 512)"),
+            std::string::npos);
+  // A chunk inside the file is read: its symbol table message is checked too.
+  std::string file = version0File({{0x10, continuation(512, 24)}});
+  const std::string stab = Bytes().u(0x11, 2).u(16, 2).u(0, 4).u(300, 8).u(700, 8).s;
+  file.replace(512, stab.size(), stab);
+  EXPECT_NE(errorOfRoot(file).find("no name heap (local heap, version 0) at byte 700"),
+            std::string::npos);
+  putHeap(file, 700, 16, 740);
+  EXPECT_EQ(errorOfRoot(file), "");
+  // A continuation that points back at itself ends (libhdf5 refuses the header itself).
+  std::string loop = version0File({{0x10, continuation(512, 24)}});
+  const std::string back = Bytes().u(0x10, 2).u(16, 2).u(0, 4).u(512, 8).u(24, 8).s;
+  loop.replace(512, back.size(), back);
+  EXPECT_EQ(errorOfRoot(loop), "");
+}
+
+TEST(Hdf5Structure, LayoutMessagesMustFitTheirDataAndChunks) {
+  const auto layout = [](unsigned cls, const std::string& rest) {
+    return Bytes().u(3, 1).u(cls, 1).text(rest).s;
+  };
+  // Compact: 8 bytes of data in the message, then one claiming 4000.
+  EXPECT_EQ(errorOfRoot(version0File({{0x08, layout(0, Bytes().u(8, 2).u(7, 8).s)}})), "");
+  EXPECT_NE(errorOfRoot(version0File({{0x08, layout(0, Bytes().u(4000, 2).u(7, 8).s)}}))
+                .find("its compact data claims 4000 bytes in a message of 12"),
+            std::string::npos);
+  // Contiguous: 124 bytes at 900 end at 1024, 125 past it; an undefined address is "not
+  // written yet".
+  EXPECT_EQ(errorOfRoot(version0File({{0x08, layout(1, Bytes().u(900, 8).u(124, 8).s)}})), "");
+  EXPECT_NE(errorOfRoot(version0File({{0x08, layout(1, Bytes().u(900, 8).u(125, 8).s)}}))
+                .find("its data claims 125 bytes at byte 900, outside the file of 1024 bytes"),
+            std::string::npos);
+  EXPECT_EQ(errorOfRoot(version0File({{0x08, layout(1, Bytes().u(kUndefined, 8).u(100, 8).s)}})),
+            "");
+  // Chunked (version 3): rank 2 + element size 8: 1000 x 1000 x 8 bytes fits, 2^16 x 2^16 x 8
+  // (32 GiB) does not.
+  const auto chunked = [&](std::uint64_t rows, std::uint64_t cols) {
+    return layout(2, Bytes().u(3, 1).u(800, 8).u(rows, 4).u(cols, 4).u(8, 4).s);
+  };
+  EXPECT_EQ(errorOfRoot(version0File({{0x08, chunked(1000, 1000)}})), "");
+  EXPECT_NE(errorOfRoot(version0File({{0x08, chunked(65536, 65536)}}))
+                .find("its chunks are larger than this reader accepts (" +
+                      std::to_string(kMaxArrayBytes) + " bytes)"),
+            std::string::npos);
+}
+
+TEST(Hdf5Structure, VersionTwoHeadersAndSuperblocksAndAUserBlock) {
+  // Superblock version 2 at byte 512 (after a user block): offsets and lengths of 8 bytes; the
+  // root's "OHDR" header at address 100, i.e. byte 612.
+  Bytes b;
+  b.pad(512).text(kSignature).u(2, 1).u(8, 1).u(8, 1).u(0, 1);
+  b.u(0, 8).u(kUndefined, 8).u(2048, 8).u(100, 8).u(0, 4);
+  b.pad(612);
+  // "OHDR", version 2, flags 0 (1-byte chunk size), size 20: one continuation message (type,
+  // size 2, flags) of 16 bytes.
+  b.text("OHDR").u(2, 1).u(0, 1).u(20, 1).u(0x10, 1).u(16, 2).u(0, 1).u(9000, 8).u(64, 8);
+  b.pad(2048);
+  EXPECT_NE(errorOfRoot(b.s).find("a continuation of its object header (64 bytes at byte 9000)"),
+            std::string::npos);
+  EXPECT_NE(errorOf([&] {
+              Hdf5Structure(b.s, "hand.h5").checkObject(5000, "'x'");
+            }).find("'x': its object header (at byte 5000) lies outside the file of 2048 bytes"),
+            std::string::npos);
+  // Not an HDF5 file at all: nothing to check (libhdf5 says what it is not).
+  EXPECT_FALSE(Hdf5Structure("plain text", "t").found());
+}
+
+// A file libhdf5 wrote, damaged by hand as the fuzz stage damaged its seed: the root group's name
+// heap claims 2^48 bytes, then its data address is undefined. Both are refused before libhdf5
+// reads the heap (it asked for 2^48 bytes, then crashed, on these).
+TEST(Hdf5Structure, DamagedNameHeapsOfARealFileAreRefusedBeforeLibhdf5ReadsThem) {
+  test::TempDir dir;
+  const auto path = dir.path() / "t.h5";
+  test::writeHdf5(path, {{"grasps/transforms", {1, 2}, {1, 2}}});
+  const std::string good = readFileBytes(path, 1 << 20);
+  EXPECT_EQ(Hdf5File::fromBytes(good, "t.h5").numbers("grasps/transforms").values,
+            (std::vector<double>{1, 2}));
+  const std::size_t heap = good.find("HEAP");
+  ASSERT_NE(heap, std::string::npos);
+  for (const auto& [offset, value] : {std::pair<std::size_t, std::uint64_t>{8, 1ULL << 48},
+                                      std::pair<std::size_t, std::uint64_t>{24, kUndefined}}) {
+    std::string bad = good;
+    bad.replace(heap + offset, 8, Bytes().u(value, 8).s);
+    const std::string error =
+        errorOf([&] { Hdf5File::fromBytes(bad, "t.h5").numbers("grasps/transforms"); });
+    EXPECT_EQ(error.rfind("t.h5: damaged HDF5 file: ", 0), 0U) << error;
+    EXPECT_NE(error.find("its name heap claims"), std::string::npos) << error;
+  }
+}
+
+// A variable-length string (ACRONYM's object/file) points into a global heap collection; one
+// written by libhdf5 reads, and the fuzz stage's damaged collection (an object claiming more
+// bytes than the collection holds, which libhdf5 1.10.8 copied 4,040 bytes past its buffer) and
+// a reference to an object the collection lacks are refused before libhdf5 reads them.
+TEST(Hdf5Structure, VariableLengthStringsNeedTheirGlobalHeapObject) {
+  test::TempDir dir;
+  const auto path = dir.path() / "s.h5";
+  test::writeHdf5(path, {{"object/file", {}, {}, false, true, "meshes/Table/x.obj"}});
+  const std::string good = readFileBytes(path, 1 << 20);
+  EXPECT_EQ(Hdf5File::fromBytes(good, "s.h5").text("object/file"), "meshes/Table/x.obj");
+  const std::size_t gcol = good.find("GCOL");
+  ASSERT_NE(gcol, std::string::npos);
+  // The first object (index 1) follows the 16-byte collection header: its size is at +8.
+  std::string big = good;
+  big.replace(gcol + 16 + 8, 8, Bytes().u(1 << 20, 8).s);
+  EXPECT_NE(errorOf([&] { Hdf5File::fromBytes(big, "s.h5").text("object/file"); })
+                .find("s.h5: damaged HDF5 file: dataset 'object/file': object 1 of its string's "
+                      "global heap claims 1048576 bytes, more than the heap holds"),
+            std::string::npos);
+  std::string other = good;
+  other.replace(gcol + 16, 2, Bytes().u(7, 2).s);  // the object is now number 7
+  EXPECT_NE(errorOf([&] {
+              Hdf5File::fromBytes(other, "s.h5").text("object/file");
+            }).find("its string's global heap has no object 1"),
+            std::string::npos);
+  const auto known = std::filesystem::path(VISGRAB_SOURCE_DIR) /
+                     "fuzz/regressions/hdf5/vlen-string-heap-overflow-1";
+  EXPECT_NE(errorOf([&] { Hdf5File::open(known).text("object/file"); }).find("global heap"),
+            std::string::npos);
+}
+
+// Every input the fuzz stage found (fuzz/regressions/hdf5: huge allocations, crashes and endless
+// loops inside libhdf5) is an ImportError naming the file for at least one of the datasets the
+// ACRONYM importers read (and nothing else escapes).
+TEST(Hdf5Structure, EveryFuzzFindingIsAnImportErrorNamingTheFile) {
+  const auto dir = std::filesystem::path(VISGRAB_SOURCE_DIR) / "fuzz/regressions/hdf5";
+  int files = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    ++files;
+    int refused = 0;
+    for (const std::string key : {"grasps/transforms", "grasps/qualities/flex/object_in_gripper",
+                                  "object/scale", "object/com", "object/inertia", "object/file"}) {
+      const std::string error = errorOf([&] {
+        const Hdf5File h5 = Hdf5File::open(entry.path());
+        if (key == "object/file") {
+          h5.text(key);
+        } else {
+          h5.numbers(key);
+        }
+      });
+      if (error.empty()) continue;
+      ++refused;
+      EXPECT_EQ(error.rfind(entry.path().string() + ":", 0), 0U) << error;
+    }
+    EXPECT_GT(refused, 0) << entry.path();
+  }
+  EXPECT_GE(files, 5);
+}
+
+}  // namespace
+}  // namespace visgrab::importers
