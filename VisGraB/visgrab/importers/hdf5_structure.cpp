@@ -18,6 +18,9 @@ constexpr unsigned kContinuationMessage = 0x10;
 constexpr unsigned kSymbolTableMessage = 0x11;
 constexpr unsigned kLayoutMessage = 0x08;
 constexpr unsigned kDatatypeMessage = 0x03;
+constexpr unsigned kOldFillValueMessage = 0x04;
+constexpr unsigned kFillValueMessage = 0x05;
+constexpr unsigned kExternalFilesMessage = 0x07;
 constexpr std::uint64_t kVariableLengthClass = 9;
 // A damaged header could chain its continuations in a loop or without end.
 constexpr std::size_t kMaxChunks = 4096;
@@ -125,77 +128,157 @@ void Hdf5Structure::checkHeap(std::uint64_t address, const std::string& what) co
   }
 }
 
-void Hdf5Structure::checkMessage(unsigned type, std::uint64_t at, std::uint64_t size,
-                                 const std::string& what, std::uint64_t* continuation,
-                                 std::uint64_t* continuationLength, Storage* storage) const {
-  if (type == kContinuationMessage && size >= offsetBytes_ + lengthBytes_) {
-    *continuation = number(at, offsetBytes_, what);
-    *continuationLength = number(at + offsetBytes_, lengthBytes_, what);
-  } else if (type == kSymbolTableMessage && size >= 2 * offsetBytes_) {
-    checkHeap(number(at + offsetBytes_, offsetBytes_, what), what);
-  } else if (type == kDatatypeMessage && size >= 16 &&
-             (number(at, 1, what) & 0x0f) == kVariableLengthClass) {
-    // Class and version, 3 bytes of class bits, size (4), then the element type: its own class
-    // bits and size (4). libhdf5 sizes its conversion buffer as length x element size.
-    storage->sequenceElementBytes = number(at + 12, 4, what);
-  } else if (type == kLayoutMessage && size >= 2) {
-    // Versions 3 and 4: version, class (0 compact, 1 contiguous, 2 chunked), then
-    // compact: data size (2), the data; contiguous: address (O), size (L);
-    // chunked, version 3: rank + 1, B-tree address, 4-byte chunk sizes with the element size
-    // last; version 4: flags, rank + 1, bytes per size, the sizes, the chunk index.
-    const auto version = number(at, 1, what);
-    if (version != 3 && version != 4) return;
-    const auto layout = number(at + 1, 1, what);
-    if (layout == 0) {
-      const auto bytes = number(at + 2, 2, what);
-      if (bytes > size - 4) {
-        damaged(what, "its compact data claims " + std::to_string(bytes) +
-                          " bytes in a message of " + std::to_string(size));
+void Hdf5Structure::checkMessage(const Message& m, const std::string& what,
+                                 std::uint64_t* continuation, std::uint64_t* continuationLength,
+                                 Storage* storage) const {
+  const std::uint64_t at = m.at;
+  const std::uint64_t size = m.bytes;
+  const auto cutShort = [&](std::uint64_t need) {
+    if (need > size) {
+      damaged(what, "its message of type " + std::to_string(m.type) + " has " +
+                        std::to_string(size) + " bytes, fewer than the " + std::to_string(need) +
+                        " it describes");
+    }
+  };
+  // A shared message holds a reference to the message kept elsewhere, not the message.
+  if ((m.flags & 0x02) != 0 && m.type != kDatatypeMessage) return;
+  switch (m.type) {
+    case kContinuationMessage:
+      cutShort(offsetBytes_ + lengthBytes_);
+      *continuation = number(at, offsetBytes_, what);
+      *continuationLength = number(at + offsetBytes_, lengthBytes_, what);
+      return;
+    case kSymbolTableMessage:
+      cutShort(2 * offsetBytes_);
+      checkHeap(number(at + offsetBytes_, offsetBytes_, what), what);
+      return;
+    case kExternalFilesMessage:
+      // Values kept in other files, named in a local heap libhdf5 reads unchecked.
+      damaged(what, "its values are kept in external files, which this reader does not read");
+    case kOldFillValueMessage: {
+      cutShort(4);
+      const std::uint64_t bytes = number(at, 4, what);
+      cutShort(4 + bytes);
+      return;
+    }
+    case kFillValueMessage: {
+      // Version 1: allocation time, write time, defined, size (4), value; version 2: the same,
+      // size and value only when defined; version 3: flags, size and value when flag 0x20. The
+      // size is signed: libhdf5 copies that many bytes when it is positive.
+      cutShort(2);
+      const auto version = number(at, 1, what);
+      std::uint64_t sizeAt = 0;
+      if (version == 1) {
+        sizeAt = 4;
+      } else if (version == 2) {
+        cutShort(4);
+        if (number(at + 3, 1, what) != 0) sizeAt = 4;
+      } else if (version == 3 && (number(at + 1, 1, what) & 0x20) != 0) {
+        sizeAt = 2;
       }
+      if (sizeAt == 0) return;
+      cutShort(sizeAt + 4);
+      const std::uint64_t bytes = number(at + sizeAt, 4, what);
+      if (bytes < 0x80000000U) cutShort(sizeAt + 4 + bytes);
+      return;
+    }
+    case kDatatypeMessage:
+      // libhdf5 reads the first message of a type; a later one is not what it uses.
+      if (storage->datatypeSeen) return;
+      storage->datatypeSeen = true;
+      if ((m.flags & 0x02) != 0) {
+        storage->sharedDatatype = true;  // a reference to a committed datatype
+        return;
+      }
+      cutShort(8);
+      // Class and version, 3 bytes of class bits, size (4), then for a variable-length type
+      // the element type: its own class bits and size (4). libhdf5 sizes its conversion buffer
+      // as length x element size.
+      if ((number(at, 1, what) & 0x0f) == kVariableLengthClass) {
+        cutShort(16);
+        storage->sequenceElementBytes = number(at + 12, 4, what);
+      }
+      return;
+    case kLayoutMessage:
+      checkLayout(m, what, storage);
+      return;
+    default:
+      return;
+  }
+}
+
+void Hdf5Structure::checkLayout(const Message& m, const std::string& what, Storage* storage) const {
+  // Versions 3 and 4: version, class (0 compact, 1 contiguous, 2 chunked, 3 virtual), then
+  // compact: data size (2), the data; contiguous: address (O), size (L); chunked, version 3:
+  // rank + 1, B-tree address, 4-byte chunk sizes with the element size last; version 4: flags,
+  // rank + 1, bytes per size, the sizes, the chunk index.
+  const std::uint64_t at = m.at;
+  const std::uint64_t size = m.bytes;
+  if (size < 2) damaged(what, "its layout message is cut short");
+  const auto version = number(at, 1, what);
+  const auto layout = number(at + 1, 1, what);
+  if (version != 3 && version != 4) {
+    damaged(what, "its layout message has version " + std::to_string(version) +
+                      " (this reader takes 3 and 4, what HDF5 1.6 and later write)");
+  }
+  if (layout > 2) {
+    damaged(what, "it is a virtual dataset (layout class " + std::to_string(layout) +
+                      "), which this reader does not read");
+  }
+  const bool first = !storage->layoutSeen;  // libhdf5 uses the first layout message
+  storage->layoutSeen = true;
+  if (layout == 0) {
+    const std::uint64_t bytes = size >= 4 ? number(at + 2, 2, what) : 0;
+    if (size < 4 || bytes > size - 4) {
+      damaged(what, "its compact data claims " + std::to_string(bytes) + " bytes in a message of " +
+                        std::to_string(size));
+    }
+    if (first) {
       storage->known = true;
       storage->at = at + 4;
       storage->bytes = bytes;
-      return;
     }
-    if (layout == 1) {
-      const auto address = number(at + 2, offsetBytes_, what);
-      const auto bytes = number(at + 2 + offsetBytes_, lengthBytes_, what);
-      if (!undefined(address) && !inside(address, bytes)) {
-        damaged(what, "its data claims " + std::to_string(bytes) + " bytes at byte " +
-                          std::to_string(address) + ", outside the file of " +
-                          std::to_string(image_.size()) + " bytes");
-      }
-      if (!undefined(address)) {
-        storage->known = true;
-        storage->at = base_ + address;
-        storage->bytes = bytes;
-      }
-      return;
+    return;
+  }
+  if (layout == 1) {
+    if (size < 2 + offsetBytes_ + lengthBytes_) damaged(what, "its layout message is cut short");
+    const auto address = number(at + 2, offsetBytes_, what);
+    const auto bytes = number(at + 2 + offsetBytes_, lengthBytes_, what);
+    if (!undefined(address) && !inside(address, bytes)) {
+      damaged(what, "its data claims " + std::to_string(bytes) + " bytes at byte " +
+                        std::to_string(address) + ", outside the file of " +
+                        std::to_string(image_.size()) + " bytes");
     }
-    if (layout != 2) return;
-    std::uint64_t dims = 0;
-    std::uint64_t width = 4;
-    std::uint64_t first = 0;
-    if (version == 3) {
-      dims = number(at + 2, 1, what);
-      first = at + 3 + offsetBytes_;
-    } else {
-      dims = number(at + 3, 1, what);
-      width = number(at + 4, 1, what);
-      first = at + 5;
-      if (width == 0 || width > 8)
-        damaged(what, "its chunk sizes have " + std::to_string(width) + " bytes each");
+    if (first && !undefined(address)) {
+      storage->known = true;
+      storage->at = base_ + address;
+      storage->bytes = bytes;
     }
-    if (first + dims * width > at + size) damaged(what, "its layout message is cut short");
-    std::uint64_t bytes = 1;
-    for (std::uint64_t i = 0; i < dims; ++i) {
-      const std::uint64_t d = number(first + i * width, width, what);
-      if (d != 0 && bytes > kMaxArrayBytes / d) {
-        damaged(what, "its chunks are larger than this reader accepts (" +
-                          std::to_string(kMaxArrayBytes) + " bytes)");
-      }
-      bytes *= d;
+    return;
+  }
+  std::uint64_t dims = 0;
+  std::uint64_t width = 4;
+  std::uint64_t sizes = 0;
+  if (version == 3) {
+    dims = number(at + 2, 1, what);
+    sizes = at + 3 + offsetBytes_;
+  } else {
+    dims = number(at + 3, 1, what);
+    width = number(at + 4, 1, what);
+    sizes = at + 5;
+    if (width == 0 || width > 8) {
+      damaged(what, "its chunk sizes have " + std::to_string(width) + " bytes each");
     }
+  }
+  if (sizes + dims * width > at + size) damaged(what, "its layout message is cut short");
+  std::uint64_t bytes = 1;
+  for (std::uint64_t i = 0; i < dims; ++i) {
+    const std::uint64_t d = number(sizes + i * width, width, what);
+    if (d != 0 && bytes > kMaxArrayBytes / d) {
+      damaged(what, "its chunks are larger than this reader accepts (" +
+                        std::to_string(kMaxArrayBytes) + " bytes)");
+    }
+    bytes *= d;
   }
 }
 
@@ -217,7 +300,7 @@ Hdf5Structure::Storage Hdf5Structure::checkObject(std::uint64_t address,
     // 4 bytes of alignment, then the messages.
     size = number(at + 8, 4, what);
     start = address + 16;
-  } else if (image_.substr(at, 4) == "OHDR") {
+  } else if (image_.substr(at, 4) == "OHDR" && image_[at + 4] == 2) {
     // Version 2: "OHDR", version, flags, [4 times], [2 attribute limits], chunk size (1, 2, 4
     // or 8 bytes by flags bits 0-1), the messages, a checksum.
     v2 = true;
@@ -232,6 +315,9 @@ Hdf5Structure::Storage Hdf5Structure::checkObject(std::uint64_t address,
   }
   std::vector<std::pair<std::uint64_t, std::uint64_t>> chunks{{start, size}};
   std::set<std::uint64_t> seen{start};
+  // The chunks of a valid header are disjoint parts of the file: more bytes than the file has
+  // means they overlap (a damaged header could otherwise make this walk the file many times).
+  std::uint64_t walked = 0;
   for (std::size_t c = 0; c < chunks.size(); ++c) {
     const auto [chunk, length] = chunks[c];
     if (!inside(chunk, length)) {
@@ -239,16 +325,20 @@ Hdf5Structure::Storage Hdf5Structure::checkObject(std::uint64_t address,
                         std::to_string(chunk) + ", outside the file of " +
                         std::to_string(image_.size()) + " bytes");
     }
+    walked += length;
+    if (walked > image_.size()) damaged(what, "the chunks of its object header overlap");
     std::uint64_t pos = base_ + chunk;
     const std::uint64_t end = base_ + chunk + length;
     while (pos + messageHeader <= end) {
-      const auto type = v2 ? number(pos, 1, what) : number(pos, 2, what);
-      const auto bytes = number(pos + (v2 ? 1 : 2), 2, what);
-      const std::uint64_t data = pos + messageHeader;
-      if (bytes > end - data) break;  // libhdf5 refuses the header
+      Message m;
+      m.type = static_cast<unsigned>(v2 ? number(pos, 1, what) : number(pos, 2, what));
+      m.bytes = number(pos + (v2 ? 1 : 2), 2, what);
+      m.flags = static_cast<unsigned>(number(pos + (v2 ? 3 : 4), 1, what));
+      m.at = pos + messageHeader;
+      if (m.bytes > end - m.at) break;  // libhdf5 refuses the header
       std::uint64_t next = 0;
       std::uint64_t nextLength = 0;
-      checkMessage(static_cast<unsigned>(type), data, bytes, what, &next, &nextLength, &storage);
+      checkMessage(m, what, &next, &nextLength, &storage);
       if (nextLength != 0 || next != 0) {
         if (chunks.size() >= kMaxChunks) damaged(what, "its object header has too many chunks");
         // A version 2 continuation chunk: "OCHK", the messages, a checksum.
@@ -263,7 +353,7 @@ Hdf5Structure::Storage Hdf5Structure::checkObject(std::uint64_t address,
         const std::uint64_t first = v2 ? next + 4 : next;
         if (seen.insert(first).second) chunks.emplace_back(first, v2 ? nextLength - 8 : nextLength);
       }
-      pos = data + bytes;
+      pos = m.at + m.bytes;
     }
   }
   return storage;
@@ -272,6 +362,11 @@ Hdf5Structure::Storage Hdf5Structure::checkObject(std::uint64_t address,
 void Hdf5Structure::checkVariableLengthString(const Storage& storage,
                                               const std::string& what) const {
   if (!found_) return;
+  if (storage.sharedDatatype) {
+    damaged(what,
+            "its string's type is a committed (shared) datatype, which this reader does "
+            "not read");
+  }
   // A string's characters are bytes: libhdf5 allocates the string's length times this (a
   // damaged file asked for 2.7 GB this way).
   if (storage.sequenceElementBytes != 1) {
@@ -287,7 +382,8 @@ void Hdf5Structure::checkVariableLengthString(const Storage& storage,
   const std::uint64_t length = number(storage.at, 4, what);
   const std::uint64_t collection = number(storage.at + 4, offsetBytes_, what);
   const std::uint64_t index = number(storage.at + 4 + offsetBytes_, 4, what);
-  if (length == 0) return;
+  // libhdf5 reads nothing for a collection address of 0 (a null string), whatever the length.
+  if (collection == 0) return;
   // The collection: "GCOL", version 1, 3 reserved, its size (L) including this header, then the
   // objects: index (2), reference count (2), reserved (4), size (L), the data padded to 8 bytes;
   // index 0 is the free space that ends it.
@@ -334,7 +430,8 @@ void Hdf5Structure::checkVariableLengthString(const Storage& storage,
     }
     pos += step;
   }
-  if (found && objectBytes < length) {
+  // libhdf5 sizes its buffer by the length and copies the object at the object's size.
+  if (found && objectBytes != length) {
     damaged(what, "its string has " + std::to_string(length) + " bytes, its global heap object " +
                       std::to_string(index) + " holds " + std::to_string(objectBytes));
   }

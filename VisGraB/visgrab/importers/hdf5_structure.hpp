@@ -17,12 +17,13 @@ namespace visgrab::importers::detail {
 /// - every continuation chunk of its object header (versions 1 and 2) lies inside the file;
 /// - a symbol-table group's local heap (where libhdf5 keeps the names of its members) has its
 ///   signature and its data block lies inside the file;
-/// - a dataset's layout (versions 3 and 4): compact data inside its message, contiguous data
-///   inside the file, chunks of at most kMaxArrayBytes;
+/// - a dataset's layout (versions 3 and 4; others and virtual datasets refused): compact data
+///   inside its message, contiguous data inside the file, chunks of at most kMaxArrayBytes;
+///   fill values inside their message; external storage refused;
 /// - a variable-length string's global heap object (checkVariableLengthString).
-/// Anything this does not know (another header version) is left to libhdf5, which refuses it
-/// before allocating. The file's sizes of offsets and lengths and its base address come from the
-/// superblock (versions 0 to 3), found at byte 0, 512, 1024, ... as HDF5 looks for it.
+/// An object header of another version is left to libhdf5, which refuses it before allocating. The
+/// file's sizes of offsets and lengths and its base address come from the superblock (versions 0 to
+/// 3), found at byte 0, 512, 1024, ... as HDF5 looks for it.
 class Hdf5Structure {
  public:
   /// `image` must outlive this; `name` is the file's name in messages.
@@ -41,6 +42,9 @@ class Hdf5Structure {
     std::uint64_t at = 0;
     std::uint64_t bytes = 0;
     std::uint64_t sequenceElementBytes = 0;  // a variable-length type's element size (0: none)
+    bool sharedDatatype = false;             // its datatype message names a committed type
+    bool datatypeSeen = false;               // libhdf5 uses the first datatype message
+    bool layoutSeen = false;                 // and the first layout message
   };
   /// Checks the object header at `address` (relative to the base address, as libhdf5 reports it),
   /// called `what` in messages ("'grasps'"), and returns where its values are (a dataset's).
@@ -61,9 +65,16 @@ class Hdf5Structure {
   bool inside(std::uint64_t address, std::uint64_t length) const;
   bool undefined(std::uint64_t address) const;
   void checkHeap(std::uint64_t address, const std::string& what) const;
-  void checkMessage(unsigned type, std::uint64_t at, std::uint64_t size, const std::string& what,
-                    std::uint64_t* continuation, std::uint64_t* continuationLength,
-                    Storage* storage) const;
+  // One header message: its type, flags (0x02: shared), and data (bytes of the image).
+  struct Message {
+    unsigned type = 0;
+    unsigned flags = 0;
+    std::uint64_t at = 0;
+    std::uint64_t bytes = 0;
+  };
+  void checkMessage(const Message& m, const std::string& what, std::uint64_t* continuation,
+                    std::uint64_t* continuationLength, Storage* storage) const;
+  void checkLayout(const Message& m, const std::string& what, Storage* storage) const;
   [[noreturn]] void damaged(const std::string& what, const std::string& why) const;
 
   std::string_view image_;
