@@ -100,6 +100,25 @@ void Hdf5Structure::damaged(const std::string& what, const std::string& why) con
   throw ImportError(name_ + ": damaged HDF5 file: " + what + ": " + why);
 }
 
+std::string Hdf5Structure::byteText(std::uint64_t address) const {
+  return undefined(address) ? std::string("(undefined)") : std::to_string(address);
+}
+
+std::string Hdf5Structure::fileText() const {
+  return "the file of " + std::to_string(image_.size()) + " bytes";
+}
+
+void Hdf5Structure::outside(const std::string& what, const std::string& thing,
+                            std::uint64_t address) const {
+  damaged(what, thing + " (at byte " + byteText(address) + ") lies outside " + fileText());
+}
+
+void Hdf5Structure::claimsOutside(const std::string& what, const std::string& thing,
+                                  std::uint64_t bytes, std::uint64_t address) const {
+  damaged(what, thing + " claims " + std::to_string(bytes) + " bytes at byte " + byteText(address) +
+                    ", outside " + fileText());
+}
+
 void Hdf5Structure::checkRoot() const {
   if (!found_) return;
   checkObject(rootHeader_, "the root group");
@@ -111,8 +130,7 @@ void Hdf5Structure::checkHeap(std::uint64_t address, const std::string& what) co
   // address (O).
   const std::uint64_t headerBytes = 8 + 2 * lengthBytes_ + offsetBytes_;
   if (!inside(address, headerBytes)) {
-    damaged(what, "its name heap (at byte " + std::to_string(address) +
-                      ") lies outside the file of " + std::to_string(image_.size()) + " bytes");
+    outside(what, "its name heap", address);
   }
   const std::uint64_t at = base_ + address;
   if (image_.substr(at, 4) != "HEAP" || image_[at + 4] != 0) {
@@ -122,9 +140,7 @@ void Hdf5Structure::checkHeap(std::uint64_t address, const std::string& what) co
   const std::uint64_t size = number(at + 8, lengthBytes_, what);
   const std::uint64_t data = number(at + 8 + 2 * lengthBytes_, offsetBytes_, what);
   if (!inside(data, size)) {
-    damaged(what, "its name heap claims " + std::to_string(size) + " bytes at byte " +
-                      (undefined(data) ? std::string("(undefined)") : std::to_string(data)) +
-                      ", outside the file of " + std::to_string(image_.size()) + " bytes");
+    claimsOutside(what, "its name heap", size, data);
   }
 }
 
@@ -245,9 +261,7 @@ void Hdf5Structure::checkLayout(const Message& m, const std::string& what, Stora
     const auto address = number(at + 2, offsetBytes_, what);
     const auto bytes = number(at + 2 + offsetBytes_, lengthBytes_, what);
     if (!undefined(address) && !inside(address, bytes)) {
-      damaged(what, "its data claims " + std::to_string(bytes) + " bytes at byte " +
-                        std::to_string(address) + ", outside the file of " +
-                        std::to_string(image_.size()) + " bytes");
+      claimsOutside(what, "its data", bytes, address);
     }
     if (first && !undefined(address)) {
       storage->known = true;
@@ -287,8 +301,7 @@ Hdf5Structure::Storage Hdf5Structure::checkObject(std::uint64_t address,
   Storage storage;
   if (!found_) return storage;
   if (!inside(address, 16)) {
-    damaged(what, "its object header (at byte " + std::to_string(address) +
-                      ") lies outside the file of " + std::to_string(image_.size()) + " bytes");
+    outside(what, "its object header", address);
   }
   const std::uint64_t at = base_ + address;
   bool v2 = false;
@@ -321,9 +334,7 @@ Hdf5Structure::Storage Hdf5Structure::checkObject(std::uint64_t address,
   for (std::size_t c = 0; c < chunks.size(); ++c) {
     const auto [chunk, length] = chunks[c];
     if (!inside(chunk, length)) {
-      damaged(what, "its object header claims " + std::to_string(length) + " bytes at byte " +
-                        std::to_string(chunk) + ", outside the file of " +
-                        std::to_string(image_.size()) + " bytes");
+      claimsOutside(what, "its object header", length, chunk);
     }
     walked += length;
     if (walked > image_.size()) damaged(what, "the chunks of its object header overlap");
@@ -345,10 +356,7 @@ Hdf5Structure::Storage Hdf5Structure::checkObject(std::uint64_t address,
         if (v2 && nextLength < 8) damaged(what, "a continuation chunk of its header is too short");
         if (!inside(next, nextLength)) {
           damaged(what, "a continuation of its object header (" + std::to_string(nextLength) +
-                            " bytes at byte " +
-                            (undefined(next) ? std::string("(undefined)") : std::to_string(next)) +
-                            ") lies outside the file of " + std::to_string(image_.size()) +
-                            " bytes");
+                            " bytes at byte " + byteText(next) + ") lies outside " + fileText());
         }
         const std::uint64_t first = v2 ? next + 4 : next;
         if (seen.insert(first).second) chunks.emplace_back(first, v2 ? nextLength - 8 : nextLength);
@@ -389,10 +397,7 @@ void Hdf5Structure::checkVariableLengthString(const Storage& storage,
   // index 0 is the free space that ends it.
   const std::uint64_t headerBytes = 8 + lengthBytes_;
   if (!inside(collection, headerBytes)) {
-    damaged(what,
-            "its string's global heap (at byte " +
-                (undefined(collection) ? std::string("(undefined)") : std::to_string(collection)) +
-                ") lies outside the file of " + std::to_string(image_.size()) + " bytes");
+    outside(what, "its string's global heap", collection);
   }
   const std::uint64_t at = base_ + collection;
   if (image_.substr(at, 4) != "GCOL" || image_[at + 4] != 1) {
@@ -401,9 +406,7 @@ void Hdf5Structure::checkVariableLengthString(const Storage& storage,
   }
   const std::uint64_t size = number(at + 8, lengthBytes_, what);
   if (size < headerBytes || !inside(collection, size)) {
-    damaged(what, "its string's global heap claims " + std::to_string(size) + " bytes at byte " +
-                      std::to_string(collection) + ", outside the file of " +
-                      std::to_string(image_.size()) + " bytes");
+    claimsOutside(what, "its string's global heap", size, collection);
   }
   // Walked as libhdf5 walks it when it loads the collection: an object of index 0 (the free
   // space) advances by its size, header included; any other by its header and its data padded to

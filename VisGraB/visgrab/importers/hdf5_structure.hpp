@@ -76,6 +76,14 @@ class Hdf5Structure {
                     std::uint64_t* continuationLength, Storage* storage) const;
   void checkLayout(const Message& m, const std::string& what, Storage* storage) const;
   [[noreturn]] void damaged(const std::string& what, const std::string& why) const;
+  // "<thing> (at byte A) lies outside the file of N bytes"; "<thing> claims B bytes at byte A,
+  // outside the file of N bytes". An undefined address reads "(undefined)".
+  [[noreturn]] void outside(const std::string& what, const std::string& thing,
+                            std::uint64_t address) const;
+  [[noreturn]] void claimsOutside(const std::string& what, const std::string& thing,
+                                  std::uint64_t bytes, std::uint64_t address) const;
+  std::string byteText(std::uint64_t address) const;
+  std::string fileText() const;
 
   std::string_view image_;
   std::string name_;
