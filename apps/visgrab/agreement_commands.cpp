@@ -9,6 +9,7 @@
 #include "visgrab/analysis/label_agreement.hpp"
 #include "visgrab/database/database.hpp"
 #include "visgrab/importers/acronym.hpp"
+#include "visgrab/results/results_file.hpp"
 
 namespace visgrab::app {
 
@@ -36,10 +37,18 @@ std::string labelledScene(const Arguments& a, const analysis::AgreementRun& run,
                    " scenes: name the labelled one with --scene");
 }
 
-int runLabelAgreement(const Arguments& a, const std::string& dir, const fs::path& labels) {
+// The run in `dir` as the agreement reads it; an unfinished run is refused without
+// --allow-unfinished.
+analysis::AgreementRun readRun(const Arguments& a, const std::string& dir) {
   std::vector<rw::common::Diagnostic> warnings;
-  const analysis::AgreementRun run = analysis::readAgreementRun(dir, &warnings);
+  analysis::AgreementRun run = analysis::readAgreementRun(dir, &warnings);
+  if (!a.flag("allow-unfinished")) results::requireFinished(run.results, dir, "--allow-unfinished");
   for (const auto& w : warnings) std::cerr << w.format() << "\n";
+  return run;
+}
+
+int runLabelAgreement(const Arguments& a, const std::string& dir, const fs::path& labels) {
+  const analysis::AgreementRun run = readRun(a, dir);
   const std::vector<int> values = importers::readAcronymLabels(labels);
   const analysis::LabelAgreement agreement = analysis::compareWithLabels(
       run, values, labels, labelledScene(a, run, labels), a.option("method").value_or(""));
@@ -65,11 +74,7 @@ int runAgreement(const Arguments& a) {
   if (a.option("method")) throw UsageError("--method needs --labels");
   if (dirs.size() != 2) throw UsageError("expected two result folders, RUN_A and RUN_B");
   std::vector<analysis::AgreementRun> runs;
-  for (const std::string& dir : dirs) {
-    std::vector<rw::common::Diagnostic> warnings;
-    runs.push_back(analysis::readAgreementRun(dir, &warnings));
-    for (const auto& w : warnings) std::cerr << w.format() << "\n";
-  }
+  for (const std::string& dir : dirs) runs.push_back(readRun(a, dir));
   const analysis::Agreement agreement = analysis::compareRuns(runs[0], runs[1]);
   std::cout << analysis::agreementSummary(agreement);
   if (const auto out = a.option("out")) {
@@ -120,6 +125,9 @@ void addAgreementCommands(CommandLine& cli) {
                   "agreement.md into; with --labels label-agreement.csv, label-confusion.csv "
                   "and label-disagreements.csv")
       ->type_name("DIR");
+  addFlag(agreement, "--allow-unfinished",
+          "Compare a run that has not finished (its folder holds unfinished.txt) on the trials "
+          "it has; without it such a folder is refused");
 }
 
 }  // namespace visgrab::app

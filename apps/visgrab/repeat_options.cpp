@@ -41,6 +41,11 @@ void addRepeatOptions(CLI::App& command) {
 
 void readRepeatOptions(const Arguments& a, runner::RunOptions& options) {
   options.repeats = integerOption(a, "repeats", 1, 1);
+  if (options.repeats > results::kMaxRepeats) {
+    throw UsageError("--repeats: at most " + std::to_string(results::kMaxRepeats) +
+                     " (a grasp's P to within 0.01; docs/noise-model.md), got " +
+                     std::to_string(options.repeats));
+  }
   if (const auto noise = a.option("noise")) options.noise = *noise;
   options.noiseSeed = static_cast<std::uint64_t>(integerOption(a, "seed", 1, 0));
   options.adaptive = a.flag("adaptive");

@@ -209,6 +209,11 @@ int runAnalyze(const Arguments& a) {
   std::vector<rw::common::Diagnostic> warnings;
   // Two folders of the same name get labels that tell them apart (benchA/results, ...).
   const std::vector<results::RunResults> runs = results::readResultFolders(dirs, &warnings);
+  if (!a.flag("allow-unfinished")) {
+    for (std::size_t i = 0; i < runs.size(); ++i) {
+      results::requireFinished(runs[i], dirs[i], "--allow-unfinished");
+    }
+  }
   for (const auto& w : warnings) std::cerr << w.format() << "\n";
   analysis::writeReport(runs, *out, options, pictureDrawer(a, threadsOption(a), a.flag("quiet")));
   std::cout << "report in " << *out << " (report.html, report.md, CSV tables)\n";
@@ -430,6 +435,10 @@ void addRunCommands(CommandLine& cli) {
       ->check(integerAtLeast(0));
   addThreadsOption(analyze);
   addFlag(analyze, "--no-pictures", "Leave the report's pictures out");
+  addFlag(analyze, "--allow-unfinished",
+          "Analyze a run that has not finished (its folder holds unfinished.txt: stopped, killed "
+          "or failed, or still running) from the trials it has; the report says so. Without it "
+          "such a folder is refused");
   addDataOption(analyze)->description(
       "The project's scene data, whose protocols/ the pictures of a run made with another "
       "protocol than the lift replay with (default: $VISGRAB_DATA, else the installed "

@@ -80,7 +80,10 @@ py::dict runBenchmark(const fs::path& database, const fs::path& grasps, const fs
                       const fs::path& noise, long long seed, bool adaptive,
                       const fs::path& protocol) {
   if (threads < 1) throw py::value_error("threads must be >= 1, got " + std::to_string(threads));
-  if (repeats < 1) throw py::value_error("repeats must be >= 1, got " + std::to_string(repeats));
+  if (repeats < 1 || repeats > results::kMaxRepeats) {
+    throw py::value_error("repeats must be between 1 and " + std::to_string(results::kMaxRepeats) +
+                          ", got " + std::to_string(repeats));
+  }
   if (seed < 0) throw py::value_error("seed must be >= 0, got " + std::to_string(seed));
   if (repeats == 1 && (!noise.empty() || adaptive)) {
     throw py::value_error(std::string(adaptive ? "adaptive" : "noise") +
@@ -247,6 +250,9 @@ input files. Iterating or indexing goes over the trials.
           "and protocol_hash and protocol_file (the file the run was given; both empty for the "
           "lift).")
       .def_readonly("label", &results::RunResults::label, "The folder's name.")
+      .def_readonly("finished", &results::RunResults::finished,
+                    "False when the run has not finished (its folder holds unfinished.txt: "
+                    "stopped, killed or failed, or still running): its trials are part of it.")
       .def("__len__", [](const results::RunResults& r) { return r.trials.size(); })
       .def(
           "__iter__",
@@ -291,7 +297,7 @@ input files. Iterating or indexing goes over the trials.
   m.def(
       "_analyze",
       [](const std::vector<fs::path>& dirs, const fs::path& out, int threads, bool pictures,
-         double ciLevel, int bootstrap, std::optional<std::uint64_t> seed) {
+         double ciLevel, int bootstrap, std::optional<std::uint64_t> seed, bool allowUnfinished) {
         if (threads < 1) {
           throw py::value_error("threads must be >= 1, got " + std::to_string(threads));
         }
@@ -312,6 +318,13 @@ input files. Iterating or indexing goes over the trials.
           py::gil_scoped_release release;
           runs = results::readResultFolders(dirs, &found);
         }
+        for (std::size_t i = 0; i < runs.size() && !allowUnfinished; ++i) {
+          try {
+            results::requireFinished(runs[i], dirs[i], "allow_unfinished=True");
+          } catch (const std::runtime_error& e) {
+            throw py::value_error(e.what());
+          }
+        }
         std::vector<std::string> warnings;
         for (const auto& w : found) warnings.push_back(w.format());
         view::ReportPictureOptions options;
@@ -325,7 +338,7 @@ input files. Iterating or indexing goes over the trials.
         return warnings;
       },
       py::arg("dirs"), py::arg("out"), py::arg("threads"), py::arg("pictures"), py::arg("ci_level"),
-      py::arg("bootstrap"), py::arg("seed"),
+      py::arg("bootstrap"), py::arg("seed"), py::arg("allow_unfinished"),
       "analyze's C++ side: analysis::writeReport as `visgrab analyze`; returns the warnings.");
 }
 

@@ -176,8 +176,22 @@ def test_ctrl_c_stops_the_run_and_resume_gives_the_same_file(db, test_db_path, t
     assert result.stdout.strip() == "interrupted"
     done = trials_rows(out / "trials.csv")
     assert 1 <= len(done) < 20
+    # The stopped run says it is unfinished: read with a warning, refused by analyze unless
+    # allow_unfinished=True, whose report says so.
+    with pytest.warns(UserWarning, match=r"unfinished\.txt: warning: the run has not finished"):
+        partial = visgrab.read_results(out)
+    assert not partial.finished and len(partial) == len(done)
+    with pytest.raises(ValueError, match=r"the run has not finished .* --resume finishes it, "
+                                         r"allow_unfinished=True uses the trials it has"):
+        visgrab.analyze([out], out=tmp_path / "refused", pictures=False)
+    assert not (tmp_path / "refused" / "report.md").exists()
+    with pytest.warns(UserWarning, match="the run has not finished"):
+        visgrab.analyze([out], out=tmp_path / "partial", pictures=False, allow_unfinished=True)
+    assert '**Unfinished: run "stopped" has not finished' in (
+        tmp_path / "partial" / "report.md").read_text()
     resumed = visgrab.run(test_db_path, grasps, threads=2, out=out, resume=True)
     assert resumed.summary["resumed"] == len(done)
+    assert visgrab.read_results(out).finished and not (out / "unfinished.txt").exists()
     whole = tmp_path / "whole"
     visgrab.run(test_db_path, grasps, threads=1, out=whole)
     assert (out / "trials.csv").read_bytes() == (whole / "trials.csv").read_bytes()
@@ -285,6 +299,9 @@ def test_run_option_errors_use_the_python_names(db, runs):
         visgrab.run(db, runs["grasps"], repeats=2, adaptive=True)
     assert str(e.value).startswith("adaptive: the adaptive rule (alpha 0.05, margin 0.65)")
     assert "repeats=2 it never stops" in str(e.value) and "--repeats" not in str(e.value)
+    for bad in (0, 10001):
+        with pytest.raises(ValueError, match=f"repeats must be between 1 and 10000, got {bad}"):
+            visgrab.run(db, runs["grasps"], repeats=bad)
 
 
 def test_repeats_run_as_the_cli_runs_them(runs, binary, test_db_path, tmp_path):

@@ -376,8 +376,9 @@ def read_results(dir):
     """Reads a result folder of `visgrab run` (trials.csv, run.csv) with the C++ reader.
 
     Returns a Results object: trials (list[TrialResult], canonical order), scenes, methods,
-    rejected, sources, label; iterating it goes over the trials. A torn last line (a killed
-    run) is dropped with a warning. OSError (file:line) for a missing or corrupt file.
+    rejected, sources, label, finished; iterating it goes over the trials. A torn last line (a
+    killed run) is dropped with a warning; a run that has not finished (unfinished.txt) is read
+    with a warning and finished=False. OSError (file:line) for a missing or corrupt file.
     """
     results, notes = _visgrab._read_results(os.fspath(dir))
     for message in notes:
@@ -385,7 +386,8 @@ def read_results(dir):
     return results
 
 
-def analyze(dirs, out, threads=None, pictures=True, ci_level=0.95, bootstrap=2000, seed=None):
+def analyze(dirs, out, threads=None, pictures=True, ci_level=0.95, bootstrap=2000, seed=None,
+            allow_unfinished=False):
     """Writes the report of one or more result folders, as `visgrab analyze DIRS --out OUT`.
 
     The paper's analyses: CSV tables, report.md, report.html with SVG plots and (pictures=True,
@@ -397,9 +399,11 @@ def analyze(dirs, out, threads=None, pictures=True, ci_level=0.95, bootstrap=200
     success rates and no comparisons; else at least 100), seeded with `seed` (--seed; None =
     the CLI's default): the same seed gives the same intervals with any `threads`. Folders of
     the same name are labelled by the shortest trailing paths that differ (benchA/results,
-    benchB/results), as the CLI labels them. Returns the path of report.html. OSError for
-    unreadable result folders, ValueError for options out of range (named as here) and for one
-    folder given twice.
+    benchB/results), as the CLI labels them. A run that has not finished (its folder holds
+    unfinished.txt: stopped, killed or failed, or still running) is refused with ValueError
+    unless allow_unfinished=True (--allow-unfinished), which analyses the trials it has and
+    says so in the report. Returns the path of report.html. OSError for unreadable result
+    folders, ValueError for options out of range (named as here) and for one folder given twice.
     """
     if isinstance(dirs, (str, os.PathLike)):
         dirs = [dirs]
@@ -411,7 +415,7 @@ def analyze(dirs, out, threads=None, pictures=True, ci_level=0.95, bootstrap=200
         raise ValueError(f"seed must be an integer >= 0, got {seed!r}")
     notes = _visgrab._analyze([os.fspath(d) for d in dirs], os.fspath(out),
                               _default_threads(threads), bool(pictures), float(ci_level),
-                              bootstrap, seed)
+                              bootstrap, seed, bool(allow_unfinished))
     for message in notes:
         warnings.warn(message, stacklevel=2)
     return os.path.join(os.fspath(out), "report.html")

@@ -417,6 +417,7 @@ Analysis analyze(const std::vector<RunResults>& runs, const AnalysisOptions& opt
   std::map<std::string, int> methodUses;
   for (std::size_t r = 0; r < runs.size(); ++r) {
     a.runLabels.push_back(runs[r].label.empty() ? "run " + std::to_string(r + 1) : runs[r].label);
+    if (!runs[r].finished) a.unfinishedRuns.push_back(a.runLabels.back());
     for (const std::string& m : runs[r].methods) ++methodUses[m];
     // The label names the run's columns and keys its bootstrap streams: two runs of one label
     // would show as one and draw the same resamples.

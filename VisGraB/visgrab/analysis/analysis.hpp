@@ -289,6 +289,9 @@ struct Analysis {
   int maxAttempts = 1;
   /// Labels of the runs (RunResults::label, or "run N").
   std::vector<std::string> runLabels;
+  /// Labels of the runs that had not finished (RunResults::finished false; analysed only when the
+  /// user asked to): the reports say their figures cover part of the run.
+  std::vector<std::string> unfinishedRuns;
   /// The compared columns, run by run, methods in each run's order.
   std::vector<MethodColumn> columns;
   /// The groups (conditionGroups()).

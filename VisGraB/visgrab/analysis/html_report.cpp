@@ -303,6 +303,9 @@ std::string htmlReport(const Analysis& a, const std::vector<Showcase>& showcases
       "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\"/>\n"
       "<title>VisGraB results</title>\n<style>" +
       std::string(kStyle) + "</style>\n</head>\n<body>\n<h1>VisGraB results</h1>\n";
+  if (const std::string warning = detail::unfinishedSentence(a); !warning.empty()) {
+    html += "<p><strong>" + escapeHtml(warning) + "</strong></p>\n";
+  }
   html += "<p>Success: stable grasp or object slipped. Randomized trials: " +
           std::to_string(a.options.randomTrials) + ", seed " + std::to_string(a.options.seed) +
           ". " + (a.intervals ? escapeHtml(detail::intervalsSentence(a)) + " " : std::string()) +

@@ -145,6 +145,9 @@ void writeCsvTables(const Analysis& a, const std::filesystem::path& outDir) {
 
 std::string markdownReport(const Analysis& a, const std::vector<Showcase>& showcases) {
   std::string md = "# VisGraB results\n\n";
+  if (const std::string warning = detail::unfinishedSentence(a); !warning.empty()) {
+    md += "**" + warning + "**\n\n";
+  }
   md +=
       "Definitions: docs/report.md. Success = stable grasp or object slipped. Randomized "
       "trials: " +

@@ -123,6 +123,21 @@ std::string intervalsSentence(const Analysis& a) {
          std::to_string(a.options.permutations) + " permutations).";
 }
 
+std::string unfinishedSentence(const Analysis& a) {
+  const std::vector<std::string>& runs = a.unfinishedRuns;
+  if (runs.empty()) return "";
+  // "a", "a" and "b", "a", "b" and "c".
+  std::string names = "\"" + runs.front() + "\"";
+  for (std::size_t i = 1; i < runs.size(); ++i) {
+    names += std::string(i + 1 == runs.size() ? " and " : ", ") + "\"" + runs[i] + "\"";
+  }
+  const bool one = runs.size() == 1;
+  return std::string("Unfinished: ") + (one ? "run " : "runs ") + names + (one ? " has" : " have") +
+         " not finished (stopped, killed or failed, or still running; analysed with "
+         "--allow-unfinished): " +
+         (one ? "its" : "their") + " figures cover only the trials finished so far.";
+}
+
 Table runsTable(const Analysis& a) {
   Table t;
   t.columns = {integerColumn("", "#", kHtmlFormat), textColumn("", "run", kDisplayFormats),

@@ -16,6 +16,7 @@
 #include <utility>
 #include <variant>
 
+#include "rw/common/write_error.hpp"
 #include "visgrab/database/atomic_file.hpp"
 #include "visgrab/results/csv.hpp"
 #include "visgrab/results/trial_columns.hpp"
@@ -626,7 +627,45 @@ RunResults readResults(const fs::path& dir, std::vector<Diagnostic>* warnings) {
   run.trials = std::move(trials.trials);
   sortTrials(run.trials, run.scenes, run.methods);
   run.label = folderName(dir);
+  const fs::path unfinished = dir / kUnfinishedFileName;
+  run.finished = !fs::exists(unfinished, error);
+  if (!run.finished && warnings) {
+    Diagnostic d;
+    d.severity = Diagnostic::Severity::kWarning;
+    d.file = unfinished.string();
+    d.message = "the run has not finished (stopped, killed or failed, or still running): " +
+                std::to_string(run.trials.size()) + " trials so far";
+    warnings->push_back(d);
+  }
   return run;
+}
+
+void markUnfinished(const fs::path& dir) {
+  database::writeFileAtomically(
+      dir / kUnfinishedFileName,
+      "This run has not finished: `visgrab run` started it and has not reached its end (it was\n"
+      "stopped, killed or failed, or it is still running). trials.csv holds the trials finished "
+      "so\n"
+      "far. The same command with --resume finishes the run and removes this file. Until then\n"
+      "`visgrab analyze` and `visgrab agreement` refuse the folder (--allow-unfinished reads it\n"
+      "anyway). docs/report.md, \"Stopping, failures and resuming\".\n");
+}
+
+void markFinished(const fs::path& dir) {
+  std::error_code error;
+  fs::remove(dir / kUnfinishedFileName, error);
+  if (error) throw rw::common::WriteError((dir / kUnfinishedFileName).string(), error);
+}
+
+void requireFinished(const RunResults& run, const fs::path& dir, std::string_view allow) {
+  if (run.finished) return;
+  throw std::runtime_error(
+      dir.string() + ": the run has not finished (" + std::string(kUnfinishedFileName) +
+      " is there: it was stopped, killed or failed, or it is still running), so its " +
+      std::to_string(run.trials.size()) +
+      " trials are only part of it; `visgrab run` with the same options and --resume finishes "
+      "it, " +
+      std::string(allow) + " uses the trials it has");
 }
 
 std::vector<std::string> distinctLabels(const std::vector<fs::path>& dirs) {

@@ -41,6 +41,12 @@ namespace visgrab::results {
 inline constexpr std::string_view kTrialsFileName = "trials.csv";
 /// Name of the run file in a result folder.
 inline constexpr std::string_view kRunFileName = "run.csv";
+/// Name of the file `visgrab run` keeps in a result folder while its run has not finished: it is
+/// written before the first trial runs and removed once trials.csv is in its canonical order and
+/// grasps.csv is written. A folder holding it is a run that was stopped, killed or failed, or one
+/// still running: its trials are only part of the run, and an analysis of them would not say so.
+/// (Folders written before the file existed never hold it.)
+inline constexpr std::string_view kUnfinishedFileName = "unfinished.txt";
 /// Format version of the trials.csv written (4: RFC 4180, no comment line, with closing_capped;
 /// 3: the same without closing_capped; 2: the columns of 3 after `# visgrab trials 2`, backslash
 /// escapes; 1: no q_gws_unit, q_gws was the unit-force one).
@@ -103,10 +109,24 @@ void sortTrials(std::vector<TrialRecord>& trials, const std::vector<RunScene>& s
 /// conditions; scenes only in trials.csv are added (conditions from the id, warning when run.csv
 /// exists), so are methods; trials are sorted with sortTrials; label is the folder's name.
 /// A torn last record of trials.csv is dropped with a warning in `warnings` (if given).
+/// RunResults::finished is false when the folder holds kUnfinishedFileName (with a warning naming
+/// it and the trials read).
 /// @throws rw::common::LoadError (file:line) for a folder that does not exist or is a file, a
 /// missing trials.csv, one without its column line (empty, or cut off in it), or corrupt files.
 RunResults readResults(const std::filesystem::path& dir,
                        std::vector<rw::common::Diagnostic>* warnings = nullptr);
+
+/// Writes `dir`'s unfinished.txt (atomically; a sentence for whoever opens the folder).
+/// @throws rw::common::WriteError if it cannot be written.
+void markUnfinished(const std::filesystem::path& dir);
+/// Removes `dir`'s unfinished.txt if it is there. @throws rw::common::WriteError if it cannot be
+/// removed.
+void markFinished(const std::filesystem::path& dir);
+/// Throws std::runtime_error naming `dir` when `run` (read from `dir`) has not finished
+/// (RunResults::finished): figures over part of a run would pass for the run's. `allow` is how the
+/// caller's user asks to use its trials anyway (e.g. "--allow-unfinished"), named in the message.
+void requireFinished(const RunResults& run, const std::filesystem::path& dir,
+                     std::string_view allow);
 
 /// Reads the result folders `dirs` (readResults each, in order) to be compared side by side and
 /// labels each run so the labels tell them apart: the folder's name (as readResults), and for

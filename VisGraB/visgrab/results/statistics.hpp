@@ -145,6 +145,12 @@ double pairedPermutationPValue(const std::vector<PairedUnit>& units, int permuta
 /// Returns k.
 int repeatsToDecide(double alpha, double margin);
 
+/// The most repeats a run takes (`--repeats`, Python repeats=): a per-grasp P to within about
+/// 0.01 (the 95 % Wilson half-width at P = 0.5 is 0.0098), finer than the simulator's own error
+/// (a time step moves verdicts by several per cent: docs/report.md), and the run's trial count
+/// stays far from the integers' limits.
+inline constexpr int kMaxRepeats = 10000;
+
 /// The fewest repeats with which the rule can stop a grasp early: repeat 0, the k agreeing
 /// perturbed trials of repeatsToDecide, and one more (with fewer, every grasp runs them all).
 /// What the runner, the command line and Python check `--repeats` against.

@@ -129,6 +129,9 @@ struct RunResults {
   /// Name of the run when several are compared side by side (readResults: the folder's name);
   /// may be empty.
   std::string label;
+  /// False when the folder read holds kUnfinishedFileName (results_file.hpp): the run was
+  /// stopped, killed or failed, or is still running, so its trials are only part of it.
+  bool finished = true;
 };
 
 }  // namespace visgrab::results

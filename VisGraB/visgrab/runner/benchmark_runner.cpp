@@ -73,8 +73,9 @@ struct RepeatPlan {
 };
 
 RepeatPlan planRepeats(const RunOptions& options) {
-  if (options.repeats < 1) {
-    throw std::invalid_argument("repeats must be at least 1, not " +
+  if (options.repeats < 1 || options.repeats > results::kMaxRepeats) {
+    throw std::invalid_argument("repeats must be between 1 and " +
+                                std::to_string(results::kMaxRepeats) + ", not " +
                                 std::to_string(options.repeats));
   }
   RepeatPlan plan;
@@ -358,7 +359,7 @@ PendingWork pendingScenes(const std::vector<SceneGraspList>& work,
     }
     if (left == 0) continue;
     pending.scenes.push_back(&w);
-    pending.progress.trialsTotal += static_cast<int>(left);
+    pending.progress.trialsTotal += static_cast<std::int64_t>(left);
   }
   pending.progress.scenesTotal = static_cast<int>(pending.scenes.size());
   return pending;
@@ -712,6 +713,9 @@ RunSummary runBenchmark(const RunOptions& options,
   checkSameDatabase(options, previous, plan.run.sources);
   checkSameEngine(options, previous, plan.run.sources);
   checkSameProtocol(options, previous, plan.run.sources);
+  // From here the folder holds part of a run until finishRun has written it whole; a refused
+  // resume above leaves it as it was.
+  results::markUnfinished(options.out);
   writeRunFile(plan, writer);
   runScenes(options, loader, repeats, pending, plan, writer, [&] {
     pending.progress.elapsed =
@@ -727,6 +731,7 @@ RunSummary runBenchmark(const RunOptions& options,
         (options.out / results::kTrialsFileName).string() + "; --resume continues the run");
   }
   RunSummary summary = finishRun(plan, writer);
+  results::markFinished(options.out);
   if (shard) {
     finishShard(options.out, *shard, static_cast<std::size_t>(summary.trials + summary.resumed));
   }

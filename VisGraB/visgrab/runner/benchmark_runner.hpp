@@ -87,9 +87,9 @@ struct RunProgress {
   /// Scenes with grasps to run.
   int scenesTotal = 0;
   /// Trials finished in this run.
-  int trialsDone = 0;
+  std::int64_t trialsDone = 0;
   /// Trials this run has to do (without those found done when resuming).
-  int trialsTotal = 0;
+  std::int64_t trialsTotal = 0;
   /// Seconds since the run started.
   double elapsed = 0.0;
 };

@@ -399,6 +399,33 @@ TEST_F(ReportIntervalsTest, MarkdownAndHtmlShowTheIntervalBesideTheNumber) {
             std::string::npos);
 }
 
+/// Runs read from folders that had not finished (analysed on request) are named at the top of
+/// both reports; finished runs add nothing.
+TEST(ReportUnfinishedTest, TheReportsNameTheRunsThatHadNotFinished) {
+  results::RunResults a = test_runs::runA();
+  results::RunResults b = test_runs::runB();
+  const auto reportOf = [](const std::vector<results::RunResults>& runs) {
+    test::TempDir dir;
+    writeReport(runs, dir.path(), withoutIntervals());
+    return std::make_pair(readText(dir.path() / "report.md"), readText(dir.path() / "report.html"));
+  };
+  EXPECT_EQ(reportOf({a, b}).first.find("Unfinished"), std::string::npos);
+  b.finished = false;
+  const auto [md, html] = reportOf({a, b});
+  EXPECT_EQ(md.find("# VisGraB results\n\n**Unfinished: run \"runB\" has not finished (stopped, "
+                    "killed or failed, or still running; analysed with --allow-unfinished): its "
+                    "figures cover only the trials finished so far.**\n"),
+            0u);
+  EXPECT_NE(html.find("<h1>VisGraB results</h1>\n<p><strong>Unfinished: run &quot;runB&quot; has "
+                      "not finished"),
+            std::string::npos);
+  a.finished = false;
+  EXPECT_NE(reportOf({a, b}).first.find(
+                "**Unfinished: runs \"runA\" and \"runB\" have not finished (stopped, killed or "
+                "failed, or still running; analysed with --allow-unfinished): their figures"),
+            std::string::npos);
+}
+
 TEST(ReportLevelTest, TheLevelIsWrittenAsPercent) {
   EXPECT_EQ(detail::levelText(0.95), "95");
   EXPECT_EQ(detail::levelText(0.9), "90");

@@ -177,6 +177,11 @@ class InterruptedRun : public ::testing::Test {
   // The stopped run's trials.csv ends in a complete line; --resume (one thread) completes it to
   // the uninterrupted run's bytes.
   static void expectResumesToTheWholeRun(const fs::path& out) {
+    // A stopped run's folder (unless the folder itself was deleted) says it is unfinished until
+    // the resume finishes it.
+    if (fs::exists(out)) {
+      EXPECT_TRUE(fs::exists(out / "unfinished.txt")) << "the stopped run looks finished";
+    }
     const std::string partial = fileBytes(out / "trials.csv");
     if (!partial.empty()) {
       EXPECT_EQ(partial.back(), '\n') << "a torn line was left in trials.csv";
@@ -186,6 +191,7 @@ class InterruptedRun : public ::testing::Test {
     const auto resumed = visgrab::test::runVisgrab(commonArgs() + " --threads 1 --resume --out " +
                                                    visgrab::test::shellQuoted(out));
     ASSERT_EQ(resumed.exitCode, 0) << resumed.output;
+    EXPECT_FALSE(fs::exists(out / "unfinished.txt"));
     EXPECT_EQ(fileBytes(out / "trials.csv"), fileBytes(wholeDir() / "trials.csv"));
     EXPECT_EQ(fileBytes(out / "run.csv"), fileBytes(wholeDir() / "run.csv"));
   }

@@ -309,6 +309,25 @@ TEST_F(RepeatedRun, BadRepeatOptionsAreClearErrors) {
   const auto zero = visgrab::test::runVisgrab(common + " --repeats 0");
   EXPECT_NE(zero.exitCode, 0);
   EXPECT_NE(zero.output.find("--repeats"), std::string::npos) << zero.output;
+  // At most 10,000 repeats (the count of a run's trials stays far from int's limit).
+  const auto many = visgrab::test::runVisgrab(common + " --repeats 10001");
+  EXPECT_EQ(many.exitCode, 2) << many.output;
+  EXPECT_NE(many.output.find("--repeats: at most 10000 (a grasp's P to within 0.01; "
+                             "docs/noise-model.md), got 10001"),
+            std::string::npos)
+      << many.output;
+  visgrab::runner::RunOptions tooMany;
+  tooMany.repeats = 10001;
+  EXPECT_THROW(
+      {
+        try {
+          visgrab::runner::runBenchmark(tooMany);
+        } catch (const std::invalid_argument& e) {
+          EXPECT_STREQ(e.what(), "repeats must be between 1 and 10000, not 10001");
+          throw;
+        }
+      },
+      std::invalid_argument);
   const auto noiseAlone = visgrab::test::runVisgrab(common + " --noise x.xml");
   EXPECT_NE(noiseAlone.exitCode, 0);
   EXPECT_NE(noiseAlone.output.find("--noise needs --repeats N"), std::string::npos)

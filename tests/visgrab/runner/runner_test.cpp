@@ -1,6 +1,7 @@
 // The benchmark run on the shared generated test database with grasps whose outcome is known from
 // the objects' ground-truth poses: each grasp representation, rejected input, and a run killed with
-// SIGKILL and resumed against an uninterrupted one (byte-equal results).
+// SIGKILL (refused by the analyses until it is finished) and resumed against an uninterrupted one
+// (byte-equal results).
 #include <gtest/gtest.h>
 
 #include <signal.h>
@@ -257,10 +258,46 @@ TEST(BenchmarkRun, AKilledRunResumesToTheSameResults) {
   waitpid(pid, &status, 0);
   ASSERT_TRUE(WIFSIGNALED(status)) << "the run finished before it could be killed";
   ASSERT_GE(lines, 7u);
+  // The killed run's folder says it is unfinished: the analyses refuse it, naming the folder
+  // and the way out, unless asked to read the trials it has, and then the report says so.
+  EXPECT_TRUE(fs::exists(killedOut / "unfinished.txt"));
+  EXPECT_FALSE(visgrab::results::readResults(killedOut).finished);
+  const auto refused =
+      visgrab::test::runVisgrab("analyze " + visgrab::test::shellQuoted(killedOut) + " --out " +
+                                visgrab::test::shellQuoted(tmp.path() / "partial") + " --quiet");
+  EXPECT_EQ(refused.exitCode, 1) << refused.output;
+  EXPECT_NE(refused.output.find(killedOut.string() + ": the run has not finished"),
+            std::string::npos)
+      << refused.output;
+  EXPECT_NE(refused.output.find("--resume finishes it, --allow-unfinished uses the trials it has"),
+            std::string::npos)
+      << refused.output;
+  EXPECT_FALSE(fs::exists(tmp.path() / "partial" / "report.md"));
+  const auto refusedAgreement =
+      visgrab::test::runVisgrab("agreement " + visgrab::test::shellQuoted(tmp.path() / "a") + " " +
+                                visgrab::test::shellQuoted(killedOut));
+  EXPECT_EQ(refusedAgreement.exitCode, 1) << refusedAgreement.output;
+  EXPECT_NE(refusedAgreement.output.find("the run has not finished"), std::string::npos)
+      << refusedAgreement.output;
+  const auto partial = visgrab::test::runVisgrab(
+      "analyze " + visgrab::test::shellQuoted(killedOut) + " --out " +
+      visgrab::test::shellQuoted(tmp.path() / "partial") + " --allow-unfinished --no-pictures");
+  ASSERT_EQ(partial.exitCode, 0) << partial.output;
+  EXPECT_NE(partial.output.find("unfinished.txt: warning: the run has not finished"),
+            std::string::npos)
+      << partial.output;
+  EXPECT_NE(fileBytes(tmp.path() / "partial" / "report.md")
+                .find("**Unfinished: run \"b\" has not finished"),
+            std::string::npos);
+  EXPECT_NE(fileBytes(tmp.path() / "partial" / "report.html")
+                .find("<p><strong>Unfinished: run &quot;b&quot; has not finished"),
+            std::string::npos);
   const auto resumed = visgrab::test::runVisgrab(common + " --threads 2 --resume --out " +
                                                  visgrab::test::shellQuoted(killedOut));
   ASSERT_EQ(resumed.exitCode, 0) << resumed.output;
   EXPECT_NE(resumed.output.find("resumed"), std::string::npos) << resumed.output;
+  EXPECT_FALSE(fs::exists(killedOut / "unfinished.txt"));
+  EXPECT_FALSE(fs::exists(tmp.path() / "a" / "unfinished.txt"));
   EXPECT_EQ(fileBytes(killedOut / "trials.csv"), fileBytes(tmp.path() / "a" / "trials.csv"));
   EXPECT_EQ(fileBytes(killedOut / "run.csv"), fileBytes(tmp.path() / "a" / "run.csv"));
   // The analyses of the two runs side by side.

@@ -61,4 +61,7 @@ std::string levelText(double level);
 /// The sentence on the intervals in the reports' introduction.
 std::string intervalsSentence(const Analysis& a);
 
+/// The warning that opens a report of runs that had not finished (empty when all had).
+std::string unfinishedSentence(const Analysis& a);
+
 }  // namespace visgrab::analysis::detail
