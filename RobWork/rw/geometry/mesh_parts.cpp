@@ -1,6 +1,5 @@
 #include "rw/geometry/mesh_parts.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <utility>
@@ -35,16 +34,18 @@ bool strictlyInside(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Ei
 }
 
 /// The quad's corner at which it is concave (the two angles next to the diagonal from it add up
-/// to more than pi), or 0 for a convex quad.
+/// to more than pi), or 0 for a convex quad. Computed in float as assimp does, so that a quad
+/// with a straight corner is cut where assimp cut it.
 std::size_t concaveCorner(std::span<const Vector3D> vertices, std::span<const std::uint32_t> q) {
+  const auto at = [&](std::size_t i) { return vertices[q[i % 4]].cast<float>(); };
   for (std::size_t i = 0; i < 4; ++i) {
-    const Vector3D& v = vertices[q[i]];
-    const Vector3D left = (vertices[q[(i + 3) % 4]] - v).normalized();
-    const Vector3D diagonal = (vertices[q[(i + 2) % 4]] - v).normalized();
-    const Vector3D right = (vertices[q[(i + 1) % 4]] - v).normalized();
-    const double angle = std::acos(std::clamp(left.dot(diagonal), -1.0, 1.0)) +
-                         std::acos(std::clamp(right.dot(diagonal), -1.0, 1.0));
-    if (angle > std::numbers::pi) return i;
+    const Eigen::Vector3f v = at(i);
+    const Eigen::Vector3f left = (at(i + 3) - v).normalized();
+    const Eigen::Vector3f diagonal = (at(i + 2) - v).normalized();
+    const Eigen::Vector3f right = (at(i + 1) - v).normalized();
+    // Not clamped, as in assimp: a rounded cosine beyond +-1 gives NaN, which is not concave.
+    const float angle = std::acos(left.dot(diagonal)) + std::acos(right.dot(diagonal));
+    if (angle > std::numbers::pi_v<float>) return i;
   }
   return 0;
 }
@@ -84,14 +85,14 @@ std::vector<Eigen::Vector2d> project(std::span<const Vector3D> vertices,
   return points;
 }
 
-/// True when the corner `ear` (between `prev` and `next`) cuts off a convex triangle that holds
-/// no other corner of the polygon (compared by position, so repeated positions do not count).
+/// True when the corner `ear` (between `prev` and `next`) cuts off a convex (or flat) triangle that
+/// holds no other corner of the polygon (compared by position, so repeated positions do not count).
 bool isEar(const std::vector<Eigen::Vector2d>& points, std::size_t prev, std::size_t ear,
            std::size_t next, std::int64_t& budget) {
   const Eigen::Vector2d& a = points[prev];
   const Eigen::Vector2d& b = points[ear];
   const Eigen::Vector2d& c = points[next];
-  if (twiceArea(a, b, c) <= 0.0) return false;
+  if (twiceArea(a, b, c) < 0.0) return false;  // reflex; a straight corner counts, as in assimp
   budget -= static_cast<std::int64_t>(points.size());
   for (const Eigen::Vector2d& p : points) {
     if (p != a && p != b && p != c && strictlyInside(a, b, c, p)) return false;
@@ -104,7 +105,6 @@ bool clipEars(std::span<const Vector3D> vertices, std::span<const std::uint32_t>
               std::vector<std::array<std::uint32_t, 3>>& out, std::int64_t& budget) {
   const std::vector<Eigen::Vector2d> points = project(vertices, corners);
   const std::size_t n = corners.size();
-  const std::size_t firstOut = out.size();
   std::vector<bool> done(n, false);
   std::size_t left = n;
   std::size_t prev = n - 1;
@@ -120,12 +120,7 @@ bool clipEars(std::span<const Vector3D> vertices, std::span<const std::uint32_t>
       if (isEar(points, prev, ear, next, budget)) break;
       if (budget <= 0) return false;
     }
-    if (wraps == 2) {  // no ear: not a simple polygon; a fan around corner 0 instead
-      out.resize(firstOut);
-      for (std::size_t k = 1; k + 1 < n; ++k)
-        out.push_back({corners[0], corners[k], corners[k + 1]});
-      return true;
-    }
+    if (wraps == 2) return true;  // no ear: not a simple polygon; assimp keeps what it has
     out.push_back({corners[prev], corners[ear], corners[next]});
     done[ear] = true;
     --left;

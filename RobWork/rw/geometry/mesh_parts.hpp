@@ -30,7 +30,8 @@ struct MeshPart {
 /// appended to `out`, as assimp's aiProcess_Triangulate does: a triangle is kept, a quad is cut
 /// at its concave corner (or at corner 0), a larger polygon is ear-clipped in the plane its
 /// Newell normal is closest to, ears taken in order starting at corner 0 with the last corner as
-/// its neighbour; a polygon without an ear (not simple) becomes a fan around corner 0.
+/// its neighbour (a flat corner counts as convex); when no ear is left (a polygon that is not
+/// simple) the triangles cut so far are kept and the rest is dropped, as assimp 5.2 does.
 /// `budget` is decremented by the work done and must stay positive.
 /// @returns false when the work would exceed `budget` (the caller reports it).
 bool triangulatePolygon(std::span<const rw::math::Vector3D> vertices,

@@ -135,6 +135,13 @@ TEST(PlyReaderTest, PolygonsAreTriangulatedAsAssimpDid) {
   const Vector3D q0(0, 0, 0), q1(4, 0, 0), q2(4, 4, 0), q3(2, 1, 0), q4(0, 4, 0);
   EXPECT_EQ(polygon({q0, q1, q2, q3, q4}),
             trianglesFrom({{q1, q2, q3}, {q3, q4, q0}, {q0, q1, q3}}));
+  // Corners on a line: every corner is flat, which counts as convex: a fan around corner 4.
+  const Vector3D l0(0, 0, 0), l1(1, 0, 0), l2(2, 0, 0), l3(3, 0, 0), l4(4, 0, 0);
+  EXPECT_EQ(polygon({l0, l1, l2, l3, l4}),
+            trianglesFrom({{l4, l0, l1}, {l4, l1, l2}, {l2, l3, l4}}));
+  // Not simple (its edges cross): after the ear c4 c0 c1 none is left, and assimp kept only that.
+  const Vector3D s0(2, 1, 0), s1(3, 3, 0), s2(4, 0, 0), s3(0, 1, 0), s4(4, 3, 0);
+  EXPECT_EQ(polygon({s0, s1, s2, s3, s4}), trianglesFrom({{s4, s0, s1}}));
 }
 
 TEST(PlyReaderTest, FacesOfFewerThanThreeCornersAreDropped) {
