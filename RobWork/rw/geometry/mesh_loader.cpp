@@ -20,7 +20,7 @@
 #include <vector>
 
 #include "rw/geometry/ac3d_reader.hpp"
-#include "rw/geometry/mesh_loader_detail.hpp"
+#include "rw/geometry/detail/mesh_checks.hpp"
 #include "rw/geometry/mesh_parts.hpp"
 #include "rw/geometry/ply_reader.hpp"
 

@@ -11,7 +11,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "rw/geometry/mesh_loader_detail.hpp"
+#include "rw/geometry/detail/mesh_checks.hpp"
 #include "visgrab/render/png_io.hpp"
 
 namespace visgrab::render {

@@ -9,9 +9,10 @@ namespace visgrab::render {
 
 /// Reads a mesh file with assimp (OBJ with its .mtl and textures, STL, PLY, AC3D and the other
 /// formats assimp reads) into one VisualMesh per assimp mesh, with node transforms applied.
-/// First the file passes the checks rw::geometry::loadMesh makes (mesh_loader_detail.hpp): an
-/// STL its structure check, a PLY or AC3D file our own reader in full (assimp loops or allocates
-/// tens of GB on some malformed ones), so a bad file is refused with its line before assimp.
+/// First the file passes the checks rw::geometry::loadMesh makes (rw/geometry/detail/
+/// mesh_checks.hpp): an STL its structure check, a PLY or AC3D file our own reader in full
+/// (assimp loops or allocates tens of GB on some malformed ones), so a bad file is refused with
+/// its line before assimp sees it.
 ///
 /// Each mesh gets its material's diffuse colour (Kd), a specular strength from Ks (mean of its
 /// components, clamped to [0, 1]) and, if the material names one, its diffuse texture (read

@@ -72,14 +72,17 @@ TEST(Ac3dReaderTest, NestedKidsRotAndLocMaterialsLinesAndData) {
   EXPECT_EQ(mesh->vertices.size(), 7U);
 }
 
-// Any hex digit after "AC3D" is a version; CRLF line ends and blank lines are fine.
+// Any hex digit after "AC3D" is a version; CRLF line ends and blank lines are fine; a second
+// top-level object (a light, with AC3D's hidden/locked flags) gives no triangles.
 TEST(Ac3dReaderTest, VersionDigitsLineEndsAndSubdivZero) {
   TempDir dir;
   for (const std::string version : {"AC3Da", "AC3DF", "AC3D9"}) {
     const std::string text = version + "\r\n" + kMaterials +
                              "\r\nOBJECT poly\r\nsubdiv 0\r\nnumvert 3\r\n0 0 0\r\n1 0 0\r\n0 1 "
                              "0\r\nnumsurf 1\r\nSURF 0x20\r\nmat 1\r\nrefs 3\r\n0 0 0\r\n1 0 "
-                             "0\r\n2 0 0\r\nkids 0\r\n";
+                             "0\r\n2 0 0\r\nkids 0\r\n"
+                             "OBJECT light\r\nname \"lamp\"\r\nhidden\r\nlocked\r\nloc 0 0 5\r\n"
+                             "kids 0\r\n";
     EXPECT_EQ(loadMesh(writeFile(dir.path() / "v.ac3d", text))->triangles.size(), 1U) << version;
   }
 }
