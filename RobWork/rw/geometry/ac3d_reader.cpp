@@ -198,6 +198,9 @@ class Ac3dReader {
     if (words[0] != "refs") fail("expected \"refs <count>\", found " + shown(words[0]));
     expectSize(words, 1, "refs <count>");
     const std::uint64_t n = count(words[1], "refs", (bytesLeft() + 1) / kCornerBytes);
+    if (n == 0 && (flags & 0xFU) == 0U) {  // assimp refused these (an empty face)
+      fail("a polygon surface with refs 0; expected at least one corner");
+    }
     const std::size_t surfaceLine = line_;
     std::vector<std::uint32_t> corners;
     corners.reserve(static_cast<std::size_t>(n));

@@ -149,6 +149,13 @@ class PlyReader {
     assignRoles();
     checkCounts();
     for (const Element& element : elements_) readElement(element);
+    if (ascii()) {
+      here();
+      if (pos_ < bytes_.size()) {
+        failAt(line_,
+               "expected the end of the file after the last element, found " + shown(restOfLine()));
+      }
+    }
     return {buildPart()};
   }
 
@@ -160,7 +167,7 @@ class PlyReader {
     failAtByte(file_, where, what);
   }
 
-  /// Where the next value starts: its line (ASCII) or byte offset (binary).
+  /// Where the next entry starts: its line (ASCII, blank lines skipped) or byte offset (binary).
   std::size_t here() {
     if (!ascii()) return pos_;
     while (pos_ < bytes_.size() && isPlySpace(bytes_[pos_])) {
@@ -373,10 +380,36 @@ class PlyReader {
     }
   }
 
+  /// The text from pos_ to the end of its line.
+  std::string_view restOfLine() const {
+    const std::size_t end = std::min(bytes_.find('\n', pos_), bytes_.size());
+    return bytes_.substr(pos_, end - pos_);
+  }
+
+  /// Skips blanks up to the end of the line (each entry of an ASCII body is one line).
+  void skipBlanks() {
+    while (pos_ < bytes_.size() && bytes_[pos_] != '\n' && isPlySpace(bytes_[pos_])) ++pos_;
+  }
+
+  /// Checks that the entry's line holds nothing more and moves to the next line.
+  void endEntry(const Element& element, std::uint64_t entry) {
+    skipBlanks();
+    if (pos_ == bytes_.size()) return;
+    if (bytes_[pos_] != '\n') {
+      failAt(line_, "expected the end of the line after element " + shown(element.name) +
+                        " entry " + std::to_string(entry) + " (one entry per line), found " +
+                        shown(restOfLine()));
+    }
+    ++pos_;
+    ++line_;
+  }
+
   double readAscii(PlyType type, const Element& element, std::uint64_t entry, const Property& p) {
-    const std::size_t line = here();
-    if (pos_ == bytes_.size()) {
-      failAt(line, "the file ends before " + describe(element, entry, p));
+    skipBlanks();
+    const std::size_t line = line_;
+    if (pos_ == bytes_.size() || bytes_[pos_] == '\n') {
+      failAt(line, "the line ends before " + describe(element, entry, p) +
+                       "; expected one entry per line");
     }
     const std::size_t start = pos_;
     while (pos_ < bytes_.size() && !isPlySpace(bytes_[pos_])) ++pos_;
@@ -406,7 +439,8 @@ class PlyReader {
   }
 
   void readList(const Element& element, std::uint64_t entry, const Property& p) {
-    const std::size_t where = here();
+    if (ascii()) skipBlanks();
+    const std::size_t where = ascii() ? line_ : pos_;
     const double count = readValue(p.countType, element, entry, p);
     if (count < 0.0) failAt(where, describe(element, entry, p) + ": a list of negative length");
     const auto items = static_cast<std::uint64_t>(count);
@@ -424,6 +458,10 @@ class PlyReader {
       }
       for (std::uint64_t k = 0; k < items; ++k) readAscii(p.type, element, entry, p);
       return;
+    }
+    if (items == 0) {  // assimp's triangulation aborts the program on an empty face
+      failAt(where, "face " + std::to_string(entry) +
+                        " has no corners; expected a list of vertex indices");
     }
     faces_.push_back({corners_.size(), static_cast<std::size_t>(items), where});
     for (std::uint64_t k = 0; k < items; ++k) {
@@ -454,6 +492,7 @@ class PlyReader {
           point[static_cast<int>(p.role) - static_cast<int>(Role::kX)] = asFloat(value);
         }
       }
+      if (ascii()) endEntry(element, entry);
       if (isVertex) {
         if (!point.allFinite()) {
           failAt(where, "vertex " + std::to_string(entry) +

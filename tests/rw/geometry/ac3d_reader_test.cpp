@@ -129,6 +129,8 @@ TEST(Ac3dReaderTest, MalformedInputNamesTheLine) {
          "material index 2 is too large; expected at most 1");
   expect(objectWith(tri + "numsurf 1\nSURF 0x10\nnorm 2\nkids 0\n"), ":13",
          "expected \"refs <count>\", found \"norm\"");
+  expect(objectWith(tri + "numsurf 1\nSURF 0x10\nrefs 0\nkids 0\n"), ":13",
+         "a polygon surface with refs 0; expected at least one corner");
   expect(objectWith(tri + "numsurf 1\nSURF 0x10\nrefs 300\n0 0 0\nkids 0\n"), ":13",
          "refs 300 is too large");
   expect(objectWith(tri + "numsurf 1\nSURF 0x10\nrefs 3\n0 0 0\n1 0 0\n3 0 0\nkids 0\n"), ":16",

@@ -199,8 +199,16 @@ TEST(PlyReaderTest, AsciiBodyErrorsNameTheLine) {
          "property \"vertex_indices\": expected an integer from 0 to 255, found \"300\"");
   expect("0 0 0\n1 0 0\n0 1 0\n", ":7",
          "element \"face\" announces 1 entries of at least 2 bytes each, but only 18 bytes");
-  expect("0 0 0\n1 0 0\n0 1 0\n3 0 1\n\n\n", ":16",
-         "the file ends before element \"face\" entry 0, property \"vertex_indices\"");
+  expect("0 0 0\n1 0 0\n0 1 0\n3 0 1\n\n\n", ":13",
+         "the line ends before element \"face\" entry 0, property \"vertex_indices\"; expected "
+         "one entry per line");
+  expect("0 0 0\n1 0 0\n0 1 0\n3 0 1 2 7\n", ":13",
+         "expected the end of the line after element \"face\" entry 0 (one entry per line), "
+         "found \"7\"");
+  expect("0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n\n0 0 0\n", ":15",
+         "expected the end of the file after the last element, found \"0 0 0\"");
+  // Found by fuzzing the renderer's loader: assimp 5.2's triangulation aborts on an empty face.
+  expect("0 0 0\n1 0 0\n0 1 0\n0\n", ":13", "face 0 has no corners");
   expect("0 0 0\n1 0 0\n0 1 0\n3 0 -1 2\n", ":13",
          "face 0: vertex index -1 is negative; expected an index from 0");
   expect("0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n", ":13",
