@@ -1,8 +1,10 @@
 #include <gtest/gtest.h>
 
+#include <array>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <stdexcept>
 #include <string>
 
 #include "render_test_util.hpp"
@@ -220,6 +222,24 @@ TEST(MeshLoaderTest, MalformedPlyAc3dAndStlAreRefusedBeforeAssimp) {
   stl[81] = stl[82] = stl[83] = 0;
   const auto bin = writeFile(dir.path() / "short.stl", stl);
   expectErrorMentioning([&] { loadVisualMeshes(bin); }, {bin.string(), "truncated"});
+}
+
+// Every mesh input the fuzzer found (fuzz/regressions/mesh; the first byte picks the extension as
+// in fuzz/mesh_fuzzer.cpp) is an error of the renderer's loader too, never an abort inside assimp.
+TEST(MeshLoaderTest, EveryMeshFuzzFindingIsAnError) {
+  constexpr std::array<const char*, 8> kExtensions = {".stl", ".obj", ".ply", ".ac",
+                                                      ".off", ".3ds", ".dae", ".stlb"};
+  TempDir dir;
+  for (const auto& entry : std::filesystem::directory_iterator(
+           std::filesystem::path(VISGRAB_SOURCE_DIR) / "fuzz/regressions/mesh")) {
+    std::ifstream in(entry.path(), std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    ASSERT_FALSE(bytes.empty()) << entry.path();
+    const auto file = writeFile(
+        dir.path() / (std::string("input") + kExtensions[static_cast<unsigned char>(bytes[0]) % 8]),
+        bytes.substr(1));
+    EXPECT_THROW(loadVisualMeshes(file), std::runtime_error) << entry.path();
+  }
 }
 
 }  // namespace
