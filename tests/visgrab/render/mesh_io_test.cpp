@@ -1,6 +1,5 @@
 #include <gtest/gtest.h>
 
-#include <array>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -224,22 +223,13 @@ TEST(MeshLoaderTest, MalformedPlyAc3dAndStlAreRefusedBeforeAssimp) {
   expectErrorMentioning([&] { loadVisualMeshes(bin); }, {bin.string(), "truncated"});
 }
 
-// Every mesh input the fuzzer found (fuzz/regressions/mesh; the first byte picks the extension as
-// in fuzz/mesh_fuzzer.cpp) is an error of the renderer's loader too, never an abort inside assimp.
+// Every mesh input the fuzzer found (fuzz/regressions/mesh) is an error of the renderer's loader
+// too, never an abort inside assimp.
 TEST(MeshLoaderTest, EveryMeshFuzzFindingIsAnError) {
-  constexpr std::array<const char*, 8> kExtensions = {".stl", ".obj", ".ply", ".ac",
-                                                      ".off", ".3ds", ".dae", ".stlb"};
   TempDir dir;
-  for (const auto& entry : std::filesystem::directory_iterator(
-           std::filesystem::path(VISGRAB_SOURCE_DIR) / "fuzz/regressions/mesh")) {
-    std::ifstream in(entry.path(), std::ios::binary);
-    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    ASSERT_FALSE(bytes.empty()) << entry.path();
-    const auto file = writeFile(
-        dir.path() / (std::string("input") + kExtensions[static_cast<unsigned char>(bytes[0]) % 8]),
-        bytes.substr(1));
-    EXPECT_THROW(loadVisualMeshes(file), std::runtime_error) << entry.path();
-  }
+  const auto files = visgrab::test::meshFuzzRegressions(dir.path());
+  EXPECT_GE(files.size(), 12U);
+  for (const auto& file : files) EXPECT_THROW(loadVisualMeshes(file), std::runtime_error) << file;
 }
 
 }  // namespace
