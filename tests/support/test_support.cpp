@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <iterator>
 #include <random>
 #include <sstream>
 #include <vector>
@@ -93,6 +94,22 @@ std::filesystem::path writeFile(const std::filesystem::path& file, const std::st
   std::ofstream out(file, std::ios::binary);
   out << text;
   return file;
+}
+
+std::vector<std::filesystem::path> meshFuzzRegressions(const std::filesystem::path& dir) {
+  constexpr std::array<const char*, 8> kExtensions = {".stl", ".obj", ".ply", ".ac",
+                                                      ".off", ".3ds", ".dae", ".stlb"};
+  std::vector<std::filesystem::path> files;
+  for (const auto& entry :
+       std::filesystem::directory_iterator(sourceDir() / "fuzz/regressions/mesh")) {
+    std::ifstream in(entry.path(), std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (bytes.empty()) continue;
+    const char* extension = kExtensions[static_cast<unsigned char>(bytes[0]) % kExtensions.size()];
+    files.push_back(
+        writeFile(dir / (entry.path().filename().string() + extension), bytes.substr(1)));
+  }
+  return files;
 }
 
 RunResult runProgram(const std::filesystem::path& program, const std::string& args) {

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "rw/math/types.hpp"
 
@@ -47,6 +48,10 @@ class TempDir {
 
 /// Writes `text` to `file` (creating folders) and returns the path.
 std::filesystem::path writeFile(const std::filesystem::path& file, const std::string& text);
+
+/// Each input of fuzz/regressions/mesh written into `dir` as a mesh file whose extension the
+/// input's first byte picks and whose bytes are the rest, as fuzz/mesh_fuzzer.cpp reads it.
+std::vector<std::filesystem::path> meshFuzzRegressions(const std::filesystem::path& dir);
 
 /// What a command printed and how it exited.
 struct RunResult {

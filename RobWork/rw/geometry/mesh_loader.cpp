@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
-#include <charconv>
 #include <cstdint>
 #include <fstream>
 #include <iterator>
@@ -20,6 +19,11 @@
 #include <utility>
 #include <vector>
 
+#include "rw/geometry/ac3d_reader.hpp"
+#include "rw/geometry/detail/mesh_checks.hpp"
+#include "rw/geometry/mesh_parts.hpp"
+#include "rw/geometry/ply_reader.hpp"
+
 namespace rw::geometry {
 namespace {
 
@@ -27,7 +31,7 @@ namespace fs = std::filesystem;
 using rw::math::Vector3D;
 
 /// Extension orders of RobWork's GeometryFactory (collision) and Model3DFactory (visual), plus
-/// PLY, which assimp reads.
+/// PLY.
 constexpr std::array<std::string_view, 11> kCollisionExtensions = {
     ".stl", ".stla", ".stlb", ".pcd", ".tri", ".dae", ".ac", ".ac3d", ".3ds", ".obj", ".ply"};
 constexpr std::array<std::string_view, 12> kVisualExtensions = {".tri",  ".ac",   ".ac3d", ".3ds",
@@ -180,136 +184,6 @@ std::optional<std::string> stlProblem(std::string_view bytes) {
       "size of a binary STL (84 bytes plus 50 per triangle)");
 }
 
-/// One property of a PLY element: for a list, the sizes of its count and of each item; for a
-/// scalar, its size (in bytes, as stored in a binary file; 0 for a type PLY does not have).
-struct PlyProperty {
-  bool list = false;
-  int countSize = 0;
-  int size = 0;
-};
-
-/// One element of a PLY header: its name, number of entries and properties.
-struct PlyElement {
-  std::string name;
-  std::uint64_t count = 0;
-  std::vector<PlyProperty> properties;
-};
-
-int plyTypeSize(std::string_view type) {
-  for (std::string_view t : {"char", "uchar", "int8", "uint8"}) {
-    if (type == t) return 1;
-  }
-  for (std::string_view t : {"short", "ushort", "int16", "uint16"}) {
-    if (type == t) return 2;
-  }
-  for (std::string_view t : {"int", "uint", "float", "int32", "uint32", "float32"}) {
-    if (type == t) return 4;
-  }
-  return type == "double" || type == "float64" ? 8 : 0;
-}
-
-/// The value of the unsigned `size`-byte integer at `bytes`, in the file's byte order.
-std::uint64_t plyCount(std::string_view bytes, int size, bool bigEndian) {
-  std::uint64_t value = 0;
-  for (int i = 0; i < size; ++i) {
-    const int at = bigEndian ? i : size - 1 - i;
-    value = (value << 8U) | static_cast<unsigned char>(bytes[static_cast<std::size_t>(at)]);
-  }
-  return value;
-}
-
-/// Checks that the element and list sizes a PLY header and body announce fit in the file, before
-/// assimp allocates for them (a count of 4e9 would otherwise allocate tens of gigabytes). Header
-/// syntax it does not understand is left to assimp.
-std::optional<std::string> plyProblem(std::string_view bytes) {
-  const std::size_t end = bytes.find("end_header");
-  if (bytes.substr(0, 3) != "ply" || end == std::string_view::npos) return std::nullopt;
-  const std::size_t bodyStart = bytes.find('\n', end);
-  const std::string_view body =
-      bodyStart == std::string_view::npos ? std::string_view() : bytes.substr(bodyStart + 1);
-  std::vector<PlyElement> elements;
-  bool ascii = true;
-  bool bigEndian = false;
-  std::size_t pos = 3;
-  while (pos < end) {
-    const std::size_t lineEnd = std::min(bytes.find('\n', pos), end);
-    const std::string_view line = bytes.substr(pos, lineEnd - pos);
-    pos = lineEnd + 1;
-    std::size_t at = 0;
-    const std::string_view keyword = nextWord(line, at);
-    if (keyword == "format") {
-      const std::string_view format = nextWord(line, at);
-      ascii = format == "ascii";
-      bigEndian = format == "binary_big_endian";
-    } else if (keyword == "element") {
-      PlyElement element;
-      element.name = nextWord(line, at);
-      const std::string_view count = nextWord(line, at);
-      const auto [ptr, ec] =
-          std::from_chars(count.data(), count.data() + count.size(), element.count);
-      if (ec != std::errc() || ptr != count.data() + count.size()) return std::nullopt;
-      if (element.count > body.size()) {
-        return "PLY element \"" + element.name + "\" announces " + std::to_string(element.count) +
-               " entries but only " + std::to_string(body.size()) + " bytes follow the header";
-      }
-      elements.push_back(std::move(element));
-    } else if (keyword == "property" && !elements.empty()) {
-      PlyProperty property;
-      const std::string_view type = nextWord(line, at);
-      property.list = type == "list";
-      if (property.list) {
-        property.countSize = plyTypeSize(nextWord(line, at));
-        property.size = plyTypeSize(nextWord(line, at));
-      } else {
-        property.size = plyTypeSize(type);
-      }
-      if (property.size == 0 || (property.list && property.countSize == 0)) return std::nullopt;
-      elements.back().properties.push_back(property);
-    }
-  }
-  // Walk the body: every list must fit in what is left of the file.
-  std::size_t at = 0;
-  for (const PlyElement& element : elements) {
-    for (std::uint64_t i = 0; i < element.count; ++i) {
-      if (element.properties.empty() || at >= body.size()) break;
-      for (const PlyProperty& property : element.properties) {
-        std::uint64_t items = 1;
-        if (ascii) {
-          if (property.list) {
-            const std::string_view word = nextWord(body, at);
-            double n = 0;
-            const auto [ptr, ec] = std::from_chars(word.data(), word.data() + word.size(), n);
-            if (ec != std::errc() || !(n >= 0)) return std::nullopt;
-            if (n > static_cast<double>(body.size() - at)) {
-              return "PLY element \"" + element.name + "\" entry " + std::to_string(i) +
-                     ": a list of " + std::string(word.substr(0, 20)) +
-                     " items is longer than the rest of the file";
-            }
-            items = static_cast<std::uint64_t>(n);
-          }
-          for (std::uint64_t k = 0; k < items; ++k) nextWord(body, at);
-        } else {
-          if (property.list) {
-            if (body.size() - at < static_cast<std::size_t>(property.countSize))
-              return std::nullopt;
-            items = plyCount(body.substr(at), property.countSize, bigEndian);
-            at += static_cast<std::size_t>(property.countSize);
-          }
-          const std::uint64_t size = items * static_cast<std::uint64_t>(property.size);
-          if (items > body.size() || size > body.size() - at) {
-            if (!property.list) return std::nullopt;  // truncated: assimp reports it
-            return "PLY element \"" + element.name + "\" entry " + std::to_string(i) +
-                   ": a list of " + std::to_string(items) +
-                   " items is longer than the rest of the file";
-          }
-          at += static_cast<std::size_t>(size);
-        }
-      }
-    }
-  }
-  return std::nullopt;
-}
-
 Eigen::Affine3d toEigen(const aiMatrix4x4& m) {
   Eigen::Matrix4d matrix;
   matrix << m.a1, m.a2, m.a3, m.a4, m.b1, m.b2, m.b3, m.b4, m.c1, m.c2, m.c3, m.c4, m.d1, m.d2,
@@ -317,34 +191,61 @@ Eigen::Affine3d toEigen(const aiMatrix4x4& m) {
   return Eigen::Affine3d(matrix);
 }
 
-/// Merges the triangles of assimp meshes into one TriMesh, joining vertices at equal positions.
+/// Merges triangles of several sources into one TriMesh, joining vertices at equal positions.
 class TriangleCollector {
  public:
   explicit TriangleCollector(const fs::path& file) : file_(file) {}
+
   /// Adds the triangles of `mesh` placed by `X` (points and lines are dropped).
   void add(const aiMesh& mesh, const Eigen::Affine3d& X) {
-    const bool mirrored = X.linear().determinant() < 0.0;  // keep the winding outward
-    std::vector<std::optional<std::uint32_t>> joined(mesh.mNumVertices);
-    for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
-      const aiFace& face = mesh.mFaces[f];
-      if (face.mNumIndices != 3) continue;
-      std::array<std::uint32_t, 3> triangle{};
-      for (unsigned k = 0; k < 3; ++k) {
-        const unsigned index = face.mIndices[k];
-        if (index >= mesh.mNumVertices) return;  // ValidateDataStructure rules this out
-        if (!joined[index]) {
-          const aiVector3D& v = mesh.mVertices[index];
-          joined[index] = vertex(X * Vector3D(v.x, v.y, v.z));
-        }
-        triangle[k] = *joined[index];
-      }
-      if (mirrored) std::swap(triangle[1], triangle[2]);
-      mesh_.triangles.push_back(triangle);
-    }
+    add(
+        mesh.mNumVertices, mesh.mNumFaces, X,
+        [&mesh](unsigned i) {
+          const aiVector3D& v = mesh.mVertices[i];
+          return Vector3D(v.x, v.y, v.z);
+        },
+        [&mesh](unsigned f) -> std::optional<std::array<unsigned, 3>> {
+          const aiFace& face = mesh.mFaces[f];
+          if (face.mNumIndices != 3) return std::nullopt;
+          return std::array<unsigned, 3>{face.mIndices[0], face.mIndices[1], face.mIndices[2]};
+        });
   }
+
+  /// Adds the triangles of a part read by our own readers, placed by its pose.
+  void add(const MeshPart& part) {
+    add(
+        part.vertices.size(), part.triangles.size(), part.X_FO,
+        [&part](std::size_t i) { return part.vertices[i]; },
+        [&part](std::size_t t) -> std::optional<std::array<std::uint32_t, 3>> {
+          return part.triangles[t];
+        });
+  }
+
   TriMesh take() { return std::move(mesh_); }
 
  private:
+  /// Adds `triangleCount` triangles (`triangle(t)`, nullopt for a face that is not one) over
+  /// `vertexCount` vertices at `position(i)`, placed by `X`.
+  template <typename Position, typename Triangle>
+  void add(std::size_t vertexCount, std::size_t triangleCount, const Eigen::Affine3d& X,
+           Position position, Triangle triangle) {
+    const bool mirrored = X.linear().determinant() < 0.0;  // keep the winding outward
+    std::vector<std::optional<std::uint32_t>> joined(vertexCount);
+    for (std::size_t t = 0; t < triangleCount; ++t) {
+      const auto corners = triangle(t);
+      if (!corners) continue;
+      std::array<std::uint32_t, 3> joinedTriangle{};
+      for (std::size_t k = 0; k < 3; ++k) {
+        const auto index = static_cast<std::size_t>((*corners)[k]);
+        if (index >= vertexCount) return;  // ValidateDataStructure and our readers rule it out
+        if (!joined[index]) joined[index] = vertex(X * position(index));
+        joinedTriangle[k] = *joined[index];
+      }
+      if (mirrored) std::swap(joinedTriangle[1], joinedTriangle[2]);
+      mesh_.triangles.push_back(joinedTriangle);
+    }
+  }
+
   std::uint32_t vertex(const Vector3D& p) {
     if (!p.allFinite()) {  // checked before the map, whose ordering NaN would break
       fail(file_,
@@ -381,7 +282,18 @@ TriMesh collectTriangles(const aiScene& scene, const fs::path& file) {
   return collector.take();
 }
 
-/// Runs assimp; STL files go through memory with an "stl" hint so that .stla/.stlb work too.
+using OwnReader = std::vector<MeshPart> (*)(const fs::path&, std::string_view);
+
+/// Our own reader for `file`'s extension, if there is one.
+OwnReader ownReader(const fs::path& file) {
+  const std::string ext = lowerCase(file.extension().string());
+  if (ext == ".ply") return &readPly;
+  if (ext == ".ac" || ext == ".ac3d") return &readAc3d;
+  return nullptr;
+}
+
+/// Runs assimp (never for the formats of our own readers); STL files go through memory with an
+/// "stl" hint so that .stla/.stlb work too.
 const aiScene* import(Assimp::Importer& importer, const fs::path& file) {
   // Normals etc. are removed so that JoinIdenticalVertices joins by position (STL gives every
   // corner its face normal); ValidateDataStructure rejects broken scenes before we walk them.
@@ -390,11 +302,6 @@ const aiScene* import(Assimp::Importer& importer, const fs::path& file) {
                                   aiComponent_COLORS | aiComponent_TEXCOORDS);
   const unsigned flags = aiProcess_ValidateDataStructure | aiProcess_RemoveComponent |
                          aiProcess_Triangulate | aiProcess_JoinIdenticalVertices;
-  if (lowerCase(file.extension().string()) == ".ply") {
-    const std::string bytes = readBytes(file);
-    if (const auto problem = plyProblem(bytes)) fail(file, *problem);
-    return importer.ReadFileFromMemory(bytes.data(), bytes.size(), flags, "ply");
-  }
   if (!isStlName(file)) return importer.ReadFile(file.string(), flags);
   const std::string bytes = readBytes(file);
   if (const auto problem = stlProblem(bytes)) fail(file, *problem);
@@ -422,15 +329,39 @@ std::optional<fs::path> resolveMeshFile(const fs::path& baseDir, const std::stri
   return std::nullopt;
 }
 
+namespace detail {
+
+bool hasOwnReader(const fs::path& file) { return ownReader(file) != nullptr; }
+
+void checkBeforeAssimp(const fs::path& file) {
+  checkReadable(file);
+  if (const OwnReader reader = ownReader(file)) {
+    reader(file, readBytes(file));
+  } else if (isStlName(file)) {
+    if (const auto problem = stlProblem(readBytes(file))) fail(file, *problem);
+  }
+}
+
+}  // namespace detail
+
 std::shared_ptr<const TriMesh> loadMesh(const fs::path& file) {
   checkReadable(file);
-  Assimp::Importer importer;  // one per call: loadMesh may run on several threads at once
-  const aiScene* scene = import(importer, file);
-  if (scene == nullptr) fail(file, "cannot read mesh: " + std::string(importer.GetErrorString()));
-  if ((scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) != 0U || scene->mRootNode == nullptr) {
-    fail(file, "cannot read mesh: the file holds no complete scene");
+  TriMesh mesh;
+  if (const OwnReader reader = ownReader(file)) {
+    TriangleCollector collector(file);
+    for (const MeshPart& part : reader(file, readBytes(file))) collector.add(part);
+    mesh = collector.take();
+  } else {
+    Assimp::Importer importer;  // one per call: loadMesh may run on several threads at once
+    const aiScene* scene = import(importer, file);
+    if (scene == nullptr) {
+      fail(file, "cannot read mesh: " + std::string(importer.GetErrorString()));
+    }
+    if ((scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) != 0U || scene->mRootNode == nullptr) {
+      fail(file, "cannot read mesh: the file holds no complete scene");
+    }
+    mesh = collectTriangles(*scene, file);
   }
-  TriMesh mesh = collectTriangles(*scene, file);
   if (mesh.triangles.empty()) fail(file, "the file holds no triangles (only points or lines)");
   return std::make_shared<const TriMesh>(std::move(mesh));
 }

@@ -27,9 +27,13 @@ enum class MeshUse { kCollision, kVisual };
 std::optional<std::filesystem::path> resolveMeshFile(const std::filesystem::path& baseDir,
                                                      const std::string& name, MeshUse use);
 
-/// Reads a triangle mesh (STL ascii or binary, OBJ, PLY, AC3D; anything assimp reads), merging
-/// all sub-meshes with their node transforms, identical vertices joined. Units are kept (metres).
-/// @throws MeshLoadError naming the file when it is missing, unreadable, empty or not a mesh.
+/// Reads a triangle mesh, merging all sub-meshes with their node transforms, identical vertices
+/// joined (by position). PLY (.ply) and AC3D (.ac, .ac3d) are read by our own readers
+/// (ply_reader.hpp, ac3d_reader.hpp: the triangles assimp gave, coordinates in float as there);
+/// STL (ascii or binary, checked first), OBJ and anything else assimp reads by assimp. Units are
+/// kept (metres).
+/// @throws MeshLoadError naming the file when it is missing, unreadable, empty or not a mesh;
+///   for PLY and AC3D also the line (or byte offset) and what was expected there.
 std::shared_ptr<const TriMesh> loadMesh(const std::filesystem::path& file);
 
 }  // namespace rw::geometry

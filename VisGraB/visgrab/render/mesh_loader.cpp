@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "rw/geometry/detail/mesh_checks.hpp"
 #include "visgrab/render/png_io.hpp"
 
 namespace visgrab::render {
@@ -121,6 +122,10 @@ std::vector<visual::VisualMesh> loadVisualMeshes(const std::filesystem::path& pa
   if (!std::filesystem::is_regular_file(path)) {
     throw std::runtime_error(path.string() + ": mesh file does not exist");
   }
+  // The checks loadMesh makes before assimp: STL structure; PLY and AC3D read in full by our own
+  // readers (assimp loops or allocates without bound on some malformed ones). A file that passes
+  // is then read by assimp for its materials, textures and smooth normals.
+  rw::geometry::detail::checkBeforeAssimp(path);
   Assimp::Importer importer;
   // Points and lines are split off by SortByPType and then ignored.
   const aiScene* scene =

@@ -26,37 +26,19 @@ using rw::geometry::MeshUse;
 using rw::geometry::resolveMeshFile;
 using rw::geometry::TriMesh;
 using rw::math::Vector3D;
+using visgrab::test::canonical;
+using visgrab::test::expectLocatedError;
 using visgrab::test::isClosedAndConsistent;
 using visgrab::test::signedVolume;
 using visgrab::test::TempDir;
+using visgrab::test::Triangle;
+using visgrab::test::trianglesOf;
 using visgrab::test::writeFile;
 
 /// A tetrahedron with coordinates exact in float; triangles wind outward (zero-based indices).
 const std::array<Vector3D, 4> kCorners = {Vector3D(-1.5, 0.25, 0.125), Vector3D(0.5, 0.25, 0.125),
                                           Vector3D(-1.5, 1.25, 0.125), Vector3D(-1.5, 0.25, 2.125)};
 const std::array<std::array<int, 3>, 4> kFaces = {{{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}}};
-
-using Triangle = std::array<double, 9>;
-
-/// A triangle's corners starting at its lexicographically smallest one (winding kept).
-Triangle canonical(const Vector3D& a, const Vector3D& b, const Vector3D& c) {
-  std::array<std::array<double, 3>, 3> corners = {
-      {{a.x(), a.y(), a.z()}, {b.x(), b.y(), b.z()}, {c.x(), c.y(), c.z()}}};
-  std::rotate(corners.begin(), std::min_element(corners.begin(), corners.end()), corners.end());
-  Triangle t{};
-  for (int k = 0; k < 9; ++k) t[k] = corners[k / 3][k % 3];
-  return t;
-}
-
-/// The mesh's triangles as sorted corner coordinates, for exact comparison.
-std::vector<Triangle> trianglesOf(const TriMesh& mesh) {
-  std::vector<Triangle> result;
-  for (const auto& t : mesh.triangles) {
-    result.push_back(canonical(mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]));
-  }
-  std::sort(result.begin(), result.end());
-  return result;
-}
 
 /// The tetrahedron's triangles, each corner moved by `offset`.
 std::vector<Triangle> tetrahedron(const Vector3D& offset = Vector3D::Zero()) {
@@ -314,9 +296,12 @@ TEST(MeshLoaderTest, BinaryGarbageIsAnErrorNotACrash) {
   std::mt19937 random(20240601U);
   std::string garbage;
   for (int i = 0; i < 4000; ++i) garbage.push_back(static_cast<char>(random() & 0xFFU));
-  for (const std::string ext : {".stl", ".obj", ".ply", ".ac", ".dae", ".3ds", ".off", ".bin"}) {
+  for (const std::string ext : {".stl", ".obj", ".dae", ".3ds", ".off", ".bin"}) {
     expectLoadError(writeFile(dir.path() / ("garbage" + ext), garbage), "");
   }
+  // Our own readers name the line.
+  expectLocatedError(writeFile(dir.path() / "garbage.ply", garbage), ":1", "expected \"ply\"");
+  expectLocatedError(writeFile(dir.path() / "garbage.ac", garbage), ":1", "expected \"AC3D\"");
   expectLoadError(writeFile(dir.path() / "solid-garbage.stl", "solid " + garbage), "");
 }
 
@@ -389,28 +374,33 @@ TEST(MeshLoaderTest, LoadsBinaryPly) {
 }
 
 // Found by fuzzing (fuzz/regressions/mesh): counts that cannot fit in the file made assimp
-// allocate tens of gigabytes before it noticed.
+// allocate tens of gigabytes before it noticed; our reader checks them against the bytes left.
 TEST(MeshLoaderTest, PlyCountsLargerThanTheFileAreAnError) {
   TempDir dir;
   const std::string vertexHeader =
       "ply\nformat ascii 1.0\nelement vertex 4000000000\nproperty float x\nproperty float y\n"
       "property float z\nend_header\n0 0 0\n";
-  expectLoadError(writeFile(dir.path() / "count.ply", vertexHeader),
-                  "PLY element \"vertex\" announces 4000000000 entries but only 6 bytes follow");
+  expectLocatedError(writeFile(dir.path() / "count.ply", vertexHeader), ":3",
+                     "element \"vertex\" announces 4000000000 entries of at least 6 bytes each, "
+                     "but only 6 bytes follow the header; expected at most 1");
   std::string binary = binaryPly();
   binary.replace(binary.find("face 4"), 6, "face 300000000");
-  expectLoadError(writeFile(dir.path() / "faces.ply", binary),
-                  "PLY element \"face\" announces 300000000 entries");
+  expectLocatedError(writeFile(dir.path() / "faces.ply", binary), ":7",
+                     "element \"face\" announces 300000000 entries of at least 1 bytes each");
   const std::string list =
-      "ply\nformat ascii 1.0\nelement vertex 3\nproperty list uint float x\nend_header\n"
-      "4000000000 1 2\n";
-  expectLoadError(writeFile(dir.path() / "list.ply", list),
-                  "PLY element \"vertex\" entry 0: a list of 4000000000 items is longer than the "
-                  "rest of the file");
+      "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
+      "property float z\nproperty list uint float extra\nend_header\n0 0 0 4000000000 1 2\n";
+  expectLocatedError(
+      writeFile(dir.path() / "list.ply", list), ":9",
+      "element \"vertex\" entry 0, property \"extra\": a list of 4000000000 items is "
+      "longer than the rest of the file (5 bytes) could hold");
   std::string binaryList = binaryPly();
   binaryList[binaryList.size() - 13] = static_cast<char>(200);  // last face: 200 indices
-  expectLoadError(writeFile(dir.path() / "binary-list.ply", binaryList),
-                  "PLY element \"face\" entry 3: a list of 200 items is longer than the rest");
+  const std::size_t listAt = binaryList.size() - 13;
+  expectLocatedError(writeFile(dir.path() / "binary-list.ply", binaryList), "",
+                     "error: at byte " + std::to_string(listAt) +
+                         ": element \"face\" entry 3, property \"vertex_indices\": a list of 200 "
+                         "items is longer than the rest of the file (12 bytes) could hold");
 }
 
 TEST(MeshLoaderTest, LoadsFromSeveralThreadsAtOnce) {

@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <stdexcept>
 #include <string>
 
 #include "render_test_util.hpp"
@@ -180,6 +181,55 @@ TEST(MeshLoaderTest, GarbageObjThrowsNamingIt) {
   const auto path =
       writeFile(dir.path() / "garbage.obj", "this is not\n\x01\x02 a mesh {{{\nf 9 8 7\n");
   expectErrorMentioning([&] { loadVisualMeshes(path); }, {path.string()});
+}
+
+// AC3D visuals (RobWork's device models) keep their MATERIAL's rgb as the mesh colour; the file
+// is read by our AC3D reader first, then by assimp for the materials and normals.
+TEST(MeshLoaderTest, Ac3dVisualGetsItsMaterialColour) {
+  TempDir dir;
+  const auto path = writeFile(
+      dir.path() / "tri.ac",
+      "AC3Db\nMATERIAL \"paint\" rgb 0.25 0.5 0.75  amb 0.2 0.2 0.2  emis 0 0 0  spec 0 0 0  "
+      "shi 10  trans 0\nOBJECT world\nkids 1\nOBJECT poly\nname \"tri\"\nloc 1 0 0\nnumvert 3\n"
+      "0 0 0\n1 0 0\n0 1 0\nnumsurf 1\nSURF 0x10\nmat 0\nrefs 3\n0 0 0\n1 0 0\n2 0 0\nkids 0\n");
+  const auto meshes = loadVisualMeshes(path);
+  ASSERT_EQ(meshes.size(), 1u);
+  EXPECT_EQ(meshes[0].triangles.size(), 1u);
+  EXPECT_NEAR(meshes[0].colour.x(), 0.25f, 1e-6);
+  EXPECT_NEAR(meshes[0].colour.y(), 0.5f, 1e-6);
+  EXPECT_NEAR(meshes[0].colour.z(), 0.75f, 1e-6);
+  ASSERT_EQ(meshes[0].normals.size(), meshes[0].positions.size());
+  EXPECT_NEAR(meshes[0].normals[0].z(), 1.0f, 1e-6);  // generated: the triangle faces +z
+  for (const Eigen::Vector3f& p : meshes[0].positions) EXPECT_GE(p.x(), 1.0f);  // loc applied
+}
+
+// PLY and AC3D files pass our own readers before assimp, STL files the STL check of loadMesh:
+// bad ones are refused naming the file and line (assimp looped or allocated without bound on
+// some).
+TEST(MeshLoaderTest, MalformedPlyAc3dAndStlAreRefusedBeforeAssimp) {
+  TempDir dir;
+  const auto ply = writeFile(dir.path() / "count.ply",
+                             "ply\nformat ascii 1.0\nelement vertex 4000000000\nproperty float x\n"
+                             "property float y\nproperty float z\nend_header\n0 0 0\n");
+  expectErrorMentioning([&] { loadVisualMeshes(ply); },
+                        {ply.string() + ":3: error:", "announces 4000000000 entries"});
+  const auto ac = writeFile(dir.path() / "count.ac", "AC3Db\nOBJECT poly\nnumvert 900000000\n");
+  expectErrorMentioning([&] { loadVisualMeshes(ac); },
+                        {ac.string() + ":3: error:", "numvert 900000000 is too large"});
+  std::string stl(84, ' ');
+  stl[80] = 9;  // 9 triangles announced, none there
+  stl[81] = stl[82] = stl[83] = 0;
+  const auto bin = writeFile(dir.path() / "short.stl", stl);
+  expectErrorMentioning([&] { loadVisualMeshes(bin); }, {bin.string(), "truncated"});
+}
+
+// Every mesh input the fuzzer found (fuzz/regressions/mesh) is an error of the renderer's loader
+// too, never an abort inside assimp.
+TEST(MeshLoaderTest, EveryMeshFuzzFindingIsAnError) {
+  TempDir dir;
+  const auto files = visgrab::test::meshFuzzRegressions(dir.path());
+  EXPECT_GE(files.size(), 12U);
+  for (const auto& file : files) EXPECT_THROW(loadVisualMeshes(file), std::runtime_error) << file;
 }
 
 }  // namespace
