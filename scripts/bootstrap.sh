@@ -38,7 +38,7 @@ packages=(build-essential cmake ninja-build pkg-config
   qtbase5-dev libqhull-dev libgtest-dev libbenchmark-dev
   libegl-dev libegl-mesa0 libgl1-mesa-dri libgl-dev
   libcli11-dev python3-jsonschema
-  libhdf5-dev libzip-dev  # the grasp importers (VisGraB/visgrab/importers: HDF5, .npz)
+  libhdf5-dev libzip-dev zlib1g-dev  # the grasp importers (VisGraB/visgrab/importers: HDF5 and its deflated chunks, .npz)
   pybind11-dev python3-dev python3-numpy  # the Python module (python/; docs/python.md)
   python3-pytest python3-pandas python3-matplotlib python3-pil  # its tests and examples (pandas: the result CSVs; Pillow: independent PNG decoding)
   slurm-wlm munge  # the Slurm cluster test starts its own one-node cluster (docs/cluster.md)

@@ -1,5 +1,8 @@
 #include "visgrab/importers/hdf5_structure.hpp"
 
+#include <zlib.h>
+
+#include <algorithm>
 #include <set>
 #include <utility>
 #include <vector>
@@ -21,6 +24,51 @@ constexpr unsigned kDatatypeMessage = 0x03;
 constexpr unsigned kOldFillValueMessage = 0x04;
 constexpr unsigned kFillValueMessage = 0x05;
 constexpr unsigned kExternalFilesMessage = 0x07;
+// A chunk B-tree's depth and node count: far beyond what the largest array this reader accepts
+// needs (kMaxArrayBytes in chunks of one element, 64 entries a node), and they stop a damaged
+// tree that points back into itself.
+constexpr std::uint64_t kMaxTreeLevel = 32;
+// The chunks of one dataset, unfiltered, add up to at most this: twice the largest array the
+// readers take (edge chunks hold padding), so that a damaged tree cannot make the check inflate
+// without end.
+constexpr std::uint64_t kMaxUnfilteredBytes = 2 * kMaxArrayBytes;
+constexpr unsigned kFilterPipelineMessage = 0x0B;
+constexpr unsigned kDeflateFilter = 1;
+constexpr unsigned kFletcher32Filter = 3;
+
+/// The bytes `data` inflates to (zlib stream, as HDF5's deflate filter writes), at most `limit`;
+/// `fail` (which throws) is called with why when the stream is damaged or gives more.
+template <typename Fail>
+std::string inflate(std::string_view data, std::uint64_t limit, const Fail& fail) {
+  z_stream z{};
+  if (inflateInit(&z) != Z_OK) fail("cannot be inflated (zlib could not start)");
+  std::string out(static_cast<std::size_t>(std::min<std::uint64_t>(limit, 1U << 20)) + 1, '\0');
+  z.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(data.data()));
+  z.avail_in = static_cast<uInt>(data.size());
+  int result = Z_OK;
+  std::size_t used = 0;
+  while (result == Z_OK) {
+    if (used == out.size()) {
+      if (used > limit) break;
+      out.resize(std::min<std::size_t>(out.size() * 2, static_cast<std::size_t>(limit) + 1));
+    }
+    z.next_out = reinterpret_cast<Bytef*>(out.data() + used);
+    z.avail_out = static_cast<uInt>(out.size() - used);
+    result = ::inflate(&z, Z_NO_FLUSH);
+    used = out.size() - z.avail_out;
+    if (result == Z_BUF_ERROR && z.avail_in == 0) break;  // the stream ends early
+  }
+  const std::string message = z.msg != nullptr ? z.msg : "";
+  inflateEnd(&z);
+  if (used > limit) fail("inflates to more than " + std::to_string(limit) + " bytes");
+  if (result != Z_STREAM_END && result != Z_BUF_ERROR && result != Z_OK) {
+    fail("does not inflate (zlib: " +
+         (message.empty() ? "error " + std::to_string(result) : message) + ")");
+  }
+  out.resize(used);
+  return out;
+}
+constexpr std::size_t kMaxTreeNodes = 1U << 16;
 constexpr std::uint64_t kVariableLengthClass = 9;
 // A damaged header could chain its continuations in a loop or without end.
 constexpr std::size_t kMaxChunks = 4096;
@@ -100,6 +148,10 @@ void Hdf5Structure::damaged(const std::string& what, const std::string& why) con
   throw ImportError(name_ + ": damaged HDF5 file: " + what + ": " + why);
 }
 
+void Hdf5Structure::unsupported(const std::string& what, const std::string& why) const {
+  throw ImportError(name_ + ": " + what + ": " + why);
+}
+
 std::string Hdf5Structure::byteText(std::uint64_t address) const {
   return undefined(address) ? std::string("(undefined)") : std::to_string(address);
 }
@@ -141,6 +193,31 @@ void Hdf5Structure::checkHeap(std::uint64_t address, const std::string& what) co
   const std::uint64_t data = number(at + 8 + 2 * lengthBytes_, offsetBytes_, what);
   if (!inside(data, size)) {
     claimsOutside(what, "its name heap", size, data);
+  }
+  // The free list: offsets into the data, each free block starting with the next one's offset
+  // and its own size (L each); 1 (or undefined) ends it. libhdf5 checks each block against the
+  // data's size but not for a loop, and allocates a list entry per block it visits: a block
+  // pointing at itself took all memory.
+  const std::uint64_t none =
+      lengthBytes_ >= 8 ? ~std::uint64_t{0} : (std::uint64_t{1} << (8 * lengthBytes_)) - 1;
+  std::set<std::uint64_t> visited;
+  for (std::uint64_t block = number(at + 8 + lengthBytes_, lengthBytes_, what);
+       block != 1 && block != none;) {
+    if (block >= size || 2 * lengthBytes_ > size - block) {
+      damaged(what, "its name heap's free list points at offset " + std::to_string(block) +
+                        ", outside the heap's " + std::to_string(size) + " bytes");
+    }
+    if (!visited.insert(block).second) {
+      damaged(what, "its name heap's free list comes back to offset " + std::to_string(block));
+    }
+    const std::uint64_t blockAt = base_ + data + block;
+    const std::uint64_t blockSize = number(blockAt + lengthBytes_, lengthBytes_, what);
+    if (blockSize > size - block) {
+      damaged(what, "its name heap's free block at offset " + std::to_string(block) + " claims " +
+                        std::to_string(blockSize) + " bytes, past the heap's " +
+                        std::to_string(size));
+    }
+    block = number(blockAt, lengthBytes_, what);
   }
 }
 
@@ -218,6 +295,9 @@ void Hdf5Structure::checkMessage(const Message& m, const std::string& what,
     case kLayoutMessage:
       checkLayout(m, what, storage);
       return;
+    case kFilterPipelineMessage:
+      checkFilters(m, what, storage);
+      return;
     default:
       return;
   }
@@ -294,6 +374,158 @@ void Hdf5Structure::checkLayout(const Message& m, const std::string& what, Stora
     }
     bytes *= d;
   }
+  // Version 4 indexes its chunks in one of five structures (a single chunk, implicit, fixed or
+  // extensible arrays, version 2 B-trees), written only with libver "latest"; they are left to
+  // libhdf5. Version 3 (h5py's default, ACRONYM's files) uses a version 1 B-tree.
+  if (version == 3 && first) {
+    storage->chunked = true;
+    storage->chunkTree = number(at + 3, offsetBytes_, what);
+    storage->chunkDims = dims;
+    storage->chunkBytes = bytes;
+  }
+}
+
+void Hdf5Structure::checkFilters(const Message& m, const std::string& what,
+                                 Storage* storage) const {
+  if (storage->filtersSeen) return;  // libhdf5 uses the first pipeline message
+  storage->filtersSeen = true;
+  // Version 1: version, count, 6 reserved bytes, then per filter: id (2), name length (2, a
+  // multiple of 8), flags (2), client values (2), the name, the values (4 bytes each), 4 bytes
+  // of padding after an odd number of values. Version 2: id (2), name length (2) only for an id
+  // of 256 or more, flags (2), values (2), the name unpadded, the values.
+  const std::uint64_t end = m.at + m.bytes;
+  const auto need = [&](std::uint64_t pos, std::uint64_t bytes) {
+    if (pos > end || bytes > end - pos) damaged(what, "its filter pipeline message is cut short");
+  };
+  need(m.at, 2);
+  const auto version = number(m.at, 1, what);
+  const auto count = number(m.at + 1, 1, what);
+  if (version != 1 && version != 2) {
+    damaged(what, "its filter pipeline message has version " + std::to_string(version));
+  }
+  std::uint64_t pos = m.at + (version == 1 ? 8 : 2);
+  for (std::uint64_t i = 0; i < count; ++i) {
+    need(pos, 2);
+    const auto id = static_cast<unsigned>(number(pos, 2, what));
+    std::uint64_t nameBytes = 0;
+    pos += 2;
+    if (version == 1 || id >= 256) {
+      need(pos, 2);
+      nameBytes = number(pos, 2, what);
+      pos += 2;
+    }
+    need(pos, 4);
+    const std::uint64_t values = number(pos + 2, 2, what);
+    pos += 4 + nameBytes + 4 * values + (version == 1 && values % 2 == 1 ? 4 : 0);
+    need(pos, 0);
+    if (id < kDeflateFilter || id > kFletcher32Filter) {
+      unsupported(what, "its chunks pass through HDF5 filter " + std::to_string(id) +
+                            ", which this reader does not take (it takes deflate, shuffle and "
+                            "fletcher32)");
+    }
+    storage->filters.push_back(id);
+  }
+}
+
+std::uint64_t Hdf5Structure::unfilteredBytes(std::string_view data, std::uint64_t mask,
+                                             const Storage& storage, const std::string& what,
+                                             std::uint64_t address) const {
+  // Reading undoes the filters last first; bit i of the key's mask: filter i was skipped.
+  std::string inflated;
+  std::uint64_t bytes = data.size();
+  for (std::size_t i = storage.filters.size(); i-- > 0;) {
+    if (i < 64 && ((mask >> i) & 1U) != 0) continue;
+    switch (storage.filters[i]) {
+      case kFletcher32Filter:  // a 4-byte checksum after the data
+        if (bytes < 4)
+          damaged(what, "a chunk at byte " + byteText(address) + " lacks its checksum");
+        bytes -= 4;
+        data = data.substr(0, bytes);
+        break;
+      case kDeflateFilter: {
+        // At most the chunk's bytes plus the checksums of the filters still to undo.
+        const std::uint64_t limit = storage.chunkBytes + 4 * storage.filters.size();
+        inflated = inflate(data, limit, [&](const std::string& why) {
+          damaged(what, "a chunk at byte " + byteText(address) + " " + why);
+        });
+        data = inflated;
+        bytes = inflated.size();
+        break;
+      }
+      default:  // shuffle keeps the size
+        break;
+    }
+  }
+  return bytes;
+}
+
+void Hdf5Structure::checkChunkTree(const Storage& storage, const std::string& what) const {
+  const std::uint64_t address = storage.chunkTree;
+  const std::uint64_t dims = storage.chunkDims;
+  if (undefined(address)) return;  // no chunk written yet: libhdf5 reads the fill value
+  // A node: "TREE", type (1: chunks), level, entries used (2), left and right siblings, then
+  // keys and children alternating, one key more than children. A key: the chunk's size in the
+  // file (4; after its filters), the filter mask (4) and `dims` 8-byte offsets. A child: a node
+  // one level down, or at level 0 the chunk's address.
+  const std::uint64_t keyBytes = 8 + 8 * dims;
+  std::set<std::uint64_t> visited;
+  std::uint64_t unfolded = 0;
+  std::vector<std::pair<std::uint64_t, std::uint64_t>> pending{{address, kMaxTreeLevel + 1}};
+  while (!pending.empty()) {
+    const auto [node, expectedLevel] = pending.back();
+    pending.pop_back();
+    const std::string thing = "its chunk index node";
+    if (!inside(node, 8 + 2 * offsetBytes_)) outside(what, thing, node);
+    if (!visited.insert(node).second) {
+      damaged(what, thing + " at byte " + byteText(node) +
+                        " is reached twice: the chunk index points back into itself");
+    }
+    if (visited.size() > kMaxTreeNodes) {
+      damaged(what, "its chunk index has more than " + std::to_string(kMaxTreeNodes) + " nodes");
+    }
+    const std::uint64_t at = base_ + node;
+    if (image_.substr(at, 4) != "TREE" || number(at + 4, 1, what) != 1) {
+      damaged(what, thing + " at byte " + byteText(node) +
+                        " is not a chunk B-tree node (no \"TREE\" signature of type 1)");
+    }
+    const std::uint64_t level = number(at + 5, 1, what);
+    if (level > kMaxTreeLevel || (expectedLevel <= kMaxTreeLevel && level != expectedLevel)) {
+      damaged(what, thing + " at byte " + byteText(node) + " has level " + std::to_string(level) +
+                        (expectedLevel <= kMaxTreeLevel
+                             ? ", below a node of level " + std::to_string(expectedLevel + 1)
+                             : " (at most " + std::to_string(kMaxTreeLevel) + ")"));
+    }
+    const std::uint64_t entries = number(at + 6, 2, what);
+    const std::uint64_t bytes =
+        8 + 2 * offsetBytes_ + (entries + 1) * keyBytes + entries * offsetBytes_;
+    if (!inside(node, bytes)) claimsOutside(what, thing, bytes, node);
+    std::uint64_t key = at + 8 + 2 * offsetBytes_;
+    for (std::uint64_t i = 0; i < entries; ++i, key += keyBytes + offsetBytes_) {
+      const std::uint64_t child = number(key + keyBytes, offsetBytes_, what);
+      if (level > 0) {
+        pending.emplace_back(child, level - 1);
+        continue;
+      }
+      // libhdf5 allocates a buffer of the key's size and reads the chunk into it, runs the
+      // filters backwards and copies one chunk's bytes out of what they give: fewer (a short
+      // deflate stream, a damaged chunk size) were read past the buffer's end.
+      const std::uint64_t size = number(key, 4, what);
+      if (!inside(child, size)) claimsOutside(what, "a chunk", size, child);
+      const std::uint64_t mask = number(key + 4, 4, what);
+      unfolded += storage.chunkBytes;
+      if (unfolded > kMaxUnfilteredBytes) {
+        damaged(what,
+                "its chunks add up to more than " + std::to_string(kMaxUnfilteredBytes) + " bytes");
+      }
+      const std::uint64_t got =
+          unfilteredBytes(image_.substr(base_ + child, size), mask, storage, what, child);
+      if (got != storage.chunkBytes) {
+        damaged(what, "a chunk at byte " + byteText(child) + " gives " + std::to_string(got) +
+                          " bytes" + (storage.filters.empty() ? "" : " through its filters") +
+                          ", but the dataset's chunks have " + std::to_string(storage.chunkBytes));
+      }
+    }
+  }
 }
 
 Hdf5Structure::Storage Hdf5Structure::checkObject(std::uint64_t address,
@@ -364,6 +596,7 @@ Hdf5Structure::Storage Hdf5Structure::checkObject(std::uint64_t address,
       pos = m.at + m.bytes;
     }
   }
+  if (storage.chunked) checkChunkTree(storage, what);
   return storage;
 }
 

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace visgrab::importers::detail {
 
@@ -45,6 +46,16 @@ class Hdf5Structure {
     bool sharedDatatype = false;             // its datatype message names a committed type
     bool datatypeSeen = false;               // libhdf5 uses the first datatype message
     bool layoutSeen = false;                 // and the first layout message
+    // A chunked dataset of layout version 3: its B-tree's address (undefined: no chunk yet),
+    // the layout's dimensionality (rank + 1) and one chunk's bytes before its filters.
+    bool chunked = false;
+    std::uint64_t chunkTree = 0;
+    std::uint64_t chunkDims = 0;
+    std::uint64_t chunkBytes = 0;
+    // The filter pipeline's filters in the order they were applied when writing (the first
+    // pipeline message; libhdf5 uses it).
+    std::vector<unsigned> filters;
+    bool filtersSeen = false;
   };
   /// Checks the object header at `address` (relative to the base address, as libhdf5 reports it),
   /// called `what` in messages ("'grasps'"), and returns where its values are (a dataset's).
@@ -75,6 +86,16 @@ class Hdf5Structure {
   void checkMessage(const Message& m, const std::string& what, std::uint64_t* continuation,
                     std::uint64_t* continuationLength, Storage* storage) const;
   void checkLayout(const Message& m, const std::string& what, Storage* storage) const;
+  void checkFilters(const Message& m, const std::string& what, Storage* storage) const;
+  // Walks the version 1 B-tree of a chunked dataset (layout version 3): every node inside the
+  // file with its signature, type and level, no node visited twice, every chunk inside the file
+  // at the size its key claims and, through its filters (deflate inflated here), exactly one
+  // chunk's bytes.
+  void checkChunkTree(const Storage& storage, const std::string& what) const;
+  // The bytes chunk `data` gives through `storage`'s filters not skipped by `mask`.
+  std::uint64_t unfilteredBytes(std::string_view data, std::uint64_t mask, const Storage& storage,
+                                const std::string& what, std::uint64_t address) const;
+  [[noreturn]] void unsupported(const std::string& what, const std::string& why) const;
   [[noreturn]] void damaged(const std::string& what, const std::string& why) const;
   // "<thing> (at byte A) lies outside the file of N bytes"; "<thing> claims B bytes at byte A,
   // outside the file of N bytes". An undefined address reads "(undefined)".

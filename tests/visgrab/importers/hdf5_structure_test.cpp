@@ -142,11 +142,16 @@ TEST(Hdf5Structure, LayoutMessagesMustFitTheirDataAndChunks) {
   EXPECT_EQ(errorOfRoot(version0File({{0x08, layout(1, Bytes().u(kUndefined, 8).u(100, 8).s)}})),
             "");
   // Chunked (version 3): rank 2 + element size 8: 1000 x 1000 x 8 bytes fits, 2^16 x 2^16 x 8
-  // (32 GiB) does not.
-  const auto chunked = [&](std::uint64_t rows, std::uint64_t cols) {
-    return layout(2, Bytes().u(3, 1).u(800, 8).u(rows, 4).u(cols, 4).u(8, 4).s);
+  // (32 GiB) does not. Its chunk index (B-tree) address undefined: no chunk written yet; at
+  // byte 800, where no B-tree node is, refused (libhdf5's own trees:
+  // AChunkIndexMustHoldItsChunksInsideTheFile).
+  const auto chunked = [&](std::uint64_t rows, std::uint64_t cols,
+                           std::uint64_t tree = kUndefined) {
+    return layout(2, Bytes().u(3, 1).u(tree, 8).u(rows, 4).u(cols, 4).u(8, 4).s);
   };
   EXPECT_EQ(errorOfRoot(version0File({{0x08, chunked(1000, 1000)}})), "");
+  EXPECT_HAS(errorOfRoot(version0File({{0x08, chunked(1000, 1000, 800)}})),
+             "its chunk index node at byte 800 is not a chunk B-tree node");
   EXPECT_NE(errorOfRoot(version0File({{0x08, chunked(65536, 65536)}}))
                 .find("its chunks are larger than this reader accepts (" +
                       std::to_string(kMaxArrayBytes) + " bytes)"),
@@ -245,6 +250,91 @@ TEST(Hdf5Structure, DamagedNameHeapsOfARealFileAreRefusedBeforeLibhdf5ReadsThem)
     EXPECT_EQ(error.rfind("t.h5: damaged HDF5 file: ", 0), 0U) << error;
     EXPECT_NE(error.find("its name heap claims"), std::string::npos) << error;
   }
+  // The heap's free list (head at byte 16 of the heap; a free block: next offset, size) made to
+  // come back to itself, as the fuzz stage's name-heap-free-list-loop (libhdf5 allocated a list
+  // entry per visit until memory ran out).
+  const auto number = [&](std::size_t at) {
+    std::uint64_t v = 0;
+    for (int i = 0; i < 8; ++i) {
+      v |= std::uint64_t{static_cast<unsigned char>(good[at + i])} << (8 * i);
+    }
+    return v;
+  };
+  const std::uint64_t head = number(heap + 16);
+  const std::uint64_t data = number(heap + 24);
+  ASSERT_LT(head, number(heap + 8));  // the heap has a free block
+  std::string looped = good;
+  looped.replace(data + head, 8, Bytes().u(head, 8).s);
+  EXPECT_HAS(errorOf([&] { Hdf5File::fromBytes(looped, "t.h5").numbers("grasps/transforms"); }),
+             "t.h5: damaged HDF5 file: the root group: its name heap's free list comes back to "
+             "offset " +
+                 std::to_string(head));
+}
+
+// A chunked dataset (ACRONYM's are, deflated, h5py's default layout version 3) indexes its chunks
+// in a version 1 B-tree and passes them through a filter pipeline: one libhdf5 wrote reads; a
+// chunk whose filters give other than one chunk's bytes, a damaged deflate stream and a filter
+// this reader does not take are refused; a key claiming 0xF0000000 bytes for a chunk
+// (libhdf5 1.10.8 allocated that much to read it: "memory allocation failed for raw data chunk"
+// under a 4 GB limit), a node without its signature, a level beyond any tree this reader takes
+// and a node that points back at itself are refused before libhdf5 reads them.
+TEST(Hdf5Structure, AChunkIndexMustHoldItsChunksInsideTheFile) {
+  test::TempDir dir;
+  const auto path = dir.path() / "c.h5";
+  std::vector<double> values(16);
+  for (std::size_t i = 0; i < values.size(); ++i) values[i] = static_cast<double>(i);
+  test::writeHdf5(path, {{"grasps/transforms", {8, 2}, values, false, false, "", {2, 2}, true}});
+  const std::string good = readFileBytes(path, 1 << 20);
+  EXPECT_EQ(Hdf5File::fromBytes(good, "c.h5").numbers("grasps/transforms").values, values);
+  // The chunk tree's node (type 1; the root group's symbol table is a tree of type 0): "TREE",
+  // type, level, entries used (2), two 8-byte siblings, then key 0 (size 4, filter mask 4, three
+  // 8-byte offsets: two dimensions and the element's) and child 0 (8), key 1, ...
+  const std::size_t node = good.find(std::string("TREE\x01", 5));
+  ASSERT_NE(node, std::string::npos);
+  ASSERT_EQ(good[node + 5], 0);  // level 0: its children are the chunks
+  ASSERT_EQ(good[node + 6], 4);  // 8 x 2 values in chunks of 2 x 2
+  const auto errorOfDamaged = [&](const std::vector<std::pair<std::size_t, std::string>>& edits) {
+    std::string bad = good;
+    for (const auto& [at, bytes] : edits) bad.replace(node + at, bytes.size(), bytes);
+    return errorOf([&] { Hdf5File::fromBytes(bad, "c.h5").numbers("grasps/transforms"); });
+  };
+  EXPECT_HAS(errorOfDamaged({{24, Bytes().u(0xF0000000, 4).s}}),
+             "c.h5: damaged HDF5 file: 'grasps/transforms': a chunk claims 4026531840 bytes at "
+             "byte ");
+  EXPECT_HAS(errorOfDamaged({{0, "TRXX"}}),
+             "'grasps/transforms': its chunk index node at byte " + std::to_string(node) +
+                 " is not a chunk B-tree node (no \"TREE\" signature of type 1)");
+  EXPECT_HAS(errorOfDamaged({{5, Bytes().u(40, 1).s}}),
+             "its chunk index node at byte " + std::to_string(node) + " has level 40 (at most 32)");
+  // Level 1 with one entry whose child is the node itself.
+  EXPECT_HAS(errorOfDamaged({{5, Bytes().u(1, 1).u(1, 2).s}, {24 + 32, Bytes().u(node, 8).s}}),
+             "its chunk index node at byte " + std::to_string(node) +
+                 " is reached twice: the chunk index points back into itself");
+  // Entries the node has no room for: 24 + 60,001 keys of 32 bytes + 60,000 children of 8.
+  EXPECT_HAS(errorOfDamaged({{6, Bytes().u(60000, 2).s}}),
+             "its chunk index node claims 2400056 bytes at byte " + std::to_string(node));
+  // libhdf5 copies one chunk's bytes (2 x 2 x 8 = 32) out of what the filters give; fewer were
+  // read past the filter's buffer (the fuzz stage's chunk-overread-* inputs). Chunk 0's key
+  // claiming only its 2-byte zlib header inflates to nothing; a zlib header made 0 0 does not
+  // inflate at all.
+  std::uint64_t chunk0 = 0;
+  for (int i = 0; i < 8; ++i) {
+    chunk0 |= std::uint64_t{static_cast<unsigned char>(good[node + 56 + i])} << (8 * i);
+  }
+  EXPECT_HAS(errorOfDamaged({{24, Bytes().u(2, 4).s}}),
+             "'grasps/transforms': a chunk at byte " + std::to_string(chunk0) +
+                 " gives 0 bytes through its filters, but the dataset's chunks have 32");
+  EXPECT_HAS(errorOfDamaged({{chunk0 - node, Bytes().u(0, 2).s}}),
+             "a chunk at byte " + std::to_string(chunk0) + " does not inflate (zlib: ");
+  // The filter pipeline (version 1): filter id, name length, flags, values, "deflate\0". A
+  // filter this reader cannot undo here (4: szip) is refused as such, not as damage.
+  const std::size_t deflate = good.find("deflate");
+  ASSERT_NE(deflate, std::string::npos);
+  ASSERT_EQ(good[deflate - 8], 1);
+  const std::string szip = errorOfDamaged({{deflate - 8 - node, Bytes().u(4, 2).s}});
+  EXPECT_EQ(szip,
+            "c.h5: 'grasps/transforms': its chunks pass through HDF5 filter 4, which this reader "
+            "does not take (it takes deflate, shuffle and fletcher32)");
 }
 
 // A variable-length string (ACRONYM's object/file) points into a global heap collection; one

@@ -85,8 +85,13 @@ void writeHdf5(const std::filesystem::path& file, const std::vector<H5Dataset>& 
                                         : H5Screate_simple(static_cast<int>(d.shape.size()),
                                                            d.shape.data(), nullptr);
     const hid_t fileType = d.integer ? H5T_STD_I64LE : H5T_IEEE_F64LE;
-    const hid_t set =
-        H5Dcreate2(f, d.path.c_str(), fileType, space, lcpl, H5P_DEFAULT, H5P_DEFAULT);
+    const hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
+    if (!d.chunks.empty()) {
+      H5Pset_chunk(dcpl, static_cast<int>(d.chunks.size()), d.chunks.data());
+      if (d.deflate) H5Pset_deflate(dcpl, 4);
+    }
+    const hid_t set = H5Dcreate2(f, d.path.c_str(), fileType, space, lcpl, dcpl, H5P_DEFAULT);
+    H5Pclose(dcpl);
     if (set < 0) throw std::runtime_error("cannot create dataset " + d.path);
     if (!d.values.empty()) {
       H5Dwrite(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, d.values.data());

@@ -42,6 +42,10 @@ struct H5Dataset {
   bool isText = false;
   /// The string of a string dataset.
   std::string text{};
+  /// Chunk shape of a numeric dataset stored in chunks (empty: contiguous), as ACRONYM's are.
+  std::vector<unsigned long long> chunks{};
+  /// Its chunks deflated (gzip level 4, as ACRONYM's).
+  bool deflate = false;
 };
 
 /// Writes an HDF5 file with `datasets`.
