@@ -116,6 +116,40 @@ void checkStorage(hid_t dataset, std::uint64_t bytes, const std::string& where) 
   }
 }
 
+// The most chunks a dataset this reader reads may have (ACRONYM's have 2 to 16).
+constexpr std::uint64_t kMaxChunks = 65536;
+
+// A chunked dataset of shape `dims` may have at most kMaxChunks chunks: libhdf5 keeps a record
+// (with a dataspace) of every chunk a read touches, written or not, and a damaged shape of 2.6
+// million values in chunks of 2 took more than 2 GB (docs/fuzzing.md, item 7).
+void checkChunkCount(hid_t dataset, const std::vector<hsize_t>& dims, const std::string& where) {
+  Handle plist(H5Dget_create_plist(dataset), H5Pclose);
+  if (!plist.ok()) throw ImportError(where + " cannot be read: " + hdf5Reason());
+  if (H5Pget_layout(plist.get()) != H5D_CHUNKED) return;
+  std::vector<hsize_t> chunk(H5S_MAX_RANK);
+  const int rank = H5Pget_chunk(plist.get(), H5S_MAX_RANK, chunk.data());
+  if (rank != static_cast<int>(dims.size())) {
+    throw ImportError(where + " is damaged: its chunks have " + std::to_string(rank) +
+                      " dimensions, its shape " + std::to_string(dims.size()));
+  }
+  const auto text = [](const hsize_t* values, std::size_t n) {
+    std::string out;
+    for (std::size_t i = 0; i < n; ++i) out += (i == 0 ? "" : " x ") + std::to_string(values[i]);
+    return out;
+  };
+  std::uint64_t chunks = 1;
+  for (std::size_t i = 0; i < dims.size(); ++i) {
+    if (chunk[i] == 0) throw ImportError(where + " is damaged: a chunk dimension of 0");
+    chunks *= (dims[i] + chunk[i] - 1) / chunk[i];  // the shape's count is bounded: no overflow
+    if (chunks > kMaxChunks) {
+      throw ImportError(where + " is stored in more than " + std::to_string(kMaxChunks) +
+                        " chunks (chunks of " + text(chunk.data(), dims.size()) +
+                        " for a shape of " + text(dims.data(), dims.size()) +
+                        "), more than this reader reads");
+    }
+  }
+}
+
 }  // namespace
 
 Hdf5File::Hdf5File(Hdf5File&& other) noexcept
@@ -253,6 +287,7 @@ NdArray Hdf5File::numbers(const std::string& path, int rank, const std::string& 
     throw ImportError(where + " has shape " + out.shapeText() + wanted);
   }
   checkStorage(dataset.get(), count * elementBytes, where);
+  checkChunkCount(dataset.get(), dims, where);
   out.values.resize(count);
   if (count > 0 && H5Dread(dataset.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT,
                            out.values.data()) < 0) {
