@@ -108,12 +108,14 @@ Hdf5Structure::Hdf5Structure(std::string_view image, std::string name)
     // Base, free-space, end-of-file and driver addresses, then the root group's symbol table
     // entry: link name offset, object header address, cache type, reserved, scratch pad.
     const std::uint64_t entry = rootEntry + 4 * offsetBytes_;
+    driverInfo_ = number(rootEntry + 3 * offsetBytes_, offsetBytes_, sb);
     rootHeader_ = number(entry + offsetBytes_, offsetBytes_, sb);
     if (number(entry + 2 * offsetBytes_, 4, sb) == 1) {
       rootHeapCached_ = true;
       rootHeap_ = number(entry + 2 * offsetBytes_ + 8 + offsetBytes_, offsetBytes_, sb);
     }
   } else {
+    extension_ = number(at + 12 + offsetBytes_, offsetBytes_, sb);
     rootHeader_ = number(at + 12 + 3 * offsetBytes_, offsetBytes_, sb);
   }
   found_ = true;
@@ -173,6 +175,18 @@ void Hdf5Structure::claimsOutside(const std::string& what, const std::string& th
 
 void Hdf5Structure::checkRoot() const {
   if (!found_) return;
+  const std::string sb = "the superblock";
+  // Versions 0 and 1: a driver information block (version, 3 reserved bytes, its size (4), the
+  // driver's name (8), the information), which libhdf5 allocates at the size it claims (a
+  // 4 GB block from a 529-byte file, fuzz/regressions/hdf5/driver-info-4GB).
+  if (driverInfo_ && !undefined(*driverInfo_)) {
+    const std::uint64_t at = *driverInfo_;
+    if (!inside(at, 16)) outside(sb, "its driver information block", at);
+    const std::uint64_t bytes = 16 + number(base_ + at + 4, 4, sb);
+    if (!inside(at, bytes)) claimsOutside(sb, "its driver information block", bytes, at);
+  }
+  // Versions 2 and 3: the superblock extension is an object header, checked as one.
+  if (extension_ && !undefined(*extension_)) checkObject(*extension_, "the superblock extension");
   checkObject(rootHeader_, "the root group");
   if (rootHeapCached_) checkHeap(rootHeap_, "the root group");
 }

@@ -2,6 +2,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -113,6 +114,8 @@ class Hdf5Structure {
   std::size_t lengthBytes_ = 8;
   std::uint64_t base_ = 0;
   std::uint64_t rootHeader_ = 0;
+  std::optional<std::uint64_t> driverInfo_;  // superblock 0-1 (the address, maybe undefined)
+  std::optional<std::uint64_t> extension_;   // superblock 2-3 (the address, maybe undefined)
   std::uint64_t rootHeap_ = 0;
   bool rootHeapCached_ = false;
 };

@@ -177,6 +177,24 @@ TEST(Hdf5Structure, LayoutMessagesMustFitTheirDataAndChunks) {
   EXPECT_EQ(storage.bytes, 24U);
 }
 
+// A version 0 superblock's driver information block (its address the fourth after the base;
+// version, 3 reserved bytes, size (4), driver name (8), the information): libhdf5 allocated the
+// 0xFFFFFFFF bytes it claimed (fuzz/regressions/hdf5/driver-info-4GB).
+TEST(Hdf5Structure, ADriverInformationBlockMustLieInsideTheFile) {
+  std::string file = version0File({});
+  file.replace(48, 8, Bytes().u(512, 8).s);  // the driver block's address, byte 24 + 3 x 8
+  file.replace(512, 16, Bytes().u(0, 4).u(8, 4).text("NCSAmult").s);
+  EXPECT_EQ(errorOfRoot(file), "");
+  file.replace(516, 4, Bytes().u(0xFFFFFFFF, 4).s);
+  EXPECT_EQ(errorOfRoot(file),
+            "hand.h5: damaged HDF5 file: the superblock: its driver information block claims "
+            "4294967311 bytes at byte 512, outside the file of 1024 bytes");
+  file.replace(48, 8, Bytes().u(1020, 8).s);
+  EXPECT_EQ(errorOfRoot(file),
+            "hand.h5: damaged HDF5 file: the superblock: its driver information block (at byte "
+            "1020) lies outside the file of 1024 bytes");
+}
+
 TEST(Hdf5Structure, FillValuesMustFitTheirMessageAndExternalStorageIsRefused) {
   // Fill value message version 3: flags 0x20 (a value is defined), size (4), the value.
   const auto fill = [](std::uint64_t bytes, std::size_t held) {
