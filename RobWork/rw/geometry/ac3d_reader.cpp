@@ -259,10 +259,14 @@ class Ac3dReader {
       skipData(count(words[1], "data", std::numeric_limits<std::uint64_t>::max()));
     } else if (key == "numvert") {
       expectSize(words, 1, "numvert <count>");
+      // A second list would leave the surfaces read so far pointing into the wrong vertices.
+      if (vertices_) fail("a second numvert in one object; expected one vertex list");
+      vertices_ = true;
       readVertices(count(words[1], "numvert", (bytesLeft() + 1) / kVertexBytes), part);
     } else if (key == "numsurf") {
       expectSize(words, 1, "numsurf <count>");
       const std::uint64_t n = count(words[1], "numsurf", (bytesLeft() + 1) / kSurfaceBytes);
+      surfaces_ = surfaces_ || n > 0;
       for (std::uint64_t s = 0; s < n; ++s) readSurface(part);
     } else if (key != "url" && key != "hidden" && key != "locked" && key != "folded") {
       fail("unknown object keyword " + shown(key) +
@@ -285,6 +289,8 @@ class Ac3dReader {
     MeshPart part;
     Eigen::Affine3d X_PO = Eigen::Affine3d::Identity();
     std::optional<std::uint64_t> kids;
+    surfaces_ = false;
+    vertices_ = false;
     while (!kids) {
       const auto words = nextWords();
       if (!words) {
@@ -293,14 +299,25 @@ class Ac3dReader {
       }
       kids = readObjectLine(*words, part, X_PO);
     }
-    part.X_FO = X_FP * X_PO;
-    const Eigen::Affine3d X_FO = part.X_FO;
+    // As assimp 5.2 places them (the renderer still draws with it): an object with surfaces
+    // has its loc added to its vertices (in float) and only its rot in the frame its kids hang
+    // from; an object without surfaces (a group) has both in that frame. So a poly's vertices
+    // are rot (p + loc) in its parent's frame, and its kids do not move with its loc.
+    Eigen::Affine3d X_PK = X_PO;
+    if (surfaces_) {
+      for (Vector3D& v : part.vertices) {
+        for (int k = 0; k < 3; ++k) v[k] = asFloat(v[k] + X_PO.translation()[k]);
+      }
+      X_PK.translation().setZero();
+    }
+    part.X_FO = X_FP * X_PK;
+    const Eigen::Affine3d X_FK = part.X_FO;
     if (!part.triangles.empty()) parts_.push_back(std::move(part));
     for (std::uint64_t k = 0; k < *kids; ++k) {
       const auto words = expectWords("OBJECT (kid " + std::to_string(k + 1) + " of " +
                                      std::to_string(*kids) + ")");
       if (words[0] != "OBJECT") fail("expected OBJECT, found " + shown(words[0]));
-      readObject(words, X_FO, depth + 1);
+      readObject(words, X_FK, depth + 1);
     }
   }
 
@@ -312,6 +329,8 @@ class Ac3dReader {
   std::uint64_t materials_ = 0;
   std::int64_t budget_ = kTriangulationBudget;  // for all of the file's polygons
   std::vector<MeshPart> parts_;
+  bool surfaces_ = false;  // the object being read has surfaces
+  bool vertices_ = false;  // the object being read has its vertex list
 };
 
 }  // namespace

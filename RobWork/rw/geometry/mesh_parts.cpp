@@ -113,6 +113,7 @@ bool clipEars(std::span<const Vector3D> vertices, std::span<const std::uint32_t>
     std::size_t ear = next;
     int wraps = 0;
     for (;; prev = ear, ear = next) {
+      if (--budget <= 0) return false;  // every step counts, reflex corners too
       next = ear + 1;
       while (done[next % n]) ++next;
       next %= n;

@@ -285,6 +285,12 @@ class PlyReader {
 
   void assignRoles() {
     for (Element& element : elements_) {
+      if (element.name == "tristrips" && element.count > 0) {
+        // assimp turned these into triangles; skipping them would drop the surface unseen.
+        failAtLine(file_, element.line,
+                   "element tristrips (triangle strips) is not read here; expected the polygons "
+                   "in element face");
+      }
       if (element.name == "vertex") {
         for (const auto& [name, role] :
              {std::pair{"x", Role::kX}, {"y", Role::kY}, {"z", Role::kZ}}) {

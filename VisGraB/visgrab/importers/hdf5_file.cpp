@@ -2,6 +2,7 @@
 
 #include <hdf5.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <mutex>
 #include <type_traits>
@@ -116,12 +117,9 @@ void checkStorage(hid_t dataset, std::uint64_t bytes, const std::string& where) 
   }
 }
 
-// The most chunks a dataset this reader reads may have (ACRONYM's have 2 to 16).
-constexpr std::uint64_t kMaxChunks = 65536;
-
-// A chunked dataset of shape `dims` may have at most kMaxChunks chunks: libhdf5 keeps a record
-// (with a dataspace) of every chunk a read touches, written or not, and a damaged shape of 2.6
-// million values in chunks of 2 took more than 2 GB (docs/fuzzing.md, item 7).
+// A chunked dataset of shape `dims` may have at most detail::kMaxHdf5Chunks chunks: libhdf5 keeps a
+// record (with a dataspace) of every chunk a read touches, written or not, and a damaged shape
+// of 2.6 million values in chunks of 2 took more than 2 GB (docs/fuzzing.md, item 7).
 void checkChunkCount(hid_t dataset, const std::vector<hsize_t>& dims, const std::string& where) {
   Handle plist(H5Dget_create_plist(dataset), H5Pclose);
   if (!plist.ok()) throw ImportError(where + " cannot be read: " + hdf5Reason());
@@ -137,15 +135,16 @@ void checkChunkCount(hid_t dataset, const std::vector<hsize_t>& dims, const std:
     for (std::size_t i = 0; i < n; ++i) out += (i == 0 ? "" : " x ") + std::to_string(values[i]);
     return out;
   };
+  if (std::find(dims.begin(), dims.end(), hsize_t{0}) != dims.end()) return;  // nothing to read
   std::uint64_t chunks = 1;
   for (std::size_t i = 0; i < dims.size(); ++i) {
     if (chunk[i] == 0) throw ImportError(where + " is damaged: a chunk dimension of 0");
     chunks *= (dims[i] + chunk[i] - 1) / chunk[i];  // the shape's count is bounded: no overflow
-    if (chunks > kMaxChunks) {
-      throw ImportError(where + " is stored in more than " + std::to_string(kMaxChunks) +
-                        " chunks (chunks of " + text(chunk.data(), dims.size()) +
-                        " for a shape of " + text(dims.data(), dims.size()) +
-                        "), more than this reader reads");
+    if (chunks > detail::kMaxHdf5Chunks) {
+      throw ImportError(where + " is stored in more than " +
+                        std::to_string(detail::kMaxHdf5Chunks) + " chunks (chunks of " +
+                        text(chunk.data(), dims.size()) + " for a shape of " +
+                        text(dims.data(), dims.size()) + "), more than this reader reads");
     }
   }
 }

@@ -71,7 +71,7 @@ std::string inflate(std::string_view data, std::uint64_t limit, const Fail& fail
 constexpr std::size_t kMaxTreeNodes = 1U << 16;
 constexpr std::uint64_t kVariableLengthClass = 9;
 // A damaged header could chain its continuations in a loop or without end.
-constexpr std::size_t kMaxChunks = 4096;
+constexpr std::size_t kMaxHeaderChunks = 4096;
 
 }  // namespace
 
@@ -219,7 +219,9 @@ void Hdf5Structure::checkHeap(std::uint64_t address, const std::string& what) co
        block != 1 && block != none;) {
     if (block >= size || 2 * lengthBytes_ > size - block) {
       damaged(what, "its name heap's free list points at offset " + std::to_string(block) +
-                        ", outside the heap's " + std::to_string(size) + " bytes");
+                        ", where a free block (" + std::to_string(2 * lengthBytes_) +
+                        " bytes at least) does not fit in the heap's " + std::to_string(size) +
+                        " bytes");
     }
     if (!visited.insert(block).second) {
       damaged(what, "its name heap's free list comes back to offset " + std::to_string(block));
@@ -248,6 +250,11 @@ void Hdf5Structure::checkMessage(const Message& m, const std::string& what,
     }
   };
   // A shared message holds a reference to the message kept elsewhere, not the message.
+  if ((m.flags & 0x02) != 0 && m.type == kFilterPipelineMessage && !storage->filtersSeen) {
+    storage->filtersSeen = true;
+    storage->filtersShared = true;  // its filters cannot be known here
+    return;
+  }
   if ((m.flags & 0x02) != 0 && m.type != kDatatypeMessage) return;
   switch (m.type) {
     case kContinuationMessage:
@@ -382,7 +389,8 @@ void Hdf5Structure::checkLayout(const Message& m, const std::string& what, Stora
   std::uint64_t bytes = 1;
   for (std::uint64_t i = 0; i < dims; ++i) {
     const std::uint64_t d = number(sizes + i * width, width, what);
-    if (d != 0 && bytes > kMaxArrayBytes / d) {
+    if (d == 0) damaged(what, "its chunks have a dimension of 0");  // libhdf5 refuses it too
+    if (bytes > kMaxArrayBytes / d) {
       damaged(what, "its chunks are larger than this reader accepts (" +
                         std::to_string(kMaxArrayBytes) + " bytes)");
     }
@@ -432,11 +440,6 @@ void Hdf5Structure::checkFilters(const Message& m, const std::string& what,
     const std::uint64_t values = number(pos + 2, 2, what);
     pos += 4 + nameBytes + 4 * values + (version == 1 && values % 2 == 1 ? 4 : 0);
     need(pos, 0);
-    if (id < kDeflateFilter || id > kFletcher32Filter) {
-      unsupported(what, "its chunks pass through HDF5 filter " + std::to_string(id) +
-                            ", which this reader does not take (it takes deflate, shuffle and "
-                            "fletcher32)");
-    }
     storage->filters.push_back(id);
   }
 }
@@ -476,6 +479,16 @@ std::uint64_t Hdf5Structure::unfilteredBytes(std::string_view data, std::uint64_
 void Hdf5Structure::checkChunkTree(const Storage& storage, const std::string& what) const {
   const std::uint64_t address = storage.chunkTree;
   const std::uint64_t dims = storage.chunkDims;
+  if (storage.filtersShared) {
+    unsupported(what, "its filter pipeline is a shared message, which this reader does not read");
+  }
+  for (const unsigned id : storage.filters) {
+    if (id < kDeflateFilter || id > kFletcher32Filter) {
+      unsupported(what, "its chunks pass through HDF5 filter " + std::to_string(id) +
+                            ", which this reader does not take (it takes deflate, shuffle and "
+                            "fletcher32)");
+    }
+  }
   if (undefined(address)) return;  // no chunk written yet: libhdf5 reads the fill value
   // A node: "TREE", type (1: chunks), level, entries used (2), left and right siblings, then
   // keys and children alternating, one key more than children. A key: the chunk's size in the
@@ -483,6 +496,7 @@ void Hdf5Structure::checkChunkTree(const Storage& storage, const std::string& wh
   // one level down, or at level 0 the chunk's address.
   const std::uint64_t keyBytes = 8 + 8 * dims;
   std::set<std::uint64_t> visited;
+  std::set<std::uint64_t> chunks;
   std::uint64_t unfolded = 0;
   std::vector<std::pair<std::uint64_t, std::uint64_t>> pending{{address, kMaxTreeLevel + 1}};
   while (!pending.empty()) {
@@ -525,6 +539,13 @@ void Hdf5Structure::checkChunkTree(const Storage& storage, const std::string& wh
       // deflate stream, a damaged chunk size) were read past the buffer's end.
       const std::uint64_t size = number(key, 4, what);
       if (!inside(child, size)) claimsOutside(what, "a chunk", size, child);
+      if (!chunks.insert(child).second) {
+        damaged(what, "a chunk at byte " + byteText(child) + " is listed twice in its chunk index");
+      }
+      if (chunks.size() > kMaxHdf5Chunks) {
+        damaged(what,
+                "its chunk index lists more than " + std::to_string(kMaxHdf5Chunks) + " chunks");
+      }
       const std::uint64_t mask = number(key + 4, 4, what);
       unfolded += storage.chunkBytes;
       if (unfolded > kMaxUnfilteredBytes) {
@@ -597,7 +618,8 @@ Hdf5Structure::Storage Hdf5Structure::checkObject(std::uint64_t address,
       std::uint64_t nextLength = 0;
       checkMessage(m, what, &next, &nextLength, &storage);
       if (nextLength != 0 || next != 0) {
-        if (chunks.size() >= kMaxChunks) damaged(what, "its object header has too many chunks");
+        if (chunks.size() >= kMaxHeaderChunks)
+          damaged(what, "its object header has too many chunks");
         // A version 2 continuation chunk: "OCHK", the messages, a checksum.
         if (v2 && nextLength < 8) damaged(what, "a continuation chunk of its header is too short");
         if (!inside(next, nextLength)) {

@@ -9,6 +9,10 @@
 
 namespace visgrab::importers::detail {
 
+/// The most chunks a dataset this reader reads may have (ACRONYM's have 2 to 16): libhdf5 keeps a
+/// record of every chunk a read touches, and the checks here inflate each chunk.
+inline constexpr std::uint64_t kMaxHdf5Chunks = 65536;
+
 /// The parts of an HDF5 file's metadata that Debian's libhdf5 1.10.8 trusts before it checks
 /// them against the file's end, read and checked here from the file's bytes first
 /// (docs/fuzzing.md, item 7). libhdf5 allocates a block of metadata at the size the file claims
@@ -16,12 +20,19 @@ namespace visgrab::importers::detail {
 /// up to 2^56 bytes, and a heap whose data address was undefined crashed it. Checked, for each
 /// object Hdf5File opens (the root group, each group on a path, the dataset) before libhdf5 reads
 /// it:
+/// - the superblock's driver information block (versions 0-1) lies inside the file, its
+///   extension (versions 2-3) is an object header checked as the others (checkRoot);
 /// - every continuation chunk of its object header (versions 1 and 2) lies inside the file;
 /// - a symbol-table group's local heap (where libhdf5 keeps the names of its members) has its
-///   signature and its data block lies inside the file;
+///   signature, its data block lies inside the file and its free list stays inside the heap
+///   without coming back to a block;
 /// - a dataset's layout (versions 3 and 4; others and virtual datasets refused): compact data
-///   inside its message, contiguous data inside the file, chunks of at most kMaxArrayBytes;
-///   fill values inside their message; external storage refused;
+///   inside its message, contiguous data inside the file, chunks of at most kMaxArrayBytes and
+///   no dimension of 0; fill values inside their message; external storage refused;
+/// - a chunked dataset's (layout 3) B-tree: nodes inside the file with their signature, type and
+///   level, none reached twice; chunks inside the file, none listed twice, at most
+///   kMaxHdf5Chunks; its filters (deflate, shuffle, fletcher32; others and a shared pipeline
+///   refused) undone here, zlib inflating, and each chunk giving exactly one chunk's bytes;
 /// - a variable-length string's global heap object (checkVariableLengthString).
 /// An object header of another version is left to libhdf5, which refuses it before allocating. The
 /// file's sizes of offsets and lengths and its base address come from the superblock (versions 0 to
@@ -57,6 +68,7 @@ class Hdf5Structure {
     // pipeline message; libhdf5 uses it).
     std::vector<unsigned> filters;
     bool filtersSeen = false;
+    bool filtersShared = false;  // the pipeline is a shared message (kept elsewhere)
   };
   /// Checks the object header at `address` (relative to the base address, as libhdf5 reports it),
   /// called `what` in messages ("'grasps'"), and returns where its values are (a dataset's).

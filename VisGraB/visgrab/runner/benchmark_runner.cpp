@@ -13,6 +13,7 @@
 #include "rw/common/stop_signals.hpp"
 #include "rw/common/task_pool.hpp"
 #include "rw/common/text_file.hpp"
+#include "rw/common/write_error.hpp"
 #include "rw/kinematics/frame_tree.hpp"
 #include "rwsim/simulator/grasp_trial.hpp"
 #include "visgrab/database/database.hpp"
@@ -706,6 +707,14 @@ RunSummary runBenchmark(const RunOptions& options,
   }
   results::ResultsWriter::Options writerOptions;
   writerOptions.repeated = repeats.record.repeated();
+  // A new folder is marked before the writer makes its trials.csv: checks below that fail leave
+  // a folder that says it holds no finished run.
+  if (!fs::exists(options.out / results::kTrialsFileName)) {
+    std::error_code made;
+    fs::create_directories(options.out, made);
+    if (made) throw rw::common::WriteError(options.out, made);
+    results::markUnfinished(options.out);
+  }
   results::ResultsWriter writer(options.out, writerOptions);
   PendingWork pending = pendingScenes(plan.order.scenes, writer, repeats.count);
   plan.run.sources.engineSettings = checkHandFits(pending, wholeRun, loader, options.hand);
@@ -714,7 +723,7 @@ RunSummary runBenchmark(const RunOptions& options,
   checkSameEngine(options, previous, plan.run.sources);
   checkSameProtocol(options, previous, plan.run.sources);
   // From here the folder holds part of a run until finishRun has written it whole; a refused
-  // resume above leaves it as it was.
+  // resume above leaves its folder without the mark it did not have.
   results::markUnfinished(options.out);
   writeRunFile(plan, writer);
   runScenes(options, loader, repeats, pending, plan, writer, [&] {

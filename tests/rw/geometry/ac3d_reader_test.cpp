@@ -50,7 +50,9 @@ std::string sceneText() {
 }
 
 // The kid's points go through its own rot (rows 1 0 0 / 0 0 -1 / 0 1 0) and loc (10 0 0), then
-// the group's rot (rows 0 -1 0 / 1 0 0 / 0 0 1) and loc (1 2 3): p_world = R_g (R_t p + t_t) + t_g.
+// the group's rot (rows 0 -1 0 / 1 0 0 / 0 0 1) and loc (1 2 3): p_world = R_g R_t (p + t_t) + t_g
+// (an object with surfaces adds its loc before its rot: RotAndLocOfAnObjectWithSurfaces; here
+// R_t leaves t_t where it is, so R_t (p + t_t) = R_t p + t_t).
 //   (1,0,0) -> (1,0,0) + (10,0,0) = (11,0,0)  -> (0,11,0) + (1,2,3) = (1,13,3)
 //   (0,2,0) -> (0,0,2) + (10,0,0) = (10,0,2)  -> (0,10,2) + (1,2,3) = (1,12,5)
 //   (0,0,3) -> (0,-3,0) + (10,0,0) = (10,-3,0) -> (3,10,0) + (1,2,3) = (4,12,3)
@@ -67,6 +69,40 @@ TEST(Ac3dReaderTest, NestedKidsRotAndLocMaterialsLinesAndData) {
                      {Vector3D(0, 0, -1), Vector3D(1, 1, -1), Vector3D(0, 1, -1)}});
   EXPECT_EQ(trianglesOf(*mesh), expected);
   EXPECT_EQ(mesh->vertices.size(), 7U);
+}
+
+// assimp 5.2, which the renderer still draws AC3D with, adds the loc of an object with surfaces
+// to its vertices and keeps only its rot in the frame its kids hang from; a group keeps both.
+// A poly with rot R (rows 0 -1 0 / 1 0 0 / 0 0 1: (x,y,z) -> (-y,x,z)) and loc L = (1,0,0):
+//   its vertices R (p + L): (0,0,0) -> R (1,0,0) = (0,1,0); (0,0,1) -> (0,1,1); (0,1,0) -> (-1,1,0)
+//   its kid (loc (0,0,5), no rot) R (q + (0,0,5)), without L: (0,0,0) -> (0,0,5);
+//   (1,0,0) -> R (1,0,5) = (0,1,5); (0,1,0) -> R (0,1,5) = (-1,0,5).
+// The old assimp path gave these points (checked with the binary of 5301400 on this file); the
+// reader had R p + L before (the collision mesh then lay apart from the drawn one).
+TEST(Ac3dReaderTest, RotAndLocOfAnObjectWithSurfaces) {
+  TempDir dir;
+  const std::string tri =
+      "numvert 3\n0 0 0\n%\n0 1 0\nnumsurf 1\nSURF 0x10\nmat 0\nrefs 3\n"
+      "0 0 0\n1 0 0\n2 0 0\n";
+  const auto with = [&tri](const std::string& second) {
+    std::string t = tri;
+    t.replace(t.find('%'), 1, second);
+    return t;
+  };
+  const std::string text =
+      std::string("AC3Db\n") + kMaterials +
+      "OBJECT world\nkids 1\nOBJECT poly\nrot 0 -1 0 1 0 0 0 0 1\nloc 1 0 0\n" + with("0 0 1") +
+      "kids 1\nOBJECT poly\nloc 0 0 5\n" + with("1 0 0") + "kids 0\n";
+  const auto mesh = loadMesh(writeFile(dir.path() / "poly.ac", text));
+  EXPECT_EQ(trianglesOf(*mesh),
+            trianglesFrom({{Vector3D(0, 1, 0), Vector3D(0, 1, 1), Vector3D(-1, 1, 0)},
+                           {Vector3D(0, 0, 5), Vector3D(0, 1, 5), Vector3D(-1, 0, 5)}}));
+  // A second vertex list in one object would leave the surfaces read so far pointing into it.
+  const std::string twice = std::string("AC3Db\n") + kMaterials +
+                            "OBJECT world\nkids 1\nOBJECT poly\n" + with("1 0 0") + with("1 0 0") +
+                            "kids 0\n";
+  expectLocatedError(writeFile(dir.path() / "twice.ac", twice), ":18",
+                     "a second numvert in one object");
 }
 
 // Any hex digit after "AC3D" is a version; CRLF line ends and blank lines are fine; a second

@@ -168,6 +168,12 @@ TEST(PlyReaderTest, HeaderErrorsNameTheLine) {
          "expected \"element <name> <count>\"");
   expect("ply\nformat ascii 1.0\nelement a 0\nelement a 0\nend_header\n", ":4",
          "a second element \"a\"");
+  // Triangle strips (assimp made triangles of them) are refused, not dropped unseen.
+  expect(
+      "ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\nproperty float y\n"
+      "property float z\nelement tristrips 1\nproperty list int int vertex_indices\n"
+      "end_header\n3 0 1 2\n",
+      ":7", "element tristrips (triangle strips) is not read here");
   expect("ply\nformat ascii 1.0\nproperty float x\nend_header\n", ":3",
          "a property before any element");
   expect("ply\nformat ascii 1.0\nelement a 1\nproperty real x\nend_header\n", ":4",

@@ -88,7 +88,9 @@ void writeHdf5(const std::filesystem::path& file, const std::vector<H5Dataset>& 
     const hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
     if (!d.chunks.empty()) {
       H5Pset_chunk(dcpl, static_cast<int>(d.chunks.size()), d.chunks.data());
+      if (d.shuffleAndChecksum) H5Pset_shuffle(dcpl);
       if (d.deflate) H5Pset_deflate(dcpl, 4);
+      if (d.shuffleAndChecksum) H5Pset_fletcher32(dcpl);
     }
     const hid_t set = H5Dcreate2(f, d.path.c_str(), fileType, space, lcpl, dcpl, H5P_DEFAULT);
     H5Pclose(dcpl);

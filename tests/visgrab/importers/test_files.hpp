@@ -46,6 +46,9 @@ struct H5Dataset {
   std::vector<unsigned long long> chunks{};
   /// Its chunks deflated (gzip level 4, as ACRONYM's).
   bool deflate = false;
+  /// Its chunks shuffled before deflating and checksummed after (h5py's shuffle=True,
+  /// fletcher32=True).
+  bool shuffleAndChecksum = false;
 };
 
 /// Writes an HDF5 file with `datasets`.
