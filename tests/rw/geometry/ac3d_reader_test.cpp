@@ -5,7 +5,6 @@
 
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -207,16 +206,14 @@ TEST(Ac3dReaderTest, MirroringRotKeepsOutwardWinding) {
 }
 
 // Every input the fuzzer found (fuzz/regressions/mesh: assimp's PLY hangs, its PLY and AC3D
-// allocations of tens of GB, its STL leaks, its abort on an empty PLY face) is an error, quickly.
+// allocations of tens of GB, its STL leaks, its abort on an empty PLY face) is an error. (That
+// none hangs is checked where time is the measure: scripts/fuzz.sh replays each with libFuzzer's
+// 10-second timeout; a test asserts no wall-clock time.)
 TEST(MeshRegressionTest, EveryFuzzFindingIsAnError) {
   TempDir scratch;
   const auto files = visgrab::test::meshFuzzRegressions(scratch.path());
   EXPECT_GE(files.size(), 12U);
-  for (const fs::path& file : files) {
-    const auto start = std::chrono::steady_clock::now();
-    EXPECT_THROW(loadMesh(file), MeshLoadError) << file;
-    EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(2)) << file;
-  }
+  for (const fs::path& file : files) EXPECT_THROW(loadMesh(file), MeshLoadError) << file;
 }
 
 // RobWork's AC3D device models give the same triangles as the old assimp path did. The counts
