@@ -311,6 +311,9 @@ TEST_F(ShardedRun, MergedShardsAreByteIdenticalToTheOneMachineRun) {
   const auto summary = mergeShards({dirs[2], dirs[0], dirs[1]}, tmp_.path() / "merged");
   EXPECT_EQ(summary.shards, 3);
   expectSameAsWhole(tmp_.path() / "merged");
+  // Marked unfinished while its files were written (shard_merge.cpp), not after.
+  EXPECT_FALSE(fs::exists(tmp_.path() / "merged" / "unfinished.txt"));
+  EXPECT_TRUE(visgrab::results::readResults(tmp_.path() / "merged").finished);
   // Each shard holds whole scenes: its run.csv lists its scenes, and its trials are of them.
   std::size_t trials = 0;
   std::vector<std::string> scenes;

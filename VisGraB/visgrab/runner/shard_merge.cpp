@@ -7,6 +7,7 @@
 #include <string>
 
 #include "rw/common/text_file.hpp"
+#include "rw/common/write_error.hpp"
 #include "visgrab/results/grasp_summary.hpp"
 #include "visgrab/results/results_file.hpp"
 #include "visgrab/runner/shard_record.hpp"
@@ -199,8 +200,15 @@ MergeSummary mergeShards(const std::vector<fs::path>& shardDirs, const fs::path&
     for (const auto& [method, n] : part.rejected) rejected[method] += n;
   }
   for (const auto& [method, n] : rejected) merged.rejected.emplace_back(method, n);
+  // As a run writes its folder: marked unfinished until its last file is there, so a merge
+  // killed between its files leaves a folder the analyses refuse, not part of a run.
+  std::error_code made;
+  fs::create_directories(out, made);
+  if (made) throw rw::common::WriteError(out, made);
+  results::markUnfinished(out);
   results::writeResults(out, merged);
   if (merged.repeats.repeated()) results::writeGraspSummary(out, merged);
+  results::markFinished(out);
 
   MergeSummary summary;
   summary.shards = static_cast<int>(shards.size());
