@@ -331,8 +331,6 @@ std::optional<fs::path> resolveMeshFile(const fs::path& baseDir, const std::stri
 
 namespace detail {
 
-bool hasOwnReader(const fs::path& file) { return ownReader(file) != nullptr; }
-
 void checkBeforeAssimp(const fs::path& file) {
   checkReadable(file);
   if (const OwnReader reader = ownReader(file)) {

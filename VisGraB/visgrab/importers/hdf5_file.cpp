@@ -99,33 +99,12 @@ bool linkExists(hid_t file, const detail::Hdf5Structure& structure, const std::s
   }
 }
 
-// libhdf5 1.10.8 copies a compact dataset's values from the data its layout message holds
-// without checking that it holds them all (a compact dataset of 0 bytes with 3 values made it
-// read from a null pointer: docs/fuzzing.md, item 7). The values need `bytes` bytes: a compact
-// dataset must hold exactly those, a contiguous one at least those once written.
-void checkStorage(hid_t dataset, std::uint64_t bytes, const std::string& where) {
-  Handle plist(H5Dget_create_plist(dataset), H5Pclose);
-  if (!plist.ok()) throw ImportError(where + " cannot be read: " + hdf5Reason());
-  const H5D_layout_t layout = H5Pget_layout(plist.get());
-  if (layout != H5D_COMPACT && layout != H5D_CONTIGUOUS) return;
-  const hsize_t stored = H5Dget_storage_size(dataset);
-  if ((layout == H5D_COMPACT && stored != bytes) ||
-      (layout == H5D_CONTIGUOUS && stored != 0 && stored < bytes)) {
-    throw ImportError(where + " is damaged: its values need " + std::to_string(bytes) +
-                      " bytes, its " + (layout == H5D_COMPACT ? "compact" : "contiguous") +
-                      " storage holds " + std::to_string(stored));
-  }
-}
-
 // A chunked dataset of shape `dims` may have at most detail::kMaxHdf5Chunks chunks: libhdf5 keeps a
 // record (with a dataspace) of every chunk a read touches, written or not, and a damaged shape
 // of 2.6 million values in chunks of 2 took more than 2 GB (docs/fuzzing.md, item 7).
-void checkChunkCount(hid_t dataset, const std::vector<hsize_t>& dims, const std::string& where) {
-  Handle plist(H5Dget_create_plist(dataset), H5Pclose);
-  if (!plist.ok()) throw ImportError(where + " cannot be read: " + hdf5Reason());
-  if (H5Pget_layout(plist.get()) != H5D_CHUNKED) return;
+void checkChunkCount(hid_t plist, const std::vector<hsize_t>& dims, const std::string& where) {
   std::vector<hsize_t> chunk(H5S_MAX_RANK);
-  const int rank = H5Pget_chunk(plist.get(), H5S_MAX_RANK, chunk.data());
+  const int rank = H5Pget_chunk(plist, H5S_MAX_RANK, chunk.data());
   if (rank != static_cast<int>(dims.size())) {
     throw ImportError(where + " is damaged: its chunks have " + std::to_string(rank) +
                       " dimensions, its shape " + std::to_string(dims.size()));
@@ -146,6 +125,27 @@ void checkChunkCount(hid_t dataset, const std::vector<hsize_t>& dims, const std:
                         text(chunk.data(), dims.size()) + " for a shape of " +
                         text(dims.data(), dims.size()) + "), more than this reader reads");
     }
+  }
+}
+
+// libhdf5 1.10.8 copies a compact dataset's values from the data its layout message holds
+// without checking that it holds them all (a compact dataset of 0 bytes with 3 values made it
+// read from a null pointer: docs/fuzzing.md, item 7). The values need `bytes` bytes: a compact
+// dataset must hold exactly those, a contiguous one at least those once written; a chunked one
+// of shape `*dims` (when given) at most detail::kMaxHdf5Chunks chunks (checkChunkCount).
+void checkStorage(hid_t dataset, std::uint64_t bytes, const std::vector<hsize_t>* dims,
+                  const std::string& where) {
+  Handle plist(H5Dget_create_plist(dataset), H5Pclose);
+  if (!plist.ok()) throw ImportError(where + " cannot be read: " + hdf5Reason());
+  const H5D_layout_t layout = H5Pget_layout(plist.get());
+  if (layout == H5D_CHUNKED && dims != nullptr) checkChunkCount(plist.get(), *dims, where);
+  if (layout != H5D_COMPACT && layout != H5D_CONTIGUOUS) return;
+  const hsize_t stored = H5Dget_storage_size(dataset);
+  if ((layout == H5D_COMPACT && stored != bytes) ||
+      (layout == H5D_CONTIGUOUS && stored != 0 && stored < bytes)) {
+    throw ImportError(where + " is damaged: its values need " + std::to_string(bytes) +
+                      " bytes, its " + (layout == H5D_COMPACT ? "compact" : "contiguous") +
+                      " storage holds " + std::to_string(stored));
   }
 }
 
@@ -285,8 +285,7 @@ NdArray Hdf5File::numbers(const std::string& path, int rank, const std::string& 
   if (rank >= 0 && ndims != rank) {
     throw ImportError(where + " has shape " + out.shapeText() + wanted);
   }
-  checkStorage(dataset.get(), count * elementBytes, where);
-  checkChunkCount(dataset.get(), dims, where);
+  checkStorage(dataset.get(), count * elementBytes, &dims, where);
   out.values.resize(count);
   if (count > 0 && H5Dread(dataset.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT,
                            out.values.data()) < 0) {
@@ -338,7 +337,7 @@ std::string Hdf5File::text(const std::string& path) const {
   if (H5Tset_size(memType.get(), size) < 0 || H5Tset_strpad(memType.get(), H5T_STR_NULLPAD) < 0) {
     throw ImportError(where + " cannot be read: " + hdf5Reason());
   }
-  checkStorage(dataset.get(), size, where);
+  checkStorage(dataset.get(), size, nullptr, where);  // one value: one chunk at most
   std::string out(size, '\0');
   if (H5Dread(dataset.get(), memType.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0) {
     throw ImportError(where + " cannot be read: " + hdf5Reason());

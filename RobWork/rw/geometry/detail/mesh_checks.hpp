@@ -4,9 +4,6 @@
 
 namespace rw::geometry::detail {
 
-/// True when our own readers read `file` (.ply, .ac, .ac3d in any case), not assimp.
-bool hasOwnReader(const std::filesystem::path& file);
-
 /// The checks loadMesh makes before it lets assimp read `file`, for other code that hands mesh
 /// files to assimp (the renderer): .stl/.stla/.stlb must be a well-formed STL, .ply/.ac/.ac3d
 /// must be read by our own reader without error. Other formats are not checked.
